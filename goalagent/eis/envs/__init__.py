@@ -1,1 +1,1 @@
-"""goalagent package."""
+"""Small pure-Python environments with the vocabularies of GOAL's classic example agents."""

@@ -1,0 +1,421 @@
+"""The Environment base class, after the Java Environment Interface Standard used by GOAL.
+
+An environment holds *entities* (things an agent can control, each with a type) and knows which
+registered *agents* are associated with which entities. Agents perceive through their entities
+(``get_all_percepts``) and act through them (``perform_action``). Listeners hear about state
+changes, entities appearing, being freed or deleted, and percepts the environment pushes.
+
+Subclasses implement the world in a few hooks: ``do_init``, ``do_start``, ``do_pause``,
+``do_kill``, ``do_reset``, ``percepts_for_entity`` and ``perform_entity_action``; the base class
+does the bookkeeping and checking. Everything runs on the caller's thread (pyswip is not
+thread-safe, so environments must not call listeners from other threads).
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+from typing import Protocol
+
+from goalagent.eis.exceptions import (
+    ActException,
+    ActExceptionKind,
+    ActionRefused,
+    AgentException,
+    EntityException,
+    EnvironmentInterfaceException,
+    ManagementException,
+    NoEnvironmentException,
+    PerceiveException,
+    RelationException,
+)
+from goalagent.eis.terms import Action, Parameter, Percept
+
+__all__ = [
+    "ActException",
+    "ActExceptionKind",
+    "ActionRefused",
+    "AgentException",
+    "AgentListener",
+    "EntityException",
+    "Environment",
+    "EnvironmentInterfaceException",
+    "EnvironmentListener",
+    "EnvironmentState",
+    "ManagementException",
+    "NoEnvironmentException",
+    "PerceiveException",
+    "RelationException",
+]
+
+
+class EnvironmentState(Enum):
+    """The life cycle of an environment."""
+
+    INITIALIZING = "initializing"
+    PAUSED = "paused"
+    RUNNING = "running"
+    KILLED = "killed"
+
+
+_S = EnvironmentState
+_VALID_TRANSITIONS: dict[EnvironmentState, frozenset[EnvironmentState]] = {
+    _S.INITIALIZING: frozenset({_S.PAUSED, _S.RUNNING, _S.KILLED}),
+    _S.PAUSED: frozenset({_S.RUNNING, _S.KILLED}),
+    _S.RUNNING: frozenset({_S.PAUSED, _S.KILLED}),
+    _S.KILLED: frozenset(),
+}
+
+
+class EnvironmentListener(Protocol):
+    """Hears about an environment; any of the methods may be left out."""
+
+    def handle_state_change(self, state: EnvironmentState) -> None:
+        """The environment moved to ``state``."""
+
+    def handle_new_entity(self, entity: str, type: str) -> None:
+        """A new entity appeared (launch rules ``when entity@env`` react to this)."""
+
+    def handle_free_entity(self, entity: str, agents: list[str]) -> None:
+        """``entity`` lost its last agents ``agents`` and is free again."""
+
+    def handle_deleted_entity(self, entity: str, agents: list[str]) -> None:
+        """``entity`` left the environment; ``agents`` were associated with it."""
+
+
+class AgentListener(Protocol):
+    """Hears percepts the environment pushes to one agent outside the perceive step."""
+
+    def handle_percept(self, agent: str, percept: Percept) -> None:
+        """``percept`` arrived for ``agent``."""
+
+
+def _call(listener: object, method: str, *args: object) -> None:
+    """Call ``listener.method(*args)`` when the listener has that method (Protocols are loose)."""
+    handler = getattr(listener, method, None)
+    if handler is not None:
+        handler(*args)
+
+
+class Environment:
+    """Base of all environments: state machine, entities, agents, percepts, actions, listeners."""
+
+    name: str = "environment"
+
+    def __init__(self) -> None:
+        self._state = EnvironmentState.INITIALIZING
+        self._entities: dict[str, str] = {}
+        self._agents: dict[str, list[str]] = {}
+        self._env_listeners: list[object] = []
+        self._agent_listeners: dict[str, list[object]] = {}
+        self.params: dict[str, Parameter] = {}
+
+    # ---- hooks for subclasses ------------------------------------------------------------
+
+    def do_init(self, params: dict[str, Parameter]) -> None:
+        """Build the world from ``params``; raise ManagementException on a bad parameter."""
+
+    def do_start(self) -> None:
+        """Let the world run (called before the state becomes RUNNING)."""
+
+    def do_pause(self) -> None:
+        """Hold the world still (called before the state becomes PAUSED)."""
+
+    def do_kill(self) -> None:
+        """Release the world's resources (called before the state becomes KILLED)."""
+
+    def do_reset(self, params: dict[str, Parameter]) -> None:
+        """Rebuild the world from the merged ``params``; by default the same as ``do_init``."""
+        self.do_init(params)
+
+    def percepts_for_entity(self, entity: str) -> list[Percept]:
+        """The percepts of ``entity`` describing the current state."""
+        return []
+
+    def perform_entity_action(self, entity: str, action: Action) -> Percept | None:
+        """Carry out ``action`` for ``entity``; raise ActException when it cannot be done."""
+        raise ActException(
+            f"environment '{self.name}' supports no actions (got {action})",
+            ActExceptionKind.UNKNOWN_ACTION,
+        )
+
+    # ---- state machine ----------------------------------------------------------------------
+
+    @property
+    def state(self) -> EnvironmentState:
+        """The current life-cycle state."""
+        return self._state
+
+    def _set_state(self, new: EnvironmentState) -> None:
+        """Move to ``new``; staying in the same state is a no-op, an invalid move an error."""
+        if new is self._state:
+            return
+        self._check_transition(new)
+        self._state = new
+        for listener in list(self._env_listeners):
+            _call(listener, "handle_state_change", new)
+
+    def _check_transition(self, new: EnvironmentState) -> None:
+        """Raise ManagementException now if moving to ``new`` would be invalid."""
+        if new is not self._state and new not in _VALID_TRANSITIONS[self._state]:
+            hint = " (it was killed; create a new one)" if self._state is _S.KILLED else ""
+            raise ManagementException(
+                f"environment '{self.name}' cannot go from {self._state.value} to "
+                f"{new.value}{hint}"
+            )
+
+    def init(self, params: dict[str, Parameter] | None = None) -> None:
+        """Initialise from ``params`` (once, while INITIALIZING); the state becomes PAUSED."""
+        if self._state is not EnvironmentState.INITIALIZING:
+            raise ManagementException(
+                f"environment '{self.name}' is already initialised ({self._state.value}); "
+                "use reset(params) to start over"
+            )
+        params = dict(params or {})
+        self.do_init(params)
+        self.params = params
+        self._set_state(EnvironmentState.PAUSED)
+
+    def start(self) -> None:
+        """Let the environment run; the state becomes RUNNING."""
+        self._check_transition(EnvironmentState.RUNNING)
+        if self._state is not EnvironmentState.RUNNING:
+            self.do_start()
+        self._set_state(EnvironmentState.RUNNING)
+
+    def pause(self) -> None:
+        """Pause the environment; the state becomes PAUSED."""
+        if self._state is EnvironmentState.INITIALIZING:
+            raise ManagementException(
+                f"environment '{self.name}' cannot be paused before init(params)"
+            )
+        self._check_transition(EnvironmentState.PAUSED)
+        if self._state is not EnvironmentState.PAUSED:
+            self.do_pause()
+        self._set_state(EnvironmentState.PAUSED)
+
+    def kill(self) -> None:
+        """Stop the environment for good; the state becomes KILLED (killing twice is harmless)."""
+        if self._state is not EnvironmentState.KILLED:
+            self.do_kill()
+        self._set_state(EnvironmentState.KILLED)
+
+    def reset(self, params: dict[str, Parameter] | None = None) -> None:
+        """Rebuild the world with the init parameters updated by ``params``; state PAUSED."""
+        if self._state in (EnvironmentState.INITIALIZING, EnvironmentState.KILLED):
+            raise ManagementException(
+                f"environment '{self.name}' cannot be reset while {self._state.value}"
+                + (" (call init(params) first)" if self._state is _S.INITIALIZING else "")
+            )
+        merged = {**self.params, **(params or {})}
+        self.do_reset(merged)
+        self.params = merged
+        self._set_state(EnvironmentState.PAUSED)
+
+    # ---- entities ---------------------------------------------------------------------------
+
+    def entities(self) -> list[str]:
+        """All entities, in the order they appeared."""
+        return list(self._entities)
+
+    def entity_type(self, entity: str) -> str:
+        """The type of ``entity``."""
+        self._require_entity(entity, EntityException)
+        return self._entities[entity]
+
+    def _require_entity(self, entity: str, error: type[EnvironmentInterfaceException]) -> None:
+        if entity not in self._entities:
+            known = ", ".join(self._entities) or "none"
+            raise error(
+                f"environment '{self.name}' has no entity '{entity}' (entities: {known})"
+            )
+
+    def _require_agent(self, agent: str, error: type[EnvironmentInterfaceException]) -> None:
+        if agent not in self._agents:
+            raise error(f"agent '{agent}' is not registered with environment '{self.name}'")
+
+    def add_entity(self, entity: str, type: str = "entity") -> None:
+        """Add a new entity of ``type`` and tell the environment listeners."""
+        if entity in self._entities:
+            raise EntityException(f"environment '{self.name}' already has entity '{entity}'")
+        self._entities[entity] = type
+        for listener in list(self._env_listeners):
+            _call(listener, "handle_new_entity", entity, type)
+
+    def delete_entity(self, entity: str) -> None:
+        """Remove ``entity`` and its associations, and tell the listeners which agents had it."""
+        self._require_entity(entity, EntityException)
+        agents = self._drop_associations(entity)
+        del self._entities[entity]
+        for listener in list(self._env_listeners):
+            _call(listener, "handle_deleted_entity", entity, agents)
+
+    def free_entity(self, entity: str) -> None:
+        """Dissociate every agent from ``entity`` and tell the listeners which agents had it."""
+        self._require_entity(entity, EntityException)
+        agents = self._drop_associations(entity)
+        if not agents:
+            raise RelationException(f"entity '{entity}' is not associated with any agent")
+        self._notify_free(entity, agents)
+
+    def _drop_associations(self, entity: str) -> list[str]:
+        agents = [agent for agent, ents in self._agents.items() if entity in ents]
+        for agent in agents:
+            self._agents[agent].remove(entity)
+        return agents
+
+    def _notify_free(self, entity: str, agents: list[str]) -> None:
+        for listener in list(self._env_listeners):
+            _call(listener, "handle_free_entity", entity, agents)
+
+    # ---- agents -------------------------------------------------------------------------------
+
+    def agents(self) -> list[str]:
+        """All registered agents, in registration order."""
+        return list(self._agents)
+
+    def register_agent(self, agent: str) -> None:
+        """Register ``agent`` so it can be associated with entities."""
+        if agent in self._agents:
+            raise AgentException(
+                f"agent '{agent}' is already registered with environment '{self.name}'"
+            )
+        self._agents[agent] = []
+
+    def unregister_agent(self, agent: str) -> None:
+        """Unregister ``agent``, freeing its entities and dropping its listeners."""
+        self._require_agent(agent, AgentException)
+        self.free_agent(agent)
+        del self._agents[agent]
+        self._agent_listeners.pop(agent, None)
+
+    def associate_entity(self, agent: str, entity: str) -> None:
+        """Let ``agent`` perceive and act through ``entity`` (an entity may have several agents)."""
+        self._require_agent(agent, RelationException)
+        self._require_entity(entity, RelationException)
+        if entity in self._agents[agent]:
+            raise RelationException(f"agent '{agent}' is already associated with '{entity}'")
+        self._agents[agent].append(entity)
+
+    def free_agent(self, agent: str) -> None:
+        """Dissociate ``agent`` from all its entities; entities left without agents are freed."""
+        self._require_agent(agent, RelationException)
+        for entity in list(self._agents[agent]):
+            self.free_pair(agent, entity)
+
+    def free_pair(self, agent: str, entity: str) -> None:
+        """Dissociate ``agent`` from ``entity``; tell the listeners if the entity is now free."""
+        self._require_agent(agent, RelationException)
+        self._require_entity(entity, RelationException)
+        if entity not in self._agents[agent]:
+            raise RelationException(f"agent '{agent}' is not associated with '{entity}'")
+        self._agents[agent].remove(entity)
+        if not self.associated_agents(entity):
+            self._notify_free(entity, [agent])
+
+    def associated_entities(self, agent: str) -> list[str]:
+        """The entities ``agent`` is associated with, in association order."""
+        self._require_agent(agent, AgentException)
+        return list(self._agents[agent])
+
+    def associated_agents(self, entity: str) -> list[str]:
+        """The agents associated with ``entity``, in registration order."""
+        self._require_entity(entity, EntityException)
+        return [agent for agent, ents in self._agents.items() if entity in ents]
+
+    def free_entities(self) -> list[str]:
+        """Entities no agent is associated with."""
+        taken = {entity for ents in self._agents.values() for entity in ents}
+        return [entity for entity in self._entities if entity not in taken]
+
+    # ---- listeners --------------------------------------------------------------------------
+
+    def attach_environment_listener(self, listener: EnvironmentListener) -> None:
+        """Tell ``listener`` about state changes and new, freed and deleted entities."""
+        if listener not in self._env_listeners:
+            self._env_listeners.append(listener)
+
+    def detach_environment_listener(self, listener: EnvironmentListener) -> None:
+        """Stop telling ``listener`` anything (unknown listeners are ignored)."""
+        if listener in self._env_listeners:
+            self._env_listeners.remove(listener)
+
+    def attach_agent_listener(self, agent: str, listener: AgentListener) -> None:
+        """Give ``listener`` the percepts pushed to ``agent``."""
+        self._require_agent(agent, AgentException)
+        listeners = self._agent_listeners.setdefault(agent, [])
+        if listener not in listeners:
+            listeners.append(listener)
+
+    def detach_agent_listener(self, agent: str, listener: AgentListener) -> None:
+        """Stop giving ``listener`` the percepts pushed to ``agent``."""
+        listeners = self._agent_listeners.get(agent, [])
+        if listener in listeners:
+            listeners.remove(listener)
+
+    def notify_agents(self, percept: Percept, *agents: str) -> None:
+        """Push ``percept`` to the listeners of ``agents`` (all registered agents if none)."""
+        for agent in agents:
+            self._require_agent(agent, AgentException)
+        for agent in agents or tuple(self._agents):
+            for listener in list(self._agent_listeners.get(agent, ())):
+                _call(listener, "handle_percept", agent, percept)
+
+    def notify_agents_via_entity(self, percept: Percept, *entities: str) -> None:
+        """Push ``percept`` to the agents associated with ``entities`` (each agent once)."""
+        for entity in entities:
+            self._require_entity(entity, EntityException)
+        targets = [
+            agent for agent, ents in self._agents.items() if any(e in ents for e in entities)
+        ]
+        if targets:
+            self.notify_agents(percept, *targets)
+
+    # ---- perceiving and acting --------------------------------------------------------------
+
+    def _targets(
+        self, agent: str, entities: tuple[str, ...], error: type[EnvironmentInterfaceException]
+    ) -> list[str]:
+        """The entities ``agent`` addresses: the given ones (checked) or all its associated."""
+        self._require_agent(agent, error)
+        if not entities:
+            return list(self._agents[agent])
+        for entity in entities:
+            self._require_entity(entity, error)
+            if entity not in self._agents[agent]:
+                raise error(f"agent '{agent}' is not associated with entity '{entity}'")
+        return list(entities)
+
+    def get_all_percepts(self, agent: str, *entities: str) -> dict[str, list[Percept]]:
+        """The current percepts of ``agent``'s entities (all associated ones if none given)."""
+        targets = self._targets(agent, entities, PerceiveException)
+        if self._state not in (EnvironmentState.PAUSED, EnvironmentState.RUNNING):
+            raise PerceiveException(
+                f"environment '{self.name}' gives no percepts while {self._state.value}"
+            )
+        return {entity: list(self.percepts_for_entity(entity)) for entity in targets}
+
+    def perform_action(
+        self, agent: str, action: Action, *entities: str
+    ) -> dict[str, Percept | None]:
+        """Perform ``action`` through ``agent``'s entities (all associated ones if none given)."""
+        try:
+            targets = self._targets(agent, entities, ActException)
+        except ActException as error:
+            kind = (
+                ActExceptionKind.NOT_REGISTERED
+                if agent not in self._agents
+                else ActExceptionKind.WRONG_ENTITY
+            )
+            raise ActException(str(error), kind) from None
+        if not targets:
+            raise ActException(
+                f"agent '{agent}' has no entity in environment '{self.name}' to perform "
+                f"{action}",
+                ActExceptionKind.NO_ENTITIES,
+            )
+        if self._state is not EnvironmentState.RUNNING:
+            raise ActException(
+                f"environment '{self.name}' is {self._state.value}; {action} was not performed",
+                ActExceptionKind.NOT_RUNNING,
+            )
+        return {entity: self.perform_entity_action(entity, action) for entity in targets}

@@ -1,0 +1,114 @@
+"""Finding environments by registered name or by ``package.module:Class`` path.
+
+Built-in environments are registered lazily as import paths, so naming one costs nothing until
+it is loaded (the MuJoCo ``garbage`` environment imports MuJoCo only when asked for).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import TypeVar, overload
+
+from goalagent.eis.exceptions import ManagementException, NoEnvironmentException
+from goalagent.eis.interface import Environment
+
+E = TypeVar("E", bound=type[Environment])
+
+_REGISTRY: dict[str, type[Environment] | str] = {
+    "blocksworld": "goalagent.eis.envs.blocksworld:BlocksWorld",
+    "towerworld": "goalagent.eis.envs.towerworld:TowerWorld",
+    "printer": "goalagent.eis.envs.printer:Printer",
+    "garbage": "sim.envs.garbage:GarbageEnvironment",
+}
+
+
+def _path_of(cls: type) -> str:
+    return f"{cls.__module__}:{cls.__qualname__}"
+
+
+@overload
+def register_environment(name: str) -> Callable[[E], E]: ...
+
+
+@overload
+def register_environment(name: str, target: E | str) -> E | str: ...
+
+
+def register_environment(name: str, target: E | str | None = None) -> object:
+    """Register an environment class (or its ``module:Class`` path) under ``name``.
+
+    Use as ``@register_environment("name")`` on a class or call it with the class or path.
+    Registering a name again for a different environment is a ManagementException.
+    """
+
+    def register(value: E | str) -> E | str:
+        if not isinstance(value, str) and not (
+            isinstance(value, type) and issubclass(value, Environment)
+        ):
+            raise TypeError(f"register_environment({name!r}) needs an Environment subclass")
+        old = _REGISTRY.get(name)
+        if old is not None:
+            old_path = old if isinstance(old, str) else _path_of(old)
+            new_path = value if isinstance(value, str) else _path_of(value)
+            if old_path != new_path:
+                raise ManagementException(
+                    f"environment name '{name}' is already registered for {old_path}"
+                )
+            if isinstance(old, type) and isinstance(value, str):
+                return value
+        _REGISTRY[name] = value
+        return value
+
+    if target is not None:
+        return register(target)
+    return register
+
+
+def known_environments() -> list[str]:
+    """The registered environment names, sorted."""
+    return sorted(_REGISTRY)
+
+
+def _import_path(spec: str) -> type[Environment]:
+    """Import ``package.module:Class`` and check it is an Environment subclass."""
+    module_name, _, attr = spec.partition(":")
+    if not module_name or not attr:
+        raise NoEnvironmentException(
+            f"'{spec}' is not of the form package.module:Class"
+        )
+    try:
+        module = importlib.import_module(module_name)
+    except ImportError as error:
+        raise NoEnvironmentException(
+            f"cannot load environment '{spec}': {error}"
+        ) from error
+    target: object = module
+    for part in attr.split("."):
+        if not hasattr(target, part):
+            raise NoEnvironmentException(
+                f"cannot load environment '{spec}': module '{module_name}' has no '{attr}'"
+            )
+        target = getattr(target, part)
+    if not (isinstance(target, type) and issubclass(target, Environment)):
+        raise NoEnvironmentException(
+            f"'{spec}' is not an environment (not a subclass of goalagent.eis.Environment)"
+        )
+    return target
+
+
+def load_environment(spec: str) -> type[Environment]:
+    """The environment class for a registered name or a ``package.module:Class`` path."""
+    entry = _REGISTRY.get(spec)
+    if entry is None:
+        if ":" not in spec:
+            raise NoEnvironmentException(
+                f"unknown environment '{spec}' (known: {', '.join(known_environments())}; "
+                "or give package.module:Class)"
+            )
+        return _import_path(spec)
+    if isinstance(entry, str):
+        cls = _import_path(entry)
+        _REGISTRY[spec] = cls
+        return cls
+    return entry

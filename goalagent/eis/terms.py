@@ -1,0 +1,272 @@
+"""Interface-level terms (EIS parameters, percepts, actions) and their Prolog counterparts.
+
+The mapping to ``goalagent.kb.terms`` values (and through ``format_term`` to Prolog text):
+
+=====================  ===========================================================
+EIS                    Prolog / kb term
+=====================  ===========================================================
+``Identifier(v)``      atom ``v`` (``Atom``); quoted as needed, e.g. ``'Hello world'``
+``Identifier(v,        string ``"v"`` (plain ``str``); the flag keeps strings lossless
+string=True)``
+``Numeral(n)``         integer or float, exactly as given (``1`` and ``1.0`` differ)
+``Function(f, ps)``    compound ``f(p1, ..., pn)`` (``Struct``); ``f()`` when ``ps`` is empty
+``ParameterList(ps)``  proper list ``[p1, ..., pn]``
+``TruthValue(b)``      atom ``true`` / ``false`` (read back as an ``Identifier``)
+=====================  ===========================================================
+
+Prolog terms read through ``from_term`` come back exactly (``to_term(from_term(t)) == t``),
+with two caveats inherited from the kb term model: an unbound variable has no EIS form and is
+refused with ``TranslationException`` (percepts and actions must be ground), and ``Atom("[]")``
+formats as ``[]``, which SWI-Prolog reads as the empty list.
+
+``to_parameter`` is a separate, shorthand reader for Python values written by environment code:
+there a plain ``str`` is an identifier (atom), ``bool`` a truth value and a tuple a list.
+``to_python`` goes the other way for environment code: like ``to_term`` but truth values
+become ``bool``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from goalagent.eis.exceptions import TranslationException
+from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+
+
+@dataclass(frozen=True)
+class Identifier:
+    """A name: a Prolog atom, or a Prolog string when ``string`` is true."""
+
+    value: str
+    string: bool = False
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.value, str):
+            raise TypeError(f"Identifier needs a str, got {self.value!r}")
+
+    def __str__(self) -> str:
+        return format_term(to_term(self))
+
+
+@dataclass(frozen=True, eq=False)
+class Numeral:
+    """An integer or float; equality is type-exact because Prolog's ``1`` and ``1.0`` differ."""
+
+    value: int | float
+
+    def __post_init__(self) -> None:
+        if isinstance(self.value, bool) or not isinstance(self.value, (int, float)):
+            raise TypeError(f"Numeral needs an int or float, got {self.value!r}")
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Numeral) or type(self.value) is not type(other.value):
+            return False
+        both_nan = self.value != self.value and other.value != other.value
+        return self.value == other.value or both_nan
+
+    def __hash__(self) -> int:
+        return hash((type(self.value), self.value))
+
+    def __str__(self) -> str:
+        return format_term(self.value)
+
+
+def _params_tuple(owner: object, params: Iterable[Parameter]) -> None:
+    """Store ``params`` on a frozen dataclass as a tuple, checking each is a Parameter."""
+    items = tuple(params)
+    for item in items:
+        if not isinstance(item, _PARAMETER_TYPES):
+            raise TypeError(
+                f"{type(owner).__name__} parameters must be EIS parameters, got {item!r} "
+                "(use to_parameter() to convert Python values)"
+            )
+    object.__setattr__(owner, "params", items)
+
+
+@dataclass(frozen=True)
+class Function:
+    """A named function of parameters: a Prolog compound term."""
+
+    name: str
+    params: tuple[Parameter, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        _params_tuple(self, self.params)
+
+    def __str__(self) -> str:
+        return format_term(to_term(self))
+
+
+@dataclass(frozen=True)
+class ParameterList:
+    """An ordered list of parameters: a Prolog list."""
+
+    params: tuple[Parameter, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        _params_tuple(self, self.params)
+
+    def __str__(self) -> str:
+        return format_term(to_term(self))
+
+
+@dataclass(frozen=True)
+class TruthValue:
+    """A boolean: the Prolog atom ``true`` or ``false``."""
+
+    value: bool
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.value, bool):
+            raise TypeError(f"TruthValue needs a bool, got {self.value!r}")
+
+    def __str__(self) -> str:
+        return "true" if self.value else "false"
+
+
+Parameter = Identifier | Numeral | Function | ParameterList | TruthValue
+_PARAMETER_TYPES = (Identifier, Numeral, Function, ParameterList, TruthValue)
+
+
+@dataclass(frozen=True)
+class Percept:
+    """What an entity perceives: ``name(params...)``, an atom when there are no parameters."""
+
+    name: str
+    params: tuple[Parameter, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        _params_tuple(self, self.params)
+
+    @classmethod
+    def of(cls, name: str, *values: object) -> Percept:
+        """A percept from Python shorthand values (see ``to_parameter``)."""
+        return cls(name, tuple(to_parameter(value) for value in values))
+
+    def __str__(self) -> str:
+        return format_term(percept_to_term(self))
+
+
+@dataclass(frozen=True)
+class Action:
+    """What an agent asks an entity to do: ``name(params...)``."""
+
+    name: str
+    params: tuple[Parameter, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        _params_tuple(self, self.params)
+
+    @classmethod
+    def of(cls, name: str, *values: object) -> Action:
+        """An action from Python shorthand values (see ``to_parameter``)."""
+        return cls(name, tuple(to_parameter(value) for value in values))
+
+    def __str__(self) -> str:
+        return format_term(action_to_term(self))
+
+
+def to_term(param: Parameter) -> Term:
+    """The kb term (and so Prolog term) for an EIS parameter."""
+    if isinstance(param, Identifier):
+        return param.value if param.string else Atom(param.value)
+    if isinstance(param, Numeral):
+        return param.value
+    if isinstance(param, TruthValue):
+        return Atom("true" if param.value else "false")
+    if isinstance(param, ParameterList):
+        return [to_term(item) for item in param.params]
+    if isinstance(param, Function):
+        return Struct(param.name, tuple(to_term(item) for item in param.params))
+    raise TypeError(f"not an EIS parameter: {param!r}")
+
+
+def from_term(term: Term) -> Parameter:
+    """The EIS parameter for a kb term; an unbound variable raises ``TranslationException``."""
+    if isinstance(term, bool):
+        return TruthValue(term)
+    if isinstance(term, Atom):
+        return Identifier(str(term))
+    if isinstance(term, str):
+        return Identifier(term, string=True)
+    if isinstance(term, (int, float)):
+        return Numeral(term)
+    if isinstance(term, (list, tuple)):
+        return ParameterList(tuple(from_term(item) for item in term))
+    if isinstance(term, Struct):
+        return Function(term.name, tuple(from_term(arg) for arg in term.args))
+    if isinstance(term, Var):
+        raise TranslationException(
+            f"unbound variable {term.name} cannot be sent to or from an environment "
+            "(percepts and actions must be ground)"
+        )
+    raise TranslationException(f"not a Prolog term: {term!r}")
+
+
+def to_parameter(value: object) -> Parameter:
+    """An EIS parameter from a Python shorthand value: str is an atom, tuple/list a list."""
+    if isinstance(value, _PARAMETER_TYPES):
+        return value
+    if isinstance(value, bool):
+        return TruthValue(value)
+    if isinstance(value, (int, float)):
+        return Numeral(value)
+    if isinstance(value, str):
+        return Identifier(str(value))
+    if isinstance(value, (list, tuple)):
+        return ParameterList(tuple(to_parameter(item) for item in value))
+    if isinstance(value, (Struct, Var)):
+        return from_term(value)
+    raise TranslationException(
+        f"cannot turn {value!r} ({type(value).__name__}) into an EIS parameter; use str, int, "
+        "float, bool, list/tuple, a kb term or an EIS parameter"
+    )
+
+
+def to_python(param: Parameter) -> object:
+    """A plain Python value for a parameter: atoms as ``Atom``, functions as ``Struct``."""
+    if isinstance(param, TruthValue):
+        return param.value
+    if isinstance(param, ParameterList):
+        return [to_python(item) for item in param.params]
+    if isinstance(param, Function):
+        return Struct(param.name, tuple(to_python(item) for item in param.params))
+    return to_term(param)
+
+
+def _named_to_term(name: str, params: tuple[Parameter, ...]) -> Term:
+    if not params:
+        return Atom(name)
+    return Struct(name, tuple(to_term(param) for param in params))
+
+
+def _named_from_term(term: Term, what: str) -> tuple[str, tuple[Parameter, ...]]:
+    if isinstance(term, Atom):
+        return str(term), ()
+    if isinstance(term, Struct):
+        return term.name, tuple(from_term(arg) for arg in term.args)
+    if isinstance(term, Var):
+        raise TranslationException(f"{what} is an unbound variable {term.name}; it must be ground")
+    shown = format_term(term) if isinstance(term, (str, int, float, list)) else repr(term)
+    raise TranslationException(f"{what} must be an atom or a compound term, got {shown}")
+
+
+def percept_to_term(percept: Percept) -> Term:
+    """The Prolog term for a percept: an atom when it has no parameters, else a compound."""
+    return _named_to_term(percept.name, percept.params)
+
+
+def percept_from_term(term: Term) -> Percept:
+    """The percept for an atom or compound term (``f()`` reads as the atom ``f``)."""
+    return Percept(*_named_from_term(term, "a percept"))
+
+
+def action_to_term(action: Action) -> Term:
+    """The Prolog term for an action: an atom when it has no parameters, else a compound."""
+    return _named_to_term(action.name, action.params)
+
+
+def action_from_term(term: Term) -> Action:
+    """The action for an atom or compound term as an agent's program sends it (ground)."""
+    return Action(*_named_from_term(term, "an action"))
