@@ -1,0 +1,172 @@
+"""The ``learn`` behaviour (thesis §6.3.4): explore an action on a part, report an affordance.
+
+Random mode samples θ uniformly in the action's bounds, measures each effect (the change of
+opening, eq. 5.3) through a plain callable, fits Ĥ(θ) = b + c·θ (eq. 6.7) after every sample and
+stops when the regression has settled (eq. 5.19) or after ``n_max`` samples. The model's
+maximum e_max (eq. 6.8) decides the percept: ``afford(Obj, Act, Eff, 0, 0, r1)`` when
+e_max ≥ δ (6.10, 6.11), else ``afford(Obj, Act, Eff, 0, 0, r2)`` (6.14). θ_max (eq. 6.13) is
+what the agent uses to verify the prediction; ``verification_percept`` turns the observed effect
+into ``afford(..., 1, 1, 1)`` or ``afford(..., 1, 0, 0)`` (§6.3.3).
+
+The learner knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from sklearn.base import BaseEstimator
+from sklearn.utils import check_random_state
+
+from behaviours.models import LinearEffectModel, ModelStore, _check_bounds
+from goalagent.kb.terms import Atom, Struct
+
+LEARNING_MODES = ("random", "active", "transfer")
+_LATER_MODES = {
+    "active": "comes with the active-learning issue (thesis chapter 4)",
+    "transfer": "comes with the transfer-learning issue (thesis chapter 5)",
+}
+EffectFn = Callable[[float], float]
+
+
+class LearningModeUnavailable(NotImplementedError):
+    """A learning mode the language names but this version does not implement yet."""
+
+
+class RandomExplorer(BaseEstimator):
+    """Random exploration of one action parameter until Ĥ settles (eq. 5.19) or n_max samples."""
+
+    def __init__(
+        self,
+        bounds: tuple[float, float] = (0.0, 0.1),
+        n_max: int = 10,
+        n_min: int = 3,
+        settle_tol: float = 1e-4,
+        random_state: int | None = None,
+    ) -> None:
+        self.bounds = bounds
+        self.n_max = n_max
+        self.n_min = n_min
+        self.settle_tol = settle_tol
+        self.random_state = random_state
+
+    def explore(self, effect_fn: EffectFn) -> LinearEffectModel:
+        """Sample θ, call effect_fn(θ), refit; sets model_, n_samples_ and settled_."""
+        low, high = _check_bounds(self.bounds)
+        if not isinstance(self.n_max, int) or self.n_max < 1:
+            raise ValueError(f"n_max must be a positive whole number, got {self.n_max!r}")
+        if not isinstance(self.n_min, int) or self.n_min < 2:
+            raise ValueError(f"n_min must be a whole number of at least 2, got {self.n_min!r}")
+        if not (isinstance(self.settle_tol, (int, float)) and self.settle_tol > 0):
+            raise ValueError(f"settle_tol must be a positive number, got {self.settle_tol!r}")
+        rng = check_random_state(self.random_state)
+        model = LinearEffectModel()
+        self.settled_ = False
+        for k in range(1, self.n_max + 1):
+            theta = float(rng.uniform(low, high))
+            effect = effect_fn(theta)
+            if not isinstance(effect, (int, float)) or not math.isfinite(effect):
+                raise ValueError(
+                    f"the effect function returned {effect!r} for theta={theta:.4f}; "
+                    "it must return a finite number (the change of opening in metres)"
+                )
+            model.partial_fit([theta], [float(effect)])
+            self.n_samples_ = k
+            if k >= self.n_min and model.settled(self.settle_tol):
+                self.settled_ = True
+                break
+        self.model_ = model
+        return model
+
+
+@dataclass(frozen=True)
+class LearnResult:
+    """What ``learn`` reports: the percept, the best parameter and its predicted effect."""
+
+    afford_term: Struct  # afford(Obj, Act, Eff, 0, 0, r1 | r2)
+    theta_max: float  # eq. 6.13
+    e_max: float  # eq. 6.8
+    samples: int  # how many actions the exploration performed
+    settled: bool  # whether eq. 5.19 stopped it (else n_max did)
+    model: LinearEffectModel
+
+
+def afford_term(obj: str, action: str, effect_name: str, tot: int, suc: int, rel: float) -> Struct:
+    """The percept afford(Obj, Act, Eff, Tot, Suc, Rel) as a term (eq. 6.1)."""
+    return Struct("afford", (Atom(obj), Atom(action), Atom(effect_name), tot, suc, rel))
+
+
+def verification_percept(
+    *, obj: str, action: str, effect_name: str, observed_effect: float, delta: float
+) -> Struct:
+    """§6.3.3: afford(..., 1, 1, 1) if the observed effect reaches δ (6.9), else (..., 1, 0, 0)."""
+    if observed_effect >= delta:
+        return afford_term(obj, action, effect_name, 1, 1, 1)
+    return afford_term(obj, action, effect_name, 1, 0, 0)
+
+
+def _check_name(value: object, what: str) -> str:
+    """A non-empty string naming an atom, or a clear error."""
+    if not isinstance(value, str) or not value:
+        raise ValueError(f"{what} must be a non-empty name, got {value!r}")
+    return value
+
+
+def learn(
+    effect_fn: EffectFn,
+    *,
+    obj: str,
+    action: str,
+    effect_name: str,
+    mode: str = "random",
+    bounds: tuple[float, float],
+    delta: float,
+    n_max: int,
+    random_state: int | None,
+    store: ModelStore | None = None,
+    key: Sequence[str] | None = None,
+    n_min: int = 3,
+    settle_tol: float = 1e-4,
+    r1: float = 0.3,
+    r2: float = 0.05,
+) -> LearnResult:
+    """Learn Ĥ for (obj, action) in ``mode`` and report the affordance percept (§6.3.4).
+
+    ``key`` names the model in ``store`` (normally (can, part, action); default (obj, action));
+    a stored model under the same key is replaced by the new one and the store is saved.
+    """
+    if mode in _LATER_MODES:
+        raise LearningModeUnavailable(
+            f"learning mode {mode!r} {_LATER_MODES[mode]}; only mode 'random' is available now"
+        )
+    if mode not in LEARNING_MODES:
+        modes = ", ".join(LEARNING_MODES)
+        raise ValueError(f"unknown learning mode {mode!r}; the modes are {modes}")
+    for value, what in ((obj, "obj"), (action, "action"), (effect_name, "effect_name")):
+        _check_name(value, what)
+    if not (isinstance(delta, (int, float)) and math.isfinite(delta)):
+        raise ValueError(f"delta must be a finite number (metres), got {delta!r}")
+    if not (isinstance(r1, (int, float)) and isinstance(r2, (int, float)) and 0 < r2 < r1 < 1):
+        raise ValueError(f"reliabilities must satisfy 0 < r2 < r1 < 1, got r1={r1!r} r2={r2!r}")
+    explorer = RandomExplorer(
+        bounds=bounds,
+        n_max=n_max,
+        n_min=n_min,
+        settle_tol=settle_tol,
+        random_state=random_state,
+    )
+    model = explorer.explore(effect_fn)
+    theta_max, e_max = model.maximum(explorer.bounds)
+    reliability = r1 if e_max >= delta else r2
+    if store is not None:
+        store.put(tuple(key) if key is not None else (obj, action), explorer.bounds, model)
+    return LearnResult(
+        afford_term=afford_term(obj, action, effect_name, 0, 0, reliability),
+        theta_max=theta_max,
+        e_max=e_max,
+        samples=explorer.n_samples_,
+        settled=explorer.settled_,
+        model=model,
+    )

@@ -1,0 +1,213 @@
+"""Learned effect models Ĥ(θ) (thesis eq. 6.7/5.16) and their on-disk store.
+
+``LinearEffectModel`` is a scikit-learn regressor e = b + c·θ over one action parameter that
+also tracks the residual sum of squares after every (partial) fit, so a learner can tell when
+the regression has settled (eq. 5.18/5.19). ``ModelStore`` keeps one model per key, normally
+(can, part, action), in a JSON file that is replaced atomically on every change, so a crash
+never leaves a half-written store and models survive the process.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.linear_model import LinearRegression
+
+STORE_FORMAT = "goalagent-effect-models"
+STORE_VERSION = 1
+
+
+def _column(values: object, name: str) -> np.ndarray:
+    """``values`` as a finite 1-D float array (accepts a scalar, shape (n,) or (n, 1))."""
+    array = np.atleast_1d(np.asarray(values, dtype=float))
+    if array.ndim == 2 and array.shape[1] == 1:
+        array = array[:, 0]
+    if array.ndim != 1:
+        raise ValueError(f"{name} must be one action parameter per sample, got shape {array.shape}")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} contains a value that is not a finite number")
+    return array
+
+
+class LinearEffectModel(RegressorMixin, BaseEstimator):
+    """Ĥ(θ) = b + c·θ by least squares (thesis 5.16, 6.7), refit on all samples seen so far."""
+
+    def __init__(self, fit_intercept: bool = True) -> None:
+        self.fit_intercept = fit_intercept
+
+    def fit(self, theta: object, effect: object) -> LinearEffectModel:
+        """Fit on exactly these samples, forgetting earlier ones."""
+        self.theta_ = np.empty(0)
+        self.effect_ = np.empty(0)
+        self.rss_history_: list[float] = []
+        return self.partial_fit(theta, effect)
+
+    def partial_fit(self, theta: object, effect: object) -> LinearEffectModel:
+        """Add samples and refit on all of them; appends the new RSS S_m (eq. 5.18)."""
+        theta_new = _column(theta, "theta")
+        effect_new = _column(effect, "effect")
+        if theta_new.shape != effect_new.shape:
+            raise ValueError(
+                f"theta and effect differ in length ({theta_new.size} vs {effect_new.size})"
+            )
+        if not hasattr(self, "theta_"):
+            self.theta_, self.effect_, self.rss_history_ = np.empty(0), np.empty(0), []
+        self.theta_ = np.concatenate([self.theta_, theta_new])
+        self.effect_ = np.concatenate([self.effect_, effect_new])
+        if self.theta_.size == 0:
+            raise ValueError("cannot fit an effect model on zero samples")
+        regression = LinearRegression(fit_intercept=self.fit_intercept)
+        regression.fit(self.theta_[:, None], self.effect_)
+        self.coef_ = float(regression.coef_[0])
+        self.intercept_ = float(regression.intercept_)
+        residuals = self.effect_ - self.predict(self.theta_)
+        self.rss_ = float(residuals @ residuals)
+        self.rss_history_.append(self.rss_)
+        self.n_samples_ = int(self.theta_.size)
+        return self
+
+    def predict(self, theta: object) -> np.ndarray:
+        """Predicted effect for each θ."""
+        if not hasattr(self, "coef_"):
+            raise ValueError("this LinearEffectModel is not fitted yet; call fit first")
+        return self.intercept_ + self.coef_ * _column(theta, "theta")
+
+    def settled(self, tol: float) -> bool:
+        """Eq. 5.19: the last sample changed the RSS by less than ``tol`` (|S_m+1 − S_m| < δ3)."""
+        history = getattr(self, "rss_history_", [])
+        return len(history) >= 2 and abs(history[-1] - history[-2]) < tol
+
+    def maximum(self, bounds: tuple[float, float]) -> tuple[float, float]:
+        """(θ_max, e_max) of eq. 6.13/6.8: a line peaks at an end of the bounds (upper on ties)."""
+        low, high = _check_bounds(bounds)
+        e_low, e_high = (float(e) for e in self.predict([low, high]))
+        return (low, e_low) if e_low > e_high else (high, e_high)
+
+
+def _check_bounds(bounds: Sequence[float]) -> tuple[float, float]:
+    """``bounds`` as a (low, high) pair of finite floats with low < high, or a clear error."""
+    try:
+        low, high = (float(b) for b in bounds)
+    except (TypeError, ValueError):
+        raise ValueError(f"bounds must be a (low, high) pair of numbers, got {bounds!r}") from None
+    if not (math.isfinite(low) and math.isfinite(high) and low < high):
+        raise ValueError(f"bounds must be finite with low < high, got ({low}, {high})")
+    return low, high
+
+
+@dataclass(frozen=True)
+class StoredModel:
+    """One stored model: its key, the action bounds it was learned in, and the fitted model."""
+
+    key: tuple[str, ...]
+    bounds: tuple[float, float]
+    model: LinearEffectModel
+
+    def to_record(self) -> dict:
+        """A JSON-ready record; the samples are the truth, the rest is there for readers."""
+        theta_max, e_max = self.model.maximum(self.bounds)
+        return {
+            "key": list(self.key),
+            "bounds": list(self.bounds),
+            "theta": self.model.theta_.tolist(),
+            "effect": self.model.effect_.tolist(),
+            "fit_intercept": self.model.fit_intercept,
+            "intercept": self.model.intercept_,
+            "slope": self.model.coef_,
+            "theta_max": theta_max,
+            "e_max": e_max,
+        }
+
+    @classmethod
+    def from_record(cls, record: dict) -> StoredModel:
+        """Rebuild from a record by refitting its samples (raises KeyError/ValueError if bad)."""
+        key = tuple(str(part) for part in record["key"])
+        model = LinearEffectModel(fit_intercept=bool(record["fit_intercept"]))
+        model.fit(record["theta"], record["effect"])
+        return cls(key=key, bounds=_check_bounds(record["bounds"]), model=model)
+
+
+class StoreError(ValueError):
+    """A model store file that cannot be read as a goalagent effect-model store."""
+
+
+class ModelStore:
+    """Effect models by key, persisted as JSON at ``path`` and rewritten atomically on change."""
+
+    def __init__(self, path: str | os.PathLike[str]) -> None:
+        self.path = Path(path)
+        self._models: dict[tuple[str, ...], StoredModel] = {}
+        if self.path.exists():
+            self._load()
+
+    def _load(self) -> None:
+        """Read every model from the file, or raise StoreError naming the file."""
+        try:
+            data = json.loads(self.path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+            raise StoreError(f"cannot read model store {str(self.path)!r}: {exc}") from None
+        if not isinstance(data, dict) or data.get("format") != STORE_FORMAT:
+            raise StoreError(f"{str(self.path)!r} is not a goalagent effect-model store")
+        if data.get("version") != STORE_VERSION:
+            raise StoreError(
+                f"model store {str(self.path)!r} has version {data.get('version')!r}, "
+                f"this goalagent reads version {STORE_VERSION}"
+            )
+        try:
+            for record in data["models"]:
+                stored = StoredModel.from_record(record)
+                self._models[stored.key] = stored
+        except (KeyError, TypeError, ValueError) as exc:
+            raise StoreError(f"model store {str(self.path)!r} has a bad record: {exc}") from None
+
+    def get(self, key: Sequence[str]) -> StoredModel | None:
+        """The model stored under key, if any."""
+        return self._models.get(tuple(key))
+
+    def __contains__(self, key: object) -> bool:
+        return isinstance(key, (tuple, list)) and tuple(key) in self._models
+
+    def __iter__(self) -> Iterator[tuple[str, ...]]:
+        return iter(sorted(self._models))
+
+    def __len__(self) -> int:
+        return len(self._models)
+
+    def put(
+        self, key: Sequence[str], bounds: tuple[float, float], model: LinearEffectModel
+    ) -> None:
+        """Store (or replace) the model under key; the store changes only if the write succeeds."""
+        if not key or not all(isinstance(part, str) and part for part in key):
+            raise ValueError(f"a model key is a tuple of non-empty strings, got {key!r}")
+        models = dict(self._models)
+        models[tuple(key)] = StoredModel(tuple(key), _check_bounds(bounds), model)
+        self._write(models)
+        self._models = models
+
+    def _write(self, models: dict[tuple[str, ...], StoredModel]) -> None:
+        """Write models: a temporary file in the same folder, fsync, then os.replace."""
+        payload = {
+            "format": STORE_FORMAT,
+            "version": STORE_VERSION,
+            "models": [models[key].to_record() for key in sorted(models)],
+        }
+        text = json.dumps(payload, indent=1)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp_name = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as handle:
+                handle.write(text)
+                handle.flush()
+                os.fsync(handle.fileno())
+            os.replace(tmp_name, self.path)
+        except BaseException:
+            Path(tmp_name).unlink(missing_ok=True)
+            raise
