@@ -246,3 +246,12 @@ def test_roulette_is_seeded_by_prolog_random(agent: AgentModule) -> None:
 def test_roulette_fails_when_every_reliability_is_zero(agent: AgentModule) -> None:
     agent.believe("lid", "extend_arm", "opened", 3, 0, 0.0)
     assert agent.all("afford_roulette(lid, A, opened)") == []
+
+
+def test_roulette_needs_object_and_effect(agent: AgentModule) -> None:
+    agent.believe("lid", "extend_arm", "opened", 0, 0, 0.1)
+    answer = agent.once("catch(afford_roulette(_, _, opened), error(E, context(_, M)), true)")
+    assert answer is not None
+    assert str(answer["E"]) == "instantiation_error" and "needs Obj and Eff bound" in str(
+        answer["M"]
+    )

@@ -143,6 +143,11 @@ afford_member(X, [_|Rest]) :-
 % proportional to its reliability (roulette wheel, §6.3.4). Uses Prolog's random generator,
 % seeded by the runtime with set_random(seed(N)). Fails when no affordance has Rel > 0.
 afford_roulette(Obj, Act, Eff) :-
+    (   ground(Obj-Eff)
+    ->  true
+    ;   throw(error(instantiation_error,
+                    context(afford_roulette/3, 'afford_roulette/3 needs Obj and Eff bound')))
+    ),
     findall(Rel-A, (afford_belief(Obj, A, Eff, _, _, Rel), Rel > 0), Wheel),
     afford_wheel_total(Wheel, 0, Total),
     Total > 0,
