@@ -176,8 +176,11 @@ class Environment:
         self._set_state(EnvironmentState.PAUSED)
 
     def start(self) -> None:
-        """Let the environment run; the state becomes RUNNING."""
+        """Let the environment run (initialising it without parameters if need be): RUNNING."""
         self._check_transition(EnvironmentState.RUNNING)
+        if self._state is EnvironmentState.INITIALIZING:
+            self.do_init({})
+            self.params = {}
         if self._state is not EnvironmentState.RUNNING:
             self.do_start()
         self._set_state(EnvironmentState.RUNNING)

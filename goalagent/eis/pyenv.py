@@ -20,8 +20,8 @@ Percepts may be ``Percept`` objects, tuples ``("on", "a", "b")`` (shorthand valu
 ``terms.to_parameter``), atoms/strings ``"ready"`` or kb terms (``Struct``). Init parameters go
 through the same conversion when the class declares ``parameters = {"seed": int, ...}``
 (unknown names are then an error), else they arrive as ``to_python`` values.
-By default an environment has one entity (``entity_names``/``entity_type``, or override
-``initial_entities``); agents are associated with entities on request by the platform.
+By default an environment has one entity (``entity_names`` of ``default_entity_type``, or
+override ``initial_entities``); agents are associated with entities on request by the platform.
 """
 
 from __future__ import annotations
@@ -92,7 +92,7 @@ def _describe(hint: object) -> str:
         return "a compound term"
     if hint is list or typing.get_origin(hint) is list:
         args = typing.get_args(hint)
-        return f"a list of {_describe(args[0])}s" if args else "a list"
+        return f"a list, each element {_describe(args[0])}" if args else "a list"
     if isinstance(hint, type) and issubclass(hint, _PARAMETER_CLASSES):
         return f"an {hint.__name__}" if hint.__name__[0] in "AEIOU" else f"a {hint.__name__}"
     return "any term"
@@ -143,7 +143,10 @@ def _convert(param: Parameter, hint: object) -> object:
     elif hint is list or typing.get_origin(hint) is list:
         if isinstance(param, ParameterList):
             (item,) = typing.get_args(hint) or (object,)
-            return [_convert(element, item) for element in param.params]
+            try:
+                return [_convert(element, item) for element in param.params]
+            except _Mismatch:
+                raise _Mismatch(_describe(hint)) from None
     raise _Mismatch(_describe(hint))
 
 
@@ -153,7 +156,9 @@ def _to_percept(item: object, env: str) -> Percept:
         return item
     if isinstance(item, tuple) and item and isinstance(item[0], str):
         return Percept.of(item[0], *item[1:])
-    if isinstance(item, (str, Struct)):
+    if isinstance(item, str):
+        return Percept(str(item))
+    if isinstance(item, Struct):
         return percept_from_term(item)
     raise PerceiveException(
         f"environment '{env}' produced {item!r}, which is not a percept (use Percept, a tuple "
@@ -204,7 +209,7 @@ class PythonEnvironment(Environment):
 
     name: ClassVar[str] = "python"
     entity_names: ClassVar[tuple[str, ...]] = ("entity",)
-    entity_type: ClassVar[str] = "entity"
+    default_entity_type: ClassVar[str] = "entity"
     parameters: ClassVar[dict[str, object] | None] = None
     _actions: ClassVar[dict[str, _ActionSpec]] = {}
 
@@ -246,8 +251,8 @@ class PythonEnvironment(Environment):
         """The environment is killed: release resources."""
 
     def initial_entities(self) -> dict[str, str]:
-        """Entity name -> type after ``on_init``; by default ``entity_names`` of ``entity_type``."""
-        return {entity: self.entity_type for entity in self.entity_names}
+        """Entity name -> type after ``on_init``; by default ``entity_names``, one type."""
+        return {entity: self.default_entity_type for entity in self.entity_names}
 
     def percepts(self, entity: str) -> Iterable[PerceptLike]:
         """The percepts of ``entity`` in the current state."""

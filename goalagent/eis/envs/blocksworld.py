@@ -97,7 +97,7 @@ class BlocksWorld(PythonEnvironment):
     """Blocks on a table, moved one at a time with ``move(X, Y)``."""
 
     name = "blocksworld"
-    entity_type = "robot"
+    default_entity_type = "robot"
     parameters = {"state": list, "blocks": int, "seed": int, "robots": int}
 
     def on_init(self, params: dict[str, object]) -> None:
@@ -121,8 +121,9 @@ class BlocksWorld(PythonEnvironment):
     def initial_entities(self) -> dict[str, str]:
         """One ``robot``, or ``robot1`` ... ``robotN``."""
         if self.robots == 1:
-            return {"robot": self.entity_type}
-        return {f"robot{index}": self.entity_type for index in range(1, self.robots + 1)}
+            return {"robot": self.default_entity_type}
+        names = [f"robot{index}" for index in range(1, self.robots + 1)]
+        return {name: self.default_entity_type for name in names}
 
     def is_clear(self, block: str) -> bool:
         """True when nothing is on ``block`` (the table is always clear)."""

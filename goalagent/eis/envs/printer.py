@@ -18,7 +18,7 @@ class Printer(PythonEnvironment):
 
     name = "printer"
     entity_names = ("printer",)
-    entity_type = "printer"
+    default_entity_type = "printer"
     parameters: dict[str, object] = {}
 
     def on_init(self, params: dict[str, object]) -> None:

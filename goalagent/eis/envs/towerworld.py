@@ -25,7 +25,7 @@ class TowerWorld(PythonEnvironment):
 
     name = "towerworld"
     entity_names = ("gripper",)
-    entity_type = "gripper"
+    default_entity_type = "gripper"
     parameters = {"state": list, "blocks": int, "seed": int}
 
     def on_init(self, params: dict[str, object]) -> None:
