@@ -150,10 +150,10 @@ class BlocksWorld(PythonEnvironment):
             self.check_block(target, what)
         if block == target:
             raise ActionRefused(f"{what}: a block cannot be put on itself")
+        if self.on[block] == target:
+            raise ActionRefused(f"{what}: {block} is already on {target}")
         if not self.is_clear(block):
             raise ActionRefused(f"{what}: {block} is not clear")
         if not self.is_clear(target):
             raise ActionRefused(f"{what}: {target} is not clear")
-        if self.on[block] == target:
-            raise ActionRefused(f"{what}: {block} is already on {target}")
         self.on[block] = target

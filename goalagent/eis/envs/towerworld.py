@@ -80,6 +80,8 @@ class TowerWorld(PythonEnvironment):
         if self.holding != block:
             held = self.holding if self.holding is not None else "nothing"
             raise ActionRefused(f"{what}: the gripper holds {held}, not {block}")
+        if target == block:
+            raise ActionRefused(f"{what}: a block cannot be put on itself")
         if target != TABLE and target not in self.on:
             raise ActionRefused(f"{what}: {target} is not a block on the table or a tower")
         if not self.is_clear(target):
