@@ -1,0 +1,5 @@
+"""`python -m goalagent` runs the command-line interface."""
+
+from goalagent.cli import app
+
+app()

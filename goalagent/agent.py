@@ -1,0 +1,640 @@
+"""The reasoning cycle: one agent, its mental state in SWI-Prolog, its modules and actions.
+
+Each cycle: collect percepts and messages -> event module -> main module (or the module in
+focus) -> blind commitment. Rules are tried in the module's order; a rule fires with the first
+instantiation of its condition for which its action is enabled (GOAL's semantics; see
+docs in ../shared/docs/goal-language.md). Environments and other agents are reached through
+``AgentIO`` and ``Postman`` so that this file knows nothing of EIS or scheduling.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Protocol, TextIO
+
+from goalagent import ast
+from goalagent.kb.engine import KBError, PrologRuntimeError
+from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.parser import GoalSyntaxError, iter_rules, parse_agent, parse_agent_file
+
+Bindings = dict[str, Term]
+
+_DEFAULT_ORDER = {"init": "linearall", "event": "linearall", "main": "linear", "user": "linear"}
+_BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
+                  "log": 1, "exit-module": 0}
+
+
+class AgentError(Exception):
+    """A user error found when loading an agent (unknown action, bad clause, ...)."""
+
+
+class ActionFailed(Exception):
+    """Raised by an ``AgentIO`` when the environment could not perform an action."""
+
+
+class AgentIO(Protocol):
+    """What an agent needs from its environment (an EIS entity, or nothing)."""
+
+    def percepts(self) -> list[Term]: ...
+
+    def act(self, action: Struct | Atom) -> None: ...
+
+
+class Postman(Protocol):
+    """Message delivery between the agents of one system."""
+
+    def agents(self) -> list[str]: ...
+
+    def deliver(self, sender: str, receivers: list[str], mood: str, content: Term) -> None: ...
+
+    def collect(self, receiver: str) -> list[tuple[str, str, Term]]: ...
+
+
+class LocalPostman:
+    """A postman for one or more agents in this process: messages wait until collected."""
+
+    def __init__(self) -> None:
+        self._boxes: dict[str, list[tuple[str, str, Term]]] = {}
+
+    def register(self, name: str) -> None:
+        self._boxes.setdefault(name, [])
+
+    def agents(self) -> list[str]:
+        return list(self._boxes)
+
+    def deliver(self, sender: str, receivers: list[str], mood: str, content: Term) -> None:
+        for receiver in receivers:
+            if receiver not in self._boxes:
+                raise ActionFailed(f"no agent called {receiver!r} to send to")
+            self._boxes[receiver].append((sender, mood, content))
+
+    def collect(self, receiver: str) -> list[tuple[str, str, Term]]:
+        messages, self._boxes[receiver] = self._boxes.get(receiver, []), []
+        return messages
+
+
+# ----------------------------------------------------------------------------- reports
+
+
+@dataclass(frozen=True)
+class FiredRule:
+    """A rule that fired: where it is, with which bindings, and the actions it performed."""
+
+    module: str
+    pos: ast.Pos
+    bindings: Bindings
+    actions: tuple[str, ...]
+
+    @property
+    def line(self) -> int:
+        return self.pos.line
+
+
+@dataclass
+class CycleReport:
+    """What happened in one cycle (for tests, traces and the CLI)."""
+
+    cycle: int
+    percepts: list[Term] = field(default_factory=list)
+    messages: list[tuple[str, str, Term]] = field(default_factory=list)
+    fired: list[FiredRule] = field(default_factory=list)
+    actions: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def acted(self) -> bool:
+        return bool(self.actions)
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """The outcome of ``Agent.run``."""
+
+    cycles: int
+    terminated: bool
+    actions: int
+    goals_left: list[list[Term]]
+
+
+class Tracer(Protocol):
+    """Receives trace events (``--trace``); ``kind`` names the event, ``text`` describes it."""
+
+    def __call__(self, agent: str, kind: str, text: str) -> None: ...
+
+
+# ----------------------------------------------------------------------------- agent
+
+
+class _ExitModule(Exception):
+    """``exit-module`` was performed: leave the current module."""
+
+
+@dataclass
+class _Focus:
+    """A user module the agent stays in across cycles (exit other than always)."""
+
+    module: ast.Module
+    bindings: Bindings
+    own_goal_base: bool
+
+
+class Agent:
+    """A GOAL agent: program + mental state + reasoning cycle."""
+
+    def __init__(
+        self,
+        program: ast.AgentProgram,
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+    ) -> None:
+        self.program = program
+        self.name = name or program.name
+        self.io = io
+        self.postman = postman
+        self.random = random.Random(seed)
+        self.output = output or sys.stdout
+        self.tracer = tracer
+        self._warn = warn or (lambda message: print(message, file=sys.stderr))
+        self.cycle = 0
+        self.terminated = False
+        self.total_actions = 0
+        self.last_report: CycleReport | None = None
+        self._report = CycleReport(0)
+        self._focus: list[_Focus] = []
+        self._specs = _index_actionspecs(program.actionspecs)
+        self._modules = _callable_modules(program)
+        validate_program(program)
+        try:
+            self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs)
+            self.ms.declare_updates(_update_formulas(program))
+            for goal in program.goals:
+                self.ms.adopt(goal)
+        except KBError as err:
+            pos = getattr(err, "pos", None)
+            raise AgentError(f"{pos or program.file}: {err}") from None
+        self._compiled: dict[int, object] = {}
+        self._compile_all()
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_file(cls, path: str | Path, **kwargs) -> Agent:
+        """Load an agent from a `.goal` file (``GoalSyntaxError`` on a malformed one)."""
+        return cls(parse_agent_file(path), **kwargs)
+
+    @classmethod
+    def from_string(cls, text: str, file: str = "<string>", **kwargs) -> Agent:
+        """Load an agent from program text."""
+        return cls(parse_agent(text, file), **kwargs)
+
+    def _compile_all(self) -> None:
+        for module in self.program.modules:
+            for rule in iter_rules(module.rules):
+                self._compiled[id(rule.condition)] = self.ms.compile(rule.condition)
+        for specs in self._specs.values():
+            for spec in specs:
+                condition = (ast.MentalLiteral("bel", spec.pre, spec.pos),)
+                self._compiled[id(spec)] = self.ms.compile(condition)
+
+    # ------------------------------------------------------------------ public API
+    def step(self) -> CycleReport:
+        """Run one reasoning cycle (the first one also runs the init module)."""
+        if self.terminated:
+            raise AgentError(f"agent {self.name} has terminated")
+        self.cycle += 1
+        self._report = CycleReport(self.cycle)
+        self._perceive()
+        if self.cycle == 1:
+            self._run_named("init")
+        self._run_named("event")
+        if self._focus:
+            self._run_focus()
+        else:
+            main = self.program.module("main")
+            if main is not None:
+                self._run_module(main, {})
+                self._check_main_exit(main)
+            elif self.cycle > 1 or not self.program.module("init"):
+                self.terminated = True  # nothing left to do without a main module
+        self._blind_commitment()
+        self.last_report = self._report
+        return self._report
+
+    def run(self, max_cycles: int | None = None) -> RunResult:
+        """Cycle until the agent terminates or ``max_cycles`` cycles have run."""
+        while not self.terminated and (max_cycles is None or self.cycle < max_cycles):
+            self.step()
+        return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
+
+    def query(self, op: str, text: str) -> list[Bindings]:
+        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values."""
+        return self.ms.query(op, text)
+
+    def beliefs(self) -> list[Term]:
+        return self.ms.beliefs()
+
+    def goals(self) -> list[list[Term]]:
+        return self.ms.goals()
+
+    def close(self) -> None:
+        """Free the agent's Prolog module."""
+        self.ms.close()
+
+    # ------------------------------------------------------------------ cycle parts
+    def _trace(self, kind: str, text: str) -> None:
+        if self.tracer is not None:
+            self.tracer(self.name, kind, text)
+
+    def warn(self, message: str) -> None:
+        self._report.warnings.append(message)
+        self._warn(f"warning: agent {self.name}: {message}")
+
+    def _perceive(self) -> None:
+        percepts: list[Term] = []
+        if self.io is not None:
+            try:
+                percepts = self.io.percepts()
+            except ActionFailed as err:
+                self.warn(f"could not get percepts: {err}")
+        self.ms.set_percepts(percepts)
+        self._report.percepts = percepts
+        if percepts:
+            self._trace("percepts", ", ".join(format_term(p) for p in percepts))
+        if self.postman is not None:
+            messages = self.postman.collect(self.name)
+            for sender, mood, content in messages:
+                self.ms.add_received(sender, mood, content)
+                self._trace("received", f"{sender}: {mood}{format_term(content)}")
+            self._report.messages = messages
+
+    def _run_named(self, name: str) -> None:
+        module = self.program.module(name)
+        if module is not None:
+            self._run_module(module, {})
+
+    def _check_main_exit(self, main: ast.Module) -> None:
+        exit_option = main.exit or "never"
+        if exit_option == "nogoals" and not self.ms.goals():
+            self.terminated = True
+        elif exit_option == "noaction" and not self._report.acted:
+            self.terminated = True
+        elif exit_option == "always":
+            self.terminated = True
+
+    def _run_focus(self) -> None:
+        focus = self._focus[-1]
+        acted_before = len(self._report.actions)
+        exited = self._run_module(focus.module, focus.bindings)
+        exit_option = focus.module.exit or "always"
+        if (
+            exited
+            or (exit_option == "nogoals" and not self.ms.goals())
+            or (exit_option == "noaction" and len(self._report.actions) == acted_before)
+        ):
+            self._leave_focus()
+
+    def _leave_focus(self) -> None:
+        focus = self._focus.pop()
+        if focus.own_goal_base:
+            self.ms.pop_goal_base()
+        self._trace("module", f"leaving module {focus.module.name}")
+
+    def _blind_commitment(self) -> None:
+        for goal in self.ms.blind_commitment():
+            self._trace("goal", f"achieved and dropped: {_format_goal(goal)}")
+
+    # ------------------------------------------------------------------ modules and rules
+    def _run_module(self, module: ast.Module, bindings: Bindings) -> bool:
+        """One pass over the module's rules; True when ``exit-module`` was performed."""
+        order = module.order or _DEFAULT_ORDER[module.kind]
+        try:
+            self._run_rules(module, module.rules, bindings, order)
+        except _ExitModule:
+            return True
+        return False
+
+    def _run_rules(
+        self, module: ast.Module, rules: tuple[ast.Rule, ...], bindings: Bindings, order: str
+    ) -> bool:
+        """Evaluate rules in ``order``; True when at least one fired."""
+        sequence = list(rules)
+        if order in ("random", "randomall"):
+            self.random.shuffle(sequence)
+        fired_any = False
+        for rule in sequence:
+            if self._apply_rule(module, rule, bindings, order):
+                fired_any = True
+                if order in ("linear", "random", "adaptive"):
+                    break
+        return fired_any
+
+    def _solutions(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
+                   limit: int | None = None) -> list[Bindings]:
+        try:
+            return self.ms.solutions(self._compiled[id(rule.condition)], bindings, limit=limit)
+        except PrologRuntimeError as err:
+            self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
+                      f"condition: {err.message}; the rule is not applicable")
+            return []
+
+    def _apply_rule(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
+                    order: str) -> bool:
+        solutions = self._solutions(module, rule, bindings)
+        self._trace("rule", f"{module.name} {rule.pos}: {len(solutions)} instantiation(s)")
+        if rule.kind == "listall":
+            values = [solution.get(_listall_var(rule)) for solution in solutions]
+            bound = {**bindings, rule.list_var: values}
+            return self._fire(module, rule, bound, order)
+        fired = False
+        for solution in solutions:
+            if self._fire(module, rule, solution, order):
+                fired = True
+                if rule.kind == "if":
+                    break
+        return fired
+
+    def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str) -> bool:
+        """Perform the rule's actions (or nested rules) with ``bindings``; True if it fired."""
+        if rule.rules is not None:
+            fired = self._run_rules(module, rule.rules, bindings, order)
+            if fired:
+                self._record(module, rule, bindings, ())
+            return fired
+        performed: list[str] = []
+        try:
+            for index, action in enumerate(rule.actions):
+                description = self._perform(module, action, bindings)
+                if description is None:
+                    if index == 0:
+                        return False  # not enabled: try the next instantiation or rule
+                    break  # a combo stops at the first action that is not enabled
+                performed.append(description)
+        finally:
+            if performed:
+                self._record(module, rule, bindings, tuple(performed))
+        return True
+
+    def _record(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
+                actions: tuple[str, ...]) -> None:
+        self._report.fired.append(FiredRule(module.name, rule.pos, dict(bindings), actions))
+        shown = ", ".join(f"{k}={format_term(v)}" for k, v in bindings.items())
+        self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {' + '.join(actions)}")
+
+    # ------------------------------------------------------------------ actions
+    def _perform(self, module: ast.Module, action: ast.Action, bindings: Bindings) -> str | None:
+        """Perform one action; its description, or None when it is not enabled."""
+        if isinstance(action, ast.SendAction):
+            return self._send(action, bindings)
+        name = action.name
+        if name in _BUILTIN_ARITY:
+            return self._builtin(module, action, bindings)
+        key = (name, action.arity)
+        if key in self._specs:
+            return self._user_action(action, bindings)
+        target = self._modules[key]  # validated at load time
+        return self._call_module(target, action, bindings)
+
+    def _text_of(self, action: ast.ActionCall, bindings: Bindings) -> str:
+        args = [format_term(self.ms.instantiate(arg, bindings)) for arg in action.args]
+        return f"{action.name}({', '.join(args)})" if args else action.name
+
+    def _builtin(self, module: ast.Module, action: ast.ActionCall, bindings: Bindings) -> str | None:
+        name = action.name
+        if name == "exit-module":
+            self._act_done("exit-module")
+            raise _ExitModule
+        formula = action.args[0]
+        try:
+            if name in ("print", "log"):
+                term = self.ms.instantiate(formula, bindings)
+                if name == "print":
+                    print(_plain(term), file=self.output, flush=True)
+                else:
+                    self._warn(f"log: agent {self.name}: {_plain(term)}")
+            elif name == "insert":
+                self._changes(self.ms.insert(formula, bindings))
+            elif name == "delete":
+                self._changes(self.ms.delete(formula, bindings))
+            elif name == "adopt":
+                if not self.ms.adopt(formula, bindings):
+                    self._trace("action", f"adopt refused: {formula.text} (believed or a goal)")
+                    return None
+                self._trace("goal", f"adopted {format_term(self.ms.instantiate(formula, bindings))}")
+            elif name == "drop":
+                for goal in self.ms.drop(formula, bindings):
+                    self._trace("goal", f"dropped {_format_goal(goal)}")
+        except KBError as err:
+            self.warn(f"{action.pos}: {name} failed: {err}")
+            return None
+        return self._act_done(self._text_of(action, bindings))
+
+    def _changes(self, changes: Iterable[tuple[str, Term]]) -> None:
+        for sign, term in changes:
+            self._trace("belief", f"{sign}{format_term(term)}")
+
+    def _act_done(self, description: str) -> str:
+        self._report.actions.append(description)
+        self.total_actions += 1
+        self._blind_commitment()
+        return description
+
+    def _user_action(self, action: ast.ActionCall, bindings: Bindings) -> str | None:
+        call_args = [self.ms.instantiate(arg, bindings) for arg in action.args]
+        for spec in self._specs[(action.name, action.arity)]:
+            spec_bindings: Bindings | None = {}
+            for param, value in zip(spec.params, call_args):
+                spec_bindings = self.ms.unify(param, value, spec_bindings)
+                if spec_bindings is None:
+                    break
+            if spec_bindings is None:
+                continue
+            try:
+                answers = self.ms.solutions(self._compiled[id(spec)], spec_bindings, limit=1)
+            except PrologRuntimeError as err:
+                self.warn(f"precondition of {spec.name} at {spec.pos}: Prolog error: "
+                          f"{err.message}; the action is not enabled")
+                continue
+            if not answers:
+                self._trace("precondition", f"{self._text_of(action, bindings)}: pre "
+                            f"{{{spec.pre.text}}} does not hold")
+                continue
+            enabled = answers[0]
+            term = _action_term(spec, self.ms, enabled)
+            text = format_term(term)
+            if _has_variables(term):
+                self.warn(f"{action.pos}: action {text} is not closed after its precondition; "
+                          "not performed")
+                return None
+            if not spec.internal and self.io is not None:
+                try:
+                    self.io.act(term)
+                except ActionFailed as err:
+                    self.warn(f"{action.pos}: the environment could not perform {text}: {err}")
+                    return self._act_done(text)
+            self._changes(self.ms.insert(spec.post, enabled))
+            return self._act_done(text)
+        return None
+
+    def _call_module(self, module: ast.Module, action: ast.ActionCall,
+                     bindings: Bindings) -> str | None:
+        module_bindings: Bindings | None = {}
+        for param, arg in zip(module.params, action.args):
+            module_bindings = self.ms.unify(param, self.ms.instantiate(arg, bindings),
+                                            module_bindings)
+            if module_bindings is None:
+                return None
+        description = self._text_of(action, bindings)
+        self._trace("module", f"entering module {description}")
+        own_goal_base = self._enter_goal_focus(module, bindings)
+        exit_option = (module.exit or "always") if module.kind == "user" else "always"
+        actions_before = len(self._report.actions)
+        exited = self._run_module(module, module_bindings)
+        if exit_option == "always" or exited:
+            if own_goal_base:
+                self.ms.pop_goal_base()
+        else:
+            self._focus.append(_Focus(module, module_bindings, own_goal_base))
+        self._report.actions.insert(actions_before, description)
+        return description
+
+    def _enter_goal_focus(self, module: ast.Module, bindings: Bindings) -> bool:
+        """Give the module its own goal base as its ``focus`` option says."""
+        focus = module.focus or "none"
+        if focus == "none":
+            return False
+        if focus == "new":
+            self.ms.push_goal_base([])
+        else:
+            current = self.ms.goals()
+            selected = [goal for goal in current if goal] if focus == "filter" else current[:1]
+            self.ms.push_goal_base(selected)
+        return True
+
+    def _send(self, action: ast.SendAction, bindings: Bindings) -> str | None:
+        receiver = self.ms.instantiate(action.receiver, bindings)
+        content = self.ms.instantiate(action.content, bindings)
+        text = f"{format_term(receiver)}.{action.name}({action.mood}{format_term(content)})"
+        if isinstance(receiver, Var) or _has_variables(content):
+            self.warn(f"{action.pos}: message {text} is not closed; not sent")
+            return None
+        everyone = self.postman.agents() if self.postman is not None else [self.name]
+        if receiver == "allother":
+            receivers = [a for a in everyone if a != self.name]
+        elif receiver == "all":
+            receivers = list(everyone)
+        else:
+            receivers = [str(receiver)]
+        fresh = [r for r in receivers if self.ms.add_sent(r, action.mood, content) or not action.once]
+        if action.once and not fresh:
+            return None
+        if self.postman is not None and fresh:
+            try:
+                self.postman.deliver(self.name, fresh, action.mood, content)
+            except ActionFailed as err:
+                self.warn(f"{action.pos}: {err}")
+                return None
+        return self._act_done(text)
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def _index_actionspecs(specs: Iterable[ast.ActionSpec]) -> dict[tuple[str, int], list]:
+    index: dict[tuple[str, int], list[ast.ActionSpec]] = {}
+    for spec in specs:
+        index.setdefault((spec.name, spec.arity), []).append(spec)
+    return index
+
+
+def validate_program(program: ast.AgentProgram) -> None:
+    """Every action in a rule must be built in, specified or a user module (with its arity);
+    raises ``GoalSyntaxError`` at the first one that is not."""
+    specs = _index_actionspecs(program.actionspecs)
+    modules = _callable_modules(program)
+    for module in program.modules:
+        for rule in iter_rules(module.rules):
+            for action in rule.actions:
+                if isinstance(action, ast.SendAction):
+                    continue
+                key = (action.name, action.arity)
+                if action.name in _BUILTIN_ARITY:
+                    expected = _BUILTIN_ARITY[action.name]
+                    if (expected is None and action.arity == 0) or (
+                        expected is not None and action.arity != expected
+                    ):
+                        raise GoalSyntaxError.at(
+                            action.pos, f"{action.name} takes "
+                            f"{'an argument' if expected is None else expected} argument(s), "
+                            f"not {action.arity}")
+                elif key not in specs and key not in modules:
+                    known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
+                    raise GoalSyntaxError.at(
+                        action.pos,
+                        f"unknown action {action.name}/{action.arity}: not built in, not in an "
+                        f"actionspec and not a module (known: {', '.join(known) or 'none'})",
+                    )
+
+
+def _callable_modules(program: ast.AgentProgram) -> dict[tuple[str, int], ast.Module]:
+    """Modules an action can call: user modules, and init/main/event by name (GOAL allows it)."""
+    return {(m.name, m.arity): m for m in program.modules}
+
+
+def _update_formulas(program: ast.AgentProgram) -> list[ast.PrologText]:
+    """Every formula the agent may insert or delete (so its predicates are dynamic)."""
+    formulas = list(program.goals) + [spec.post for spec in program.actionspecs]
+    for module in program.modules:
+        for rule in iter_rules(module.rules):
+            for action in rule.actions:
+                if isinstance(action, ast.ActionCall) and action.name in (
+                    "insert", "delete", "adopt", "drop"
+                ):
+                    formulas.extend(action.args)
+    return formulas
+
+
+def _listall_var(rule: ast.Rule) -> str:
+    """The variable whose values ``listall L <- C`` collects: the first one of C."""
+    for literal in rule.condition:
+        if isinstance(literal, ast.MentalLiteral) and literal.query is not None:
+            for name in literal.query.variables:
+                if name != rule.list_var and not name.startswith("_"):
+                    return name
+    return ""
+
+
+def _action_term(spec: ast.ActionSpec, ms: MentalState, bindings: Bindings) -> Struct | Atom:
+    if not spec.params:
+        return Atom(spec.name)
+    return Struct(spec.name, tuple(ms.instantiate(p, bindings) for p in spec.params))
+
+
+def _has_variables(term: Term) -> bool:
+    if isinstance(term, Var):
+        return True
+    if isinstance(term, Struct):
+        return any(_has_variables(arg) for arg in term.args)
+    if isinstance(term, list):
+        return any(_has_variables(item) for item in term)
+    return False
+
+
+def _plain(term: Term) -> str:
+    """``print/1`` output: atoms and strings as their text, other terms as Prolog text."""
+    if isinstance(term, str):
+        return str(term)
+    return format_term(term)
+
+
+def _format_goal(goal: list[Term]) -> str:
+    return ", ".join(format_term(fact) for fact in goal)

@@ -1,0 +1,250 @@
+"""Multi-agent systems: launching agents on an EIS environment, messaging and scheduling.
+
+A single `.goal` file run from the CLI is a system of one agent, so there is one mechanism:
+``MultiAgentSystem``. Agents take turns one cycle each, in launch order; an agent that
+terminates or fails is reported and the others go on.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TextIO
+
+from goalagent import ast
+from goalagent.agent import ActionFailed, Agent, AgentError, LocalPostman, Tracer
+from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.interface import Environment, EnvironmentState
+from goalagent.eis.registry import load_environment
+from goalagent.eis.terms import Parameter, action_from_term, from_term, percept_to_term
+from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
+from goalagent.kb.terms import Atom, Struct, Term
+from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
+
+
+class EntityIO:
+    """Connects one agent to its entities in an EIS environment (``agent.AgentIO``)."""
+
+    def __init__(self, environment: Environment, agent: str) -> None:
+        self.environment = environment
+        self.agent = agent
+
+    def percepts(self) -> list[Term]:
+        if not self.environment.associated_entities(self.agent):
+            return []
+        try:
+            per_entity = self.environment.get_all_percepts(self.agent)
+        except EnvironmentInterfaceException as err:
+            raise ActionFailed(str(err)) from None
+        return [percept_to_term(p) for percepts in per_entity.values() for p in percepts]
+
+    def act(self, action: Struct | Atom) -> None:
+        try:
+            self.environment.perform_action(self.agent, action_from_term(action))
+        except EnvironmentInterfaceException as err:
+            raise ActionFailed(str(err)) from None
+
+
+@dataclass(frozen=True)
+class AgentSummary:
+    """One line of the end-of-run report."""
+
+    name: str
+    cycles: int
+    actions: int
+    goals_left: int
+    status: str
+
+    def __str__(self) -> str:
+        return (f"{self.name}: {self.status} after {self.cycles} cycles, {self.actions} actions, "
+                f"{self.goals_left} goals left")
+
+
+def parse_parameter(text: str) -> Term:
+    """An environment parameter value given as Prolog text (``--env-param k=v``); text that
+    is not a Prolog term is taken as an atom, so paths need no quotes."""
+    try:
+        return get_engine().parse_term(text)
+    except PrologSyntaxError:
+        return Atom(text)
+
+
+class MultiAgentSystem:
+    """Agents, their environment and the message routing between them."""
+
+    def __init__(
+        self,
+        environment: Environment | None = None,
+        *,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+    ) -> None:
+        self.environment = environment
+        self.seed = seed
+        self.output = output or sys.stdout
+        self.tracer = tracer
+        self.warn = warn or (lambda message: print(message, file=sys.stderr))
+        self.postman = LocalPostman()
+        self.agents: list[Agent] = []
+        self.failures: dict[str, str] = {}
+        self._programs: dict[str, ast.AgentProgram] = {}
+        self._entity_launches: list[ast.LaunchRule] = []
+        self._launched_per_rule: dict[int, int] = {}
+
+    # ------------------------------------------------------------------ building
+    @classmethod
+    def from_mas_file(
+        cls,
+        path: str | Path,
+        *,
+        env_params: Mapping[str, Term] | None = None,
+        **kwargs,
+    ) -> MultiAgentSystem:
+        """Parse a `.mas2g` file, start its environment and launch its agents."""
+        mas = parse_mas_file(path)
+        base = Path(path).parent
+        programs = {}
+        for agentfile in mas.agentfiles:
+            programs[agentfile.name] = (parse_agent_file(base / agentfile.path), agentfile)
+        params = {key: get_engine().parse_term(value.text) for key, value in mas.env_init}
+        params.update(env_params or {})
+        environment = _make_environment(mas.environment, mas.pos) if mas.environment else None
+        system = cls(environment, **kwargs)
+        for name, (program, _) in programs.items():
+            system._programs[name] = program
+        for rule in mas.launches:
+            if rule.on_entity:
+                system._entity_launches.append(rule)
+            else:
+                number = programs[rule.agentfile][1].number
+                for index in range(number):
+                    name = rule.agent_name if number == 1 else f"{rule.agent_name}{index + 1}"
+                    system.launch(name, programs[rule.agentfile][0])
+        if not mas.launches:
+            for name, (program, agentfile) in programs.items():
+                for index in range(agentfile.number):
+                    system.launch(name if agentfile.number == 1 else f"{name}{index + 1}", program)
+        system._start_environment(params)
+        return system
+
+    @classmethod
+    def for_agent_file(
+        cls,
+        path: str | Path,
+        *,
+        environment: str | None = None,
+        env_params: Mapping[str, Term] | None = None,
+        **kwargs,
+    ) -> MultiAgentSystem:
+        """A system of the one agent in ``path``, on ``environment`` if given."""
+        program = parse_agent_file(path)
+        env = _make_environment(environment, ast.Pos(str(path), 1, 1)) if environment else None
+        system = cls(env, **kwargs)
+        system.launch(program.name, program)
+        system._start_environment(dict(env_params or {}))
+        return system
+
+    def launch(self, name: str, program: ast.AgentProgram, entity: str | None = None) -> Agent:
+        """Create an agent, register it for messages and (if any) with the environment."""
+        if any(agent.name == name for agent in self.agents):
+            raise AgentError(f"there is already an agent called {name}")
+        io = None
+        if self.environment is not None:
+            self.environment.register_agent(name)
+            if entity is not None:
+                self.environment.associate_entity(name, entity)
+            io = EntityIO(self.environment, name)
+        self.postman.register(name)
+        agent = Agent(program, name=name, io=io, postman=self.postman,
+                      seed=self.seed + len(self.agents), output=self.output,
+                      tracer=self.tracer, warn=self.warn)
+        self.agents.append(agent)
+        for other in self.agents:
+            other.ms.set_identity(other.name, self.postman.agents())
+        return agent
+
+    def _start_environment(self, params: dict[str, Term]) -> None:
+        if self.environment is None:
+            return
+        self.environment.attach_environment_listener(self)
+        converted: dict[str, Parameter] = {key: from_term(value) for key, value in params.items()}
+        self.environment.init(converted)
+        self.environment.start()
+        for entity in self.environment.free_entities():
+            self.handle_new_entity(entity, self.environment.entity_type(entity))
+
+    # ------------------------------------------------------------------ EIS listener
+    def handle_new_entity(self, entity: str, type: str) -> None:
+        """Launch rules ``when [type=T, max=N]@env do launch ...`` and plain agents waiting
+        for a body: the first agent without an entity gets this one."""
+        if entity not in self.environment.free_entities():
+            return
+        for index, rule in enumerate(self._entity_launches):
+            if rule.entity_type not in (None, type):
+                continue
+            launched = self._launched_per_rule.get(index, 0)
+            if rule.max is not None and launched >= rule.max:
+                continue
+            self._launched_per_rule[index] = launched + 1
+            name = entity if rule.agent_name == "*" else rule.agent_name
+            if any(agent.name == name for agent in self.agents):
+                name = f"{name}{launched + 1}"
+            self.launch(name, self._programs[rule.agentfile], entity)
+            return
+        for agent in self.agents:
+            if not self.environment.associated_entities(agent.name):
+                self.environment.associate_entity(agent.name, entity)
+                return
+
+    def handle_state_change(self, state) -> None:
+        """Environment state changes need no action from the scheduler."""
+
+    # ------------------------------------------------------------------ running
+    def run(self, max_cycles: int | None = None) -> list[AgentSummary]:
+        """Round-robin, one cycle per agent per turn, until all stop or ``max_cycles``."""
+        while True:
+            live = [a for a in self.agents if not a.terminated and a.name not in self.failures
+                    and (max_cycles is None or a.cycle < max_cycles)]
+            if not live:
+                break
+            for agent in live:
+                self._step(agent)
+        return self.summaries()
+
+    def _step(self, agent: Agent) -> None:
+        try:
+            agent.step()
+        except (AgentError, KBError, GoalSyntaxError, EnvironmentInterfaceException) as err:
+            self.failures[agent.name] = str(err)
+            self.warn(f"error: agent {agent.name} failed: {err}")
+
+    def summaries(self) -> list[AgentSummary]:
+        result = []
+        for agent in self.agents:
+            if agent.name in self.failures:
+                status = "failed"
+            elif agent.terminated:
+                status = "terminated"
+            else:
+                status = "stopped at the cycle limit"
+            result.append(AgentSummary(agent.name, agent.cycle, agent.total_actions,
+                                       len(agent.goals()), status))
+        return result
+
+    def close(self) -> None:
+        """Kill the environment and free the agents' Prolog modules."""
+        if self.environment is not None and self.environment.state is not EnvironmentState.KILLED:
+            self.environment.kill()
+        for agent in self.agents:
+            agent.close()
+
+
+def _make_environment(spec: str, pos: ast.Pos) -> Environment:
+    try:
+        return load_environment(spec)()
+    except EnvironmentInterfaceException as err:
+        raise GoalSyntaxError.at(pos, str(err)) from None
