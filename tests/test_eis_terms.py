@@ -1,19 +1,17 @@
 """EIS terms: conversions to and from kb terms, and round trips through real SWI-Prolog.
 
-The Prolog oracle reads the text ``format_term`` writes and describes the term it read (type,
-exact name as code points, exact number), so a term that Prolog reads differently from what
-the EIS parameter means fails the test.
+The round trip writes a parameter as Prolog text (``format_term``), has SWI-Prolog read it
+(``Engine.parse_term``: SWI's own reader, results as type-exact kb terms) and converts it back;
+an atom read as a string, a float read as an integer or a name read differently fails the test.
 """
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from pyswip import Prolog
 
 from goalagent.eis import (
     Action,
@@ -34,63 +32,13 @@ from goalagent.eis import (
     to_python,
     to_term,
 )
+from goalagent.kb.engine import get_engine
 from goalagent.kb.terms import Atom, Struct, Var, format_term
 
-DESCRIBE = r"""
-eis_desc(T, "v") :- var(T), !.
-eis_desc(T, D) :- T == [], !, D = "l()".
-eis_desc(T, D) :- is_list(T), !, maplist(eis_desc, T, Ds),
-    atomic_list_concat(Ds, ',', J), format(string(D), "l(~w)", [J]).
-eis_desc(T, D) :- atom(T), !, eis_codes(T, H), format(string(D), "a(~w)", [H]).
-eis_desc(T, D) :- string(T), !, eis_codes(T, H), format(string(D), "s(~w)", [H]).
-eis_desc(T, D) :- integer(T), !, format(string(D), "i(~d)", [T]).
-eis_desc(T, D) :- float(T), !, format(string(D), "f(~17e)", [T]).
-eis_desc(T, D) :- compound(T), !, compound_name_arguments(T, N, As), eis_codes(N, H),
-    maplist(eis_desc, As, Ds), atomic_list_concat(Ds, ',', J),
-    format(string(D), "c(~w;~w)", [H, J]).
-eis_codes(X, H) :- atom_codes(X, Cs), atomic_list_concat(Cs, '-', H).
-eis_read(Codes, Desc) :- string_codes(S, Codes), term_string(T, S), eis_desc(T, D),
-    atom_string(Desc, D).
-"""
 
-
-@pytest.fixture(scope="module")
-def prolog(tmp_path_factory: pytest.TempPathFactory) -> Prolog:
-    """The real SWI-Prolog engine with the term describer loaded."""
-    engine = Prolog()
-    list(engine.query("set_prolog_flag(debug_on_error, false)"))
-    path: Path = tmp_path_factory.mktemp("eis") / "eis_desc.pl"
-    path.write_text(DESCRIBE)
-    list(engine.query(f"consult('{path}')"))
-    return engine
-
-
-def prolog_describe(engine: Prolog, text: str) -> str:
-    """How SWI-Prolog reads ``text``: the describer's one-line account of the term."""
-    codes = "[" + ",".join(str(ord(c)) for c in text) + "]"
-    answers = list(engine.query(f"eis_read({codes}, D)", catcherrors=True))
-    assert len(answers) == 1, f"Prolog could not read {text!r}"
-    return str(answers[0]["D"])
-
-
-def codes(name: str) -> str:
-    return "-".join(str(ord(c)) for c in name)
-
-
-def describe(param: Parameter) -> str:
-    """What the EIS parameter means, in the describer's notation."""
-    if isinstance(param, Identifier):
-        return f"{'s' if param.string else 'a'}({codes(param.value)})"
-    if isinstance(param, TruthValue):
-        return f"a({codes('true' if param.value else 'false')})"
-    if isinstance(param, Numeral):
-        if isinstance(param.value, int):
-            return f"i({param.value})"
-        return f"f({param.value:.17e})"
-    if isinstance(param, ParameterList):
-        return "l(" + ",".join(describe(item) for item in param.params) + ")"
-    assert isinstance(param, Function)
-    return f"c({codes(param.name)};" + ",".join(describe(item) for item in param.params) + ")"
+def through_prolog(text: str) -> Parameter:
+    """The EIS parameter for the term SWI-Prolog reads from ``text``."""
+    return from_term(get_engine().parse_term(text))
 
 
 # Names: printable ASCII (letters, digits, symbol chars, quotes, backslash), a few non-ASCII
@@ -127,21 +75,19 @@ def test_parameter_round_trips_through_kb_terms(param: Parameter) -> None:
 
 @QUICK
 @given(param=parameters)
-def test_prolog_reads_the_written_term_as_the_parameter(prolog: Prolog, param: Parameter) -> None:
-    text = format_term(to_term(param))
-    assert prolog_describe(prolog, text) == describe(param)
+def test_prolog_reads_the_written_term_as_the_parameter(param: Parameter) -> None:
+    assert through_prolog(format_term(to_term(param))) == param
 
 
 @QUICK
 @given(name=names, params=st.lists(parameters, max_size=3).map(tuple))
-def test_percepts_and_actions_round_trip(prolog: Prolog, name: str, params: tuple) -> None:
+def test_percepts_and_actions_round_trip(name: str, params: tuple) -> None:
     percept = Percept(name, params)
     action = Action(name, params)
     assert percept_from_term(percept_to_term(percept)) == percept
     assert action_from_term(action_to_term(action)) == action
-    expected = describe(Function(name, params)) if params else describe(Identifier(name))
-    assert prolog_describe(prolog, str(percept)) == expected
-    assert prolog_describe(prolog, str(action)) == expected
+    assert percept_from_term(get_engine().parse_term(str(percept))) == percept
+    assert action_from_term(get_engine().parse_term(str(action))) == action
 
 
 @pytest.mark.parametrize(
@@ -159,9 +105,10 @@ def test_percepts_and_actions_round_trip(prolog: Prolog, name: str, params: tupl
         (Function("on", (Identifier("a"), Identifier("table"))), "on(a,table)"),
     ],
 )
-def test_known_texts(prolog: Prolog, param: Parameter, text: str) -> None:
+def test_known_texts(param: Parameter, text: str) -> None:
     assert format_term(to_term(param)) == text
-    assert prolog_describe(prolog, text) == describe(param)
+    expected = Identifier("true") if isinstance(param, TruthValue) else param
+    assert through_prolog(text) == expected
 
 
 def test_identifier_maps_to_atom_and_string_flag_to_prolog_string() -> None:
@@ -173,10 +120,13 @@ def test_identifier_maps_to_atom_and_string_flag_to_prolog_string() -> None:
     assert from_term(Atom("hello")) == Identifier("hello")
 
 
-def test_numerals_keep_int_and_float_apart() -> None:
+def test_numerals_compare_exactly() -> None:
     assert Numeral(1) != Numeral(1.0)
+    assert Numeral(0.0) != Numeral(-0.0)
     assert len({Numeral(1), Numeral(1.0)}) == 2
     assert Numeral(math.nan) == Numeral(math.nan)
+    assert through_prolog("-0.0") == Numeral(-0.0)
+    assert through_prolog("1.0Inf") == Numeral(math.inf)
     assert from_term(2) == Numeral(2) and from_term(2.0) == Numeral(2.0)
 
 

@@ -27,6 +27,7 @@ become ``bool``.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
@@ -51,7 +52,7 @@ class Identifier:
 
 @dataclass(frozen=True, eq=False)
 class Numeral:
-    """An integer or float; equality is type-exact because Prolog's ``1`` and ``1.0`` differ."""
+    """An integer or float, compared exactly as Prolog does (``1`` vs ``1.0``, ``0.0``/``-0.0``)."""
 
     value: int | float
 
@@ -62,8 +63,12 @@ class Numeral:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Numeral) or type(self.value) is not type(other.value):
             return False
-        both_nan = self.value != self.value and other.value != other.value
-        return self.value == other.value or both_nan
+        if isinstance(self.value, int):
+            return self.value == other.value
+        if math.isnan(self.value):
+            return math.isnan(other.value)
+        same_sign = math.copysign(1.0, self.value) == math.copysign(1.0, other.value)
+        return self.value == other.value and same_sign
 
     def __hash__(self) -> int:
         return hash((type(self.value), self.value))
