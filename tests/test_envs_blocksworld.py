@@ -114,8 +114,10 @@ def test_bad_states_are_clear_errors(state: list[Struct], message: str) -> None:
 def test_other_bad_parameters() -> None:
     with pytest.raises(ManagementException, match="'state' must be a list"):
         BlocksWorld().init({"state": from_term(on("a", "table"))})
-    with pytest.raises(ManagementException, match="blocks must be 0 or more"):
+    with pytest.raises(ManagementException, match="blocks must be 0 to 10000, got -1"):
         BlocksWorld().init({"blocks": Numeral(-1)})
+    with pytest.raises(ManagementException, match="blocks must be 0 to 10000"):
+        BlocksWorld().init({"blocks": Numeral(10**9)})
     with pytest.raises(ManagementException, match="robots must be at least 1"):
         BlocksWorld().init({"robots": Numeral(0)})
 

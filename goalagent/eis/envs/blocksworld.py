@@ -22,6 +22,7 @@ from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 from goalagent.kb.terms import Struct, format_term
 
 TABLE = "table"
+MAX_BLOCKS = 10_000
 
 
 def block_names(count: int) -> list[str]:
@@ -112,8 +113,10 @@ class BlocksWorld(PythonEnvironment):
             self.on = parse_state(state)
         else:
             count = params.get("blocks", 5)
-            if not isinstance(count, int) or count < 0:
-                raise ManagementException(f"{self.name}: blocks must be 0 or more, got {count}")
+            if not isinstance(count, int) or not 0 <= count <= MAX_BLOCKS:
+                raise ManagementException(
+                    f"{self.name}: blocks must be 0 to {MAX_BLOCKS}, got {count}"
+                )
             seed = params.get("seed", 0)
             assert isinstance(seed, int)
             self.on = random_towers(block_names(count), random.Random(seed))

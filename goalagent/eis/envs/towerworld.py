@@ -15,7 +15,13 @@ from __future__ import annotations
 import random
 from collections.abc import Iterable
 
-from goalagent.eis.envs.blocksworld import TABLE, block_names, parse_state, random_towers
+from goalagent.eis.envs.blocksworld import (
+    MAX_BLOCKS,
+    TABLE,
+    block_names,
+    parse_state,
+    random_towers,
+)
 from goalagent.eis.exceptions import ActionRefused, ManagementException
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 
@@ -36,8 +42,10 @@ class TowerWorld(PythonEnvironment):
             self.on = parse_state(state)
         else:
             count = params.get("blocks", 5)
-            if not isinstance(count, int) or count < 0:
-                raise ManagementException(f"{self.name}: blocks must be 0 or more, got {count}")
+            if not isinstance(count, int) or not 0 <= count <= MAX_BLOCKS:
+                raise ManagementException(
+                    f"{self.name}: blocks must be 0 to {MAX_BLOCKS}, got {count}"
+                )
             seed = params.get("seed", 0)
             assert isinstance(seed, int)
             self.on = random_towers(block_names(count), random.Random(seed))
