@@ -268,3 +268,25 @@ def test_subclasses_inherit_actions() -> None:
 
     assert MoreStore.action_names() == ["crash", "put", "raw", "take", "typed"]
     assert Store.action_names() == ["crash", "put", "raw", "typed"]
+
+
+def test_init_accepts_python_shorthand_values() -> None:
+    environment = Store()
+    environment.init({"items": ["pear", "fig"], "limit": 4, "open": False})
+    assert (environment.items, environment.limit, environment.open) == (["pear", "fig"], 4, False)
+    with pytest.raises(ManagementException, match="init parameter 'note': cannot turn"):
+        Store().init({"note": {"a": 1}})
+
+
+def test_kill_ends_killed_even_when_the_hook_fails() -> None:
+    class Sticky(PythonEnvironment):
+        name = "sticky"
+
+        def on_kill(self) -> None:
+            raise OSError("device busy")
+
+    environment = Sticky()
+    environment.init({})
+    with pytest.raises(ManagementException, match="failed to stop: OSError: device busy"):
+        environment.kill()
+    assert environment.state.value == "killed"

@@ -13,6 +13,7 @@ thread-safe, so environments must not call listeners from other threads).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from enum import Enum
 from typing import Protocol
 
@@ -27,8 +28,9 @@ from goalagent.eis.exceptions import (
     NoEnvironmentException,
     PerceiveException,
     RelationException,
+    TranslationException,
 )
-from goalagent.eis.terms import Action, Parameter, Percept
+from goalagent.eis.terms import Action, Parameter, Percept, to_parameter
 
 __all__ = [
     "ActException",
@@ -163,14 +165,29 @@ class Environment:
                 f"{new.value}{hint}"
             )
 
-    def init(self, params: dict[str, Parameter] | None = None) -> None:
-        """Initialise from ``params`` (once, while INITIALIZING); the state becomes PAUSED."""
+    def _parameters(self, params: Mapping[str, object] | None) -> dict[str, Parameter]:
+        """Init parameters as EIS parameters; Python shorthand values are converted."""
+        result: dict[str, Parameter] = {}
+        for key, value in (params or {}).items():
+            try:
+                result[key] = to_parameter(value)
+            except TranslationException as error:
+                raise ManagementException(
+                    f"environment '{self.name}': init parameter '{key}': {error}"
+                ) from None
+        return result
+
+    def init(self, params: Mapping[str, object] | None = None) -> None:
+        """Initialise from ``params`` (once, while INITIALIZING); the state becomes PAUSED.
+
+        Values are EIS parameters, or Python shorthand values (see ``terms.to_parameter``).
+        """
         if self._state is not EnvironmentState.INITIALIZING:
             raise ManagementException(
                 f"environment '{self.name}' is already initialised ({self._state.value}); "
                 "use reset(params) to start over"
             )
-        params = dict(params or {})
+        params = self._parameters(params)
         self.do_init(params)
         self.params = params
         self._set_state(EnvironmentState.PAUSED)
@@ -198,18 +215,21 @@ class Environment:
 
     def kill(self) -> None:
         """Stop the environment for good; the state becomes KILLED (killing twice is harmless)."""
-        if self._state is not EnvironmentState.KILLED:
+        if self._state is EnvironmentState.KILLED:
+            return
+        try:
             self.do_kill()
-        self._set_state(EnvironmentState.KILLED)
+        finally:
+            self._set_state(EnvironmentState.KILLED)
 
-    def reset(self, params: dict[str, Parameter] | None = None) -> None:
+    def reset(self, params: Mapping[str, object] | None = None) -> None:
         """Rebuild the world with the init parameters updated by ``params``; state PAUSED."""
         if self._state in (EnvironmentState.INITIALIZING, EnvironmentState.KILLED):
             raise ManagementException(
                 f"environment '{self.name}' cannot be reset while {self._state.value}"
                 + (" (call init(params) first)" if self._state is _S.INITIALIZING else "")
             )
-        merged = {**self.params, **(params or {})}
+        merged = {**self.params, **self._parameters(params)}
         self.do_reset(merged)
         self.params = merged
         self._set_state(EnvironmentState.PAUSED)
