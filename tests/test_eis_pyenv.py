@@ -290,3 +290,20 @@ def test_kill_ends_killed_even_when_the_hook_fails() -> None:
     with pytest.raises(ManagementException, match="failed to stop: OSError: device busy"):
         environment.kill()
     assert environment.state.value == "killed"
+
+
+def test_pushed_percepts_accept_shorthand(store: Store) -> None:
+    class Inbox:
+        def __init__(self) -> None:
+            self.got: list[str] = []
+
+        def handle_percept(self, agent: str, percept: Percept) -> None:
+            self.got.append(f"{agent}:{percept}")
+
+    inbox = Inbox()
+    store.register_agent("b")
+    store.attach_agent_listener("ag", inbox)
+    store.attach_agent_listener("b", inbox)
+    store.push_percept(("delivered", "apple", 2), "entity")
+    store.push_percept("closing")
+    assert inbox.got == ["ag:delivered(apple,2)", "ag:closing", "b:closing"]

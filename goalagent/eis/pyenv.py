@@ -258,6 +258,14 @@ class PythonEnvironment(Environment):
         """The percepts of ``entity`` in the current state."""
         return ()
 
+    def push_percept(self, item: PerceptLike, *entities: str) -> None:
+        """Push a percept (shorthand allowed) to the agents of ``entities``, or to all agents."""
+        percept = _to_percept(item, self.name)
+        if entities:
+            self.notify_agents_via_entity(percept, *entities)
+        else:
+            self.notify_agents(percept)
+
     # ---- the Environment hooks ----------------------------------------------------------
 
     @classmethod
