@@ -68,6 +68,7 @@ def action(name: str) -> Callable[[F], F]:
         raise TypeError(f"@action needs a non-empty action name, got {name!r}")
 
     def mark(func: F) -> F:
+        """Tag the method; ``PythonEnvironment`` collects tagged methods per class."""
         setattr(func, _ACTION_MARK, name)
         return func
 
@@ -176,6 +177,7 @@ class _ActionSpec:
     required: int
 
     def signature(self) -> str:
+        """The action as users see it in messages, e.g. ``move(block: a name or string, ...)``."""
         shown = ", ".join(f"{pname}: {_describe(hint)}" for pname, hint in self.params)
         return f"{self.name}({shown})"
 
@@ -316,23 +318,29 @@ class PythonEnvironment(Environment):
                 self.add_entity(entity, etype)
 
     def do_init(self, params: dict[str, Parameter]) -> None:
+        """Run ``on_init`` with Python values, then create the entities it asks for."""
         self._run_user("initialise", self.on_init, self._python_params(params))
         self._sync_entities()
 
     def do_reset(self, params: dict[str, Parameter]) -> None:
+        """Run ``on_reset`` with Python values, then add/delete entities to match."""
         self._run_user("reset", self.on_reset, self._python_params(params))
         self._sync_entities()
 
     def do_start(self) -> None:
+        """Run ``on_start``, reporting its errors as ManagementException."""
         self._run_user("start", self.on_start)
 
     def do_pause(self) -> None:
+        """Run ``on_pause``, reporting its errors as ManagementException."""
         self._run_user("pause", self.on_pause)
 
     def do_kill(self) -> None:
+        """Run ``on_kill``, reporting its errors as ManagementException."""
         self._run_user("stop", self.on_kill)
 
     def percepts_for_entity(self, entity: str) -> list[Percept]:
+        """``percepts(entity)`` converted to Percept objects; errors become PerceiveException."""
         try:
             items = list(self.percepts(entity))
         except EnvironmentInterfaceException:
@@ -345,6 +353,7 @@ class PythonEnvironment(Environment):
         return [_to_percept(item, self.name) for item in items]
 
     def perform_entity_action(self, entity: str, action: Action) -> Percept | None:
+        """Dispatch to the ``@action`` method with converted parameters; map every failure."""
         spec = self._actions.get(action.name)
         if spec is None:
             known = ", ".join(self.action_names()) or "none"
