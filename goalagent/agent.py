@@ -408,7 +408,8 @@ class Agent:
         args = [format_term(self.ms.instantiate(arg, bindings)) for arg in action.args]
         return f"{action.name}({', '.join(args)})" if args else action.name
 
-    def _builtin(self, module: ast.Module, action: ast.ActionCall, bindings: Bindings) -> str | None:
+    def _builtin(self, module: ast.Module, action: ast.ActionCall,
+                 bindings: Bindings) -> str | None:
         name = action.name
         if name == "exit-module":
             self._act_done("exit-module")
@@ -429,7 +430,8 @@ class Agent:
                 if not self.ms.adopt(formula, bindings):
                     self._trace("action", f"adopt refused: {formula.text} (believed or a goal)")
                     return None
-                self._trace("goal", f"adopted {format_term(self.ms.instantiate(formula, bindings))}")
+                adopted = self.ms.instantiate(formula, bindings)
+                self._trace("goal", f"adopted {format_term(adopted)}")
             elif name == "drop":
                 for goal in self.ms.drop(formula, bindings):
                     self._trace("goal", f"dropped {_format_goal(goal)}")
@@ -452,7 +454,7 @@ class Agent:
         call_args = [self.ms.instantiate(arg, bindings) for arg in action.args]
         for spec in self._specs[(action.name, action.arity)]:
             spec_bindings: Bindings | None = {}
-            for param, value in zip(spec.params, call_args):
+            for param, value in zip(spec.params, call_args, strict=True):
                 spec_bindings = self.ms.unify(param, value, spec_bindings)
                 if spec_bindings is None:
                     break
@@ -488,7 +490,7 @@ class Agent:
     def _call_module(self, module: ast.Module, action: ast.ActionCall,
                      bindings: Bindings) -> str | None:
         module_bindings: Bindings | None = {}
-        for param, arg in zip(module.params, action.args):
+        for param, arg in zip(module.params, action.args, strict=True):
             module_bindings = self.ms.unify(param, self.ms.instantiate(arg, bindings),
                                             module_bindings)
             if module_bindings is None:
@@ -534,7 +536,8 @@ class Agent:
             receivers = list(everyone)
         else:
             receivers = [str(receiver)]
-        fresh = [r for r in receivers if self.ms.add_sent(r, action.mood, content) or not action.once]
+        fresh = [r for r in receivers
+                 if self.ms.add_sent(r, action.mood, content) or not action.once]
         if action.once and not fresh:
             return None
         if self.postman is not None and fresh:

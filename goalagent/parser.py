@@ -20,6 +20,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 
 from goalagent import ast
 from goalagent.kb.engine import PrologSyntaxError, get_engine
+from goalagent.kb.terms import Struct, format_term
 
 
 class GoalSyntaxError(Exception):
@@ -162,6 +163,7 @@ _TOKEN_NAMES = {
     "DQSTRING": "a string",
     "AT_INT": "'@int'",
     "LARROW": "'<-'",
+    "EXIT_MODULE": "'exit-module'",
 }
 
 
@@ -191,7 +193,8 @@ def _lark_error(err: UnexpectedInput, source: Source) -> GoalSyntaxError:
     if isinstance(err, UnexpectedCharacters):
         char = source.text[err.pos_in_stream] if err.pos_in_stream < len(source.text) else ""
         expected = _describe_expected(err.allowed) if err.allowed else "something else"
-        return source.error(err.pos_in_stream, f"unexpected character {char!r}, expected {expected}")
+        return source.error(err.pos_in_stream,
+                            f"unexpected character {char!r}, expected {expected}")
     return source.error(0, str(err))
 
 
@@ -228,6 +231,7 @@ _MODULE_OPTIONS = {
 }
 _PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive")}
 _MOODS = {"!": "!", "?": "?", ":": ":"}
+_CONJUNCTION_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
 
 
 class _Section:
@@ -320,10 +324,26 @@ class _Builder(Transformer):
 
     # --- sections -------------------------------------------------------------------------
     def knowledge(self, meta, children):
-        return _Section("knowledge", tuple(children[1:]), self._pos(meta))
+        return _Section("knowledge", self._facts(children[1:]), self._pos(meta))
 
     def beliefs(self, meta, children):
-        return _Section("beliefs", tuple(children[1:]), self._pos(meta))
+        return _Section("beliefs", self._facts(children[1:]), self._pos(meta))
+
+    def _facts(self, clauses: Iterable[ast.PrologText]) -> tuple[ast.PrologText, ...]:
+        """Clauses, with GOAL 3's ``block(a), block(b).`` split into one fact each."""
+        result: list[ast.PrologText] = []
+        for clause in clauses:
+            term = self.engine.parse_term(clause.text) if "," in clause.text else None
+            if isinstance(term, Struct) and term.name == "," and term.arity == 2:
+                while isinstance(term, Struct) and term.name == "," and term.arity == 2:
+                    result.append(self.check(ast.PrologText(format_term(term.args[0]),
+                                                            clause.pos), clause=True))
+                    term = term.args[1]
+                result.append(self.check(ast.PrologText(format_term(term), clause.pos),
+                                         clause=True))
+            else:
+                result.append(clause)
+        return tuple(result)
 
     def goals(self, meta, children):
         return _Section("goals", tuple(children[1:]), self._pos(meta))
@@ -421,7 +441,7 @@ class _Builder(Transformer):
         """Substitute the arguments for the parameters; other variables become fresh."""
         mapping = {
             param: arg.text if re.fullmatch(r"[A-Za-z0-9_]+", arg.text) else f"({arg.text})"
-            for param, arg in zip(macro.params, args)
+            for param, arg in zip(macro.params, args, strict=True)
         }
         suffix = f"_M{next(self._fresh)}"
         for literal_text in self._texts(macro.condition):
@@ -467,6 +487,10 @@ class _Builder(Transformer):
                 )
             mood, content = self._mood(args[1])
             return ast.SendAction(name == "sendonce", args[0], mood, content, pos)
+        if name in _CONJUNCTION_ACTIONS and len(args) > 1:
+            # insert(a, not(b)) is insert((a, not(b))): one conjunction, as GOAL reads it
+            joined = ", ".join(arg.text for arg in args)
+            args = (self.check(ast.PrologText(joined, args[0].pos)),)
         return ast.ActionCall(name, args, pos)
 
     def exit_module(self, meta, children):
@@ -704,7 +728,7 @@ def parse_mas(text: str, file: str = "<string>") -> ast.MasProgram:
     env_init: tuple[tuple[str, ast.PrologText], ...] = ()
     agentfiles: list[ast.AgentFile] = []
     launches: list[ast.LaunchRule] = []
-    for kind, items, pos in sections:
+    for kind, items, _ in sections:
         if kind == "environment":
             for key, value, key_pos in items:
                 if key == "env":
@@ -732,12 +756,11 @@ def _init_pairs(value: ast.PrologText, pos: ast.Pos) -> tuple[tuple[str, ast.Pro
     term = get_engine().parse_term(value.text)
     if not isinstance(term, list):
         raise GoalSyntaxError.at(value.pos, "init must be a list [key = value, ...]")
-    from goalagent.kb.terms import Struct, format_term
-
     pairs = []
     for item in term:
         if not (isinstance(item, Struct) and item.name == "=" and item.arity == 2):
-            raise GoalSyntaxError.at(value.pos, f"init entry {format_term(item)} is not key = value")
+            raise GoalSyntaxError.at(value.pos,
+                                     f"init entry {format_term(item)} is not key = value")
         key = item.args[0]
         pairs.append((str(key), ast.PrologText(format_term(item.args[1]), value.pos)))
     return tuple(pairs)
