@@ -1,0 +1,602 @@
+/*  Support predicates for goalagent's mental states (loaded once per process).
+
+    One agent = two modules: B holds knowledge + beliefs + percepts + mailbox (bel/percept
+    queries run there) and G holds a copy of the knowledge plus the goal bases. A goal's facts
+    are stored as '$gf'(Id, Fact) in G; every predicate that may occur in a goal gets a
+    forwarding clause in G that answers from the goal selected by the backtrackable global
+    variable '$ga_g'. So goal(Phi) is "Phi follows from knowledge + that ONE goal".
+    Python (goalagent/kb/engine.py, mentalstate.py) calls only the exported predicates below.
+*/
+:- module(ga_kb, []).
+
+:- set_prolog_flag(generate_debug_info, false).
+
+:- initialization(nb_setval('$ga_g', none)).
+
+		 /*******************************
+		 *          READING TEXT        *
+		 *******************************/
+
+%!  read_text(+Text, +Module, -Term, -Bindings) is det.
+%   Reads exactly one term from Text (no final '.') with the operators of Module.
+
+read_text(Text, Module, Term, Bindings) :-
+    string_concat(Text, "\n. ", Full),
+    setup_call_cleanup(
+        open_string(Full, Stream),
+        read_one(Stream, Module, Term, Bindings),
+        close(Stream)).
+
+read_one(Stream, Module, Term, Bindings) :-
+    read_term(Stream, Term,
+              [variable_names(Bindings), syntax_errors(error), module(Module)]),
+    (   Term == end_of_file
+    ->  Char = 0,
+        throw(error(syntax_error(end_of_file), exact(Char)))
+    ;   true
+    ),
+    read_term(Stream, Rest, [syntax_errors(error), term_position(RestPos)]),
+    (   Rest == end_of_file
+    ->  true
+    ;   stream_position_data(char_count, RestPos, RestChar),
+        throw(error(syntax_error(one_term_expected), exact(RestChar)))
+    ).
+
+%!  check(+Text, +Kind, -Result) is det.
+%   Result = ok(Names) or syntax(Message, CharOffset); Kind is clause or query.
+
+check(Text, Kind, Result) :-
+    catch(check_(Text, Kind, Result), E, syntax_result(E, Text, Result)).
+
+check_(Text, Kind, ok(Names)) :-
+    read_text(Text, user, Term, Bindings),
+    (   Kind == clause, \+ callable_clause(Term)
+    ->  throw(error(syntax_error(not_a_clause), exact(0)))
+    ;   true
+    ),
+    binding_names(Bindings, Names).
+
+callable_clause(Term) :- var(Term), !, fail.
+callable_clause((:- _)) :- !.
+callable_clause((Head :- _)) :- !, callable(Head).
+callable_clause((Head --> _)) :- !, callable(Head).
+callable_clause(Term) :- callable(Term).
+
+binding_names(Bindings, Names) :-
+    findall(Name, member(Name=_, Bindings), Names).
+
+syntax_result(error(syntax_error(What), Context), Text, syntax(Message, Offset)) :-
+    !,
+    syntax_message(What, Message),
+    error_offset(What, Context, Text, Offset).
+syntax_result(E, _, syntax(Message, 0)) :-
+    error_message(E, Message).
+
+%!  error_offset(+What, +Context, +Text, -Offset) is det.
+%   The offending character. SWI's reader reports the end of the last good token (or the
+%   start of the text when the error is at the first token); quotes left open are
+%   reported at the start of the clause, so point at the last such quote instead.
+
+error_offset(_, exact(Offset), _, Offset) :- !.
+error_offset(end_of_file_in_quoted(Quote), _, Text, Offset) :-
+    atom_string(Quote, Q),
+    findall(B, sub_string(Text, B, _, _, Q), Bs),
+    last(Bs, Offset),
+    !.
+error_offset(_, Context, Text, Offset) :-
+    context_offset(Context, Reported),
+    string_length(Text, Length),
+    R is min(Reported, Length),
+    sub_string(Text, 0, R, _, Before),
+    (   split_string(Before, "", " \t\r\n", [""])
+    ->  P0 = R
+    ;   P0 is R + 1
+    ),
+    skip_blanks(Text, Length, P0, P),
+    Offset is min(P, Length).
+
+skip_blanks(Text, Length, P0, P) :-
+    (   P0 < Length,
+        sub_string(Text, P0, 1, _, C),
+        split_string(C, "", " \t\r\n", [""])
+    ->  P1 is P0 + 1,
+        skip_blanks(Text, Length, P1, P)
+    ;   P = P0
+    ).
+
+context_offset(stream(_, _, _, Char), Char) :- integer(Char), !.
+context_offset(string(_, Char), Char) :- integer(Char), !.
+context_offset(_, 0).
+
+syntax_message(one_term_expected, "end of clause expected (one term only)") :- !.
+syntax_message(end_of_file, "empty text: a term was expected") :- !.
+syntax_message(not_a_clause, "not a clause: a fact, rule or directive was expected") :- !.
+syntax_message(What, Message) :-
+    catch(( '$messages':translate_message(error(syntax_error(What), _), Lines, []),
+            lines_string(Lines, Message0),
+            drop_prefix("Syntax error: ", Message0, Message)
+          ), _, fail),
+    !.
+syntax_message(What, Message) :-
+    format(string(Message), "~w", [What]).
+
+drop_prefix(Prefix, String, Rest) :-
+    (   string_concat(Prefix, Rest0, String)
+    ->  Rest = Rest0
+    ;   Rest = String
+    ).
+
+%!  parse(+Text, -Term) is det.
+%   Term with every named variable V bound to '$ga_var'(Name) (Python makes it a Var).
+
+parse(Text, Term) :-
+    read_text(Text, user, Term, Bindings),
+    maplist(name_var, Bindings).
+
+name_var(Name=Var) :- Var = '$ga_var'(Name).
+
+		 /*******************************
+		 *            ERRORS            *
+		 *******************************/
+
+%!  error_message(+Error, -Message) is det.
+%   A readable one-line message for Error, without agent-module qualifications.
+
+error_message(ga_error(Message), Message) :- !.
+error_message(E0, Message) :-
+    strip_agent_modules(E0, E1),
+    drop_useless_context(E1, E),
+    catch(( '$messages':translate_message(E, Lines, []),
+            lines_string(Lines, Message0)
+          ), _, fail),
+    Message0 \== "",
+    !,
+    Message = Message0.
+error_message(E, Message) :-
+    format(string(Message), "~q", [E]).
+
+lines_string(Lines, String) :-
+    with_output_to(string(S0), print_message_lines(current_output, '', Lines)),
+    split_string(S0, "\n", " \t", Parts0),
+    exclude(==(""), Parts0, Parts),
+    atomic_list_concat(Parts, ' ', Atom),
+    atom_string(Atom, String).
+
+strip_agent_modules(T, T) :- var(T), !.
+strip_agent_modules(M:T0, T) :-
+    atom(M), agent_module(M), !,
+    strip_agent_modules(T0, T).
+strip_agent_modules(T0, T) :-
+    compound(T0), !,
+    compound_name_arguments(T0, N, A0),
+    maplist(strip_agent_modules, A0, A),
+    compound_name_arguments(T, N, A).
+strip_agent_modules(T, T).
+
+agent_module(M) :- sub_atom(M, 0, _, _, 'ga_').
+
+drop_useless_context(error(Formal, context(Pred, Msg)), error(Formal, context(_, Msg))) :-
+    (   Formal = existence_error(procedure, _)
+    ->  true
+    ;   nonvar(Pred),
+        Pred = _:N/_,
+        atom(N),
+        ( sub_atom(N, 0, _, _, '$') ; sub_atom(N, 0, _, _, '<') ; N == catch ; N == call )
+    ),
+    !.
+drop_useless_context(E, E).
+
+		 /*******************************
+		 *      CREATING / LOADING      *
+		 *******************************/
+
+%!  new_agent(+B, +G) is det.
+%   Creates the belief module B and the goal module G (both based on system only).
+
+new_agent(B, G) :-
+    forall(member(M, [B, G]),
+           ( set_module(M:class(temporary)),
+             set_module(M:base(system)),
+             forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
+                    dynamic(M:PI))
+           )),
+    dynamic(B:'$kpred'/1),
+    assertz(B:'$ga_gm'(G)),
+    dynamic(G:('$gf'/2, '$goal'/2, '$top'/1, '$fwd'/1)),
+    assertz(G:'$top'(0)).
+
+%!  destroy(+B, +G) is det.
+destroy(B, G) :-
+    '$destroy_module'(B),
+    '$destroy_module'(G).
+
+%!  load(+B, +G, +Items, -Result) is det.
+%   Items: list of k(Text) (knowledge) and b(Text) (belief) clauses, loaded in order.
+%   Result = ok or error(Index, Message) for the first clause that fails (0-based).
+
+load(B, G, Items, Result) :-
+    load_(Items, 0, B, G, Result).
+
+load_([], _, _, _, ok).
+load_([Item|Items], I, B, G, Result) :-
+    (   catch(load_item(Item, B, G), E, true)
+    ->  (   var(E)
+        ->  I1 is I + 1,
+            load_(Items, I1, B, G, Result)
+        ;   E = error(syntax_error(What), Context)
+        ->  syntax_message(What, Msg0),
+            arg(1, Item, Text),
+            error_offset(What, Context, Text, Offset),
+            format(string(Msg), "syntax error: ~w (at character ~w)", [Msg0, Offset]),
+            Result = error(I, Msg)
+        ;   error_message(E, Msg),
+            Result = error(I, Msg)
+        )
+    ;   Result = error(I, "directive failed")
+    ).
+
+load_item(Item, B, G) :-
+    Item =.. [Kind, Text],
+    read_text(Text, B, Term, _),
+    load_term(Term, Kind, B, G).
+
+load_term((:- Directive), Kind, B, G) :- !,
+    directive(Directive, Kind, B, G).
+load_term((Head --> Body), Kind, B, G) :- !,
+    dcg_translate_rule((Head --> Body), Clause),
+    load_term(Clause, Kind, B, G).
+load_term(Clause, Kind, B, G) :-
+    assertz(B:Clause),
+    clause_head(Clause, Head),
+    (   Kind == k
+    ->  assertz(G:Clause),
+        functor(Head, N, A),
+        (   B:'$kpred'(N/A)
+        ->  true
+        ;   assertz(B:'$kpred'(N/A))
+        )
+    ;   ensure_dynamic(G, Head)
+    ).
+
+clause_head((Head :- _), Head) :- !.
+clause_head(Head, Head).
+
+directive(dynamic(Spec), _, B, G) :- !,
+    dynamic(B:Spec),
+    dynamic(G:Spec).
+directive(discontiguous(_), _, _, _) :- !.
+directive(Directive, Kind, B, G) :-
+    once(B:Directive),
+    (   Kind == k, load_directive(Directive)
+    ->  once(G:Directive)
+    ;   true
+    ).
+
+load_directive(use_module(_)).
+load_directive(use_module(_, _)).
+load_directive(ensure_loaded(_)).
+load_directive(op(_, _, _)).
+load_directive(set_prolog_flag(_, _)).
+
+%!  ensure_dynamic(+Module, +Head) is det.
+%   Declares Head's predicate dynamic in Module unless it is defined there already.
+
+ensure_dynamic(M, Head) :-
+    (   predicate_property(M:Head, defined)
+    ->  true
+    ;   functor(Head, N, A),
+        dynamic(M:N/A)
+    ).
+
+%!  declare(+B, +G, +Formulas) is det.
+%   Every predicate in the conjunctions Formulas (also under not/1) becomes queryable
+%   (dynamic if undefined) in both modules.
+
+declare(B, G, Formulas) :-
+    forall(( member(Formula, Formulas),
+             catch(conjuncts(Formula, Lits), _, fail),
+             member(Lit, Lits),
+             positive(Lit, H),
+             fact_like(H) ),
+           ( ensure_dynamic(B, H), ensure_dynamic(G, H) )).
+
+positive(Lit, Lit) :- var(Lit), !.
+positive(not(Lit), Lit) :- !.
+positive(\+ Lit, Lit) :- !.
+positive(Lit, Lit).
+
+%!  declare_goal(+B, +G, +Facts) is det.
+%   As declare/3, and the predicates of Facts can be goal facts (forwarders in G).
+
+declare_goal(B, G, Facts) :-
+    forall(( member(F, Facts), fact_like(F) ),
+           ( ensure_dynamic(B, F), forwarder(G, F) )).
+
+fact_like(H) :-
+    callable(H),
+    \+ control(H).
+
+control((_, _)).
+control((_ ; _)).
+control((_ -> _)).
+control((_ *-> _)).
+control(\+ _).
+control(not(_)).
+control(true).
+control(_:_).
+
+%!  forwarder(+G, +Head) is det.
+%   Makes Head's predicate in G answer from the goal selected by '$ga_g'.
+
+forwarder(G, Head) :-
+    functor(Head, N, A),
+    (   G:'$fwd'(N/A)
+    ->  true
+    ;   predicate_property(G:Head, defined),
+        \+ predicate_property(G:Head, dynamic)
+    ->  true                        % a built-in: it can never be a goal fact
+    ;   functor(Gen, N, A),
+        dynamic(G:N/A),
+        assertz(G:(Gen :- b_getval('$ga_g', Id), '$gf'(Id, Gen))),
+        assertz(G:'$fwd'(N/A))
+    ).
+
+		 /*******************************
+		 *        CONDITIONS            *
+		 *******************************/
+
+%!  compile(+B, +G, +Name, +Text, -Names) is det.
+%   Text is a conjunction of '$bel'(Q), '$goal'(Q), '$agoal'(Q), '$goala'(Q),
+%   '$percept'(Q), true and \+ (...); asserts B:Name(Vars...) :- Body and returns the
+%   variable names in order of first appearance (= the arguments). Each goal literal becomes
+%   an auxiliary clause Name_I in G, called through the module name stored in B (a clause of
+%   one temporary module may not name another one).
+
+compile(B, G, Name, Text, Names) :-
+    read_text(Text, B, Cond, Bindings),
+    binding_names(Bindings, Names),
+    maplist(arg(2), Bindings, Vars),
+    translate(Cond, Name, Body, 0, _, Auxes, []),
+    forall(member(Aux, Auxes), assertz(G:Aux)),
+    Head =.. [Name|Vars],
+    assertz(B:(Head :- Body)).
+
+translate((A0, B0), Name, (A, B), N0, N, Aux0, Aux) :- !,
+    translate(A0, Name, A, N0, N1, Aux0, Aux1),
+    translate(B0, Name, B, N1, N, Aux1, Aux).
+translate(\+ A0, Name, \+ A, N0, N, Aux0, Aux) :- !,
+    translate(A0, Name, A, N0, N, Aux0, Aux).
+translate(true, _, true, N, N, Aux, Aux) :- !.
+translate('$bel'(Q), _, Q, N, N, Aux, Aux) :- !.
+translate('$goal'(Q), Name, Call, N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    N is N0 + 1.
+translate('$agoal'(Q), Name, (Call, \+ Q), N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    N is N0 + 1.
+translate('$goala'(Q), Name, (Call, Q), N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    N is N0 + 1.
+translate('$percept'(Q), _, Body, N, N, Aux, Aux) :-
+    percept_body(Q, Body).
+
+in_goal(Q, Name, I, ('$ga_gm'(G), G:AuxHead),
+        (AuxHead :- '$top'(Base), '$goal'(Base, Id), b_setval('$ga_g', Id), Q)) :-
+    format(atom(AuxName), '~w_~w', [Name, I]),
+    term_variables(Q, Vars),
+    AuxHead =.. [AuxName|Vars].
+
+percept_body(Q, percept(Q)) :- var(Q), !.
+percept_body((A0, B0), (A, B)) :- !,
+    percept_body(A0, A),
+    percept_body(B0, B).
+percept_body(Q, percept(Q)).
+
+		 /*******************************
+		 *           UPDATES            *
+		 *******************************/
+
+conjuncts(Var, _) :- var(Var), !,
+    throw(error(instantiation_error, _)).
+conjuncts((A, B), L) :- !,
+    conjuncts(A, LA),
+    conjuncts(B, LB),
+    append(LA, LB, L).
+conjuncts(true, []) :- !.
+conjuncts(X, [X]).
+
+%!  update(+B, +G, +Mode, +Formula, -Changes) is det.
+%   Mode insert: positive literals are added, not(L) deleted; delete: the inverse.
+%   Deletions happen first. Changes lists '+'(Fact) / '-'(Fact) actually made.
+
+update(B, G, Mode, Formula, Changes) :-
+    conjuncts(Formula, Lits),
+    split_literals(Lits, Mode, Adds, Dels),
+    foldl(delete_fact(B), Dels, Changes, Changes1),
+    foldl(add_fact(B, G), Adds, Changes1, []).
+
+split_literals([], _, [], []).
+split_literals([L|Ls], Mode, Adds, Dels) :-
+    (   nonvar(L), ( L = not(P) ; L = (\+ P) )
+    ->  Sign = negative
+    ;   P = L, Sign = positive
+    ),
+    (   adds(Mode, Sign)
+    ->  Adds = [P|Adds1], Dels = Dels1
+    ;   Adds = Adds1, Dels = [P|Dels1]
+    ),
+    split_literals(Ls, Mode, Adds1, Dels1).
+
+adds(insert, positive).
+adds(delete, negative).
+
+add_fact(B, G, Fact, Changes0, Changes) :-
+    must_be_fact(Fact, "insert"),
+    (   predicate_property(B:Fact, dynamic), clause(B:Fact, true)
+    ->  Changes0 = Changes
+    ;   assertz(B:Fact),
+        ensure_dynamic(G, Fact),
+        Changes0 = ['+'(Fact)|Changes]
+    ).
+
+delete_fact(B, Fact, Changes0, Changes) :-
+    must_be_callable(Fact),
+    (   predicate_property(B:Fact, dynamic)
+    ->  findall('-'(Fact), retract(B:Fact), Deleted)
+    ;   Deleted = []
+    ),
+    append(Deleted, Changes, Changes0).
+
+must_be_callable(Fact) :-
+    (   fact_like(Fact)
+    ->  true
+    ;   var(Fact)
+    ->  throw(error(instantiation_error, _))
+    ;   throw(error(type_error(fact, Fact), _))
+    ).
+
+must_be_fact(Fact, Action) :-
+    must_be_callable(Fact),
+    (   ground(Fact)
+    ->  true
+    ;   format(string(M), "~w: ~q is not ground (unbound variables)", [Action, Fact]),
+        throw(ga_error(M))
+    ).
+
+		 /*******************************
+		 *            GOALS             *
+		 *******************************/
+
+%!  adopt(+B, +G, +Formula, -Result) is det.
+%   Result: believed, exists or adopted.
+
+adopt(B, G, Formula, Result) :-
+    conjuncts(Formula, Facts),
+    forall(member(F, Facts), must_be_fact(F, "adopt")),
+    declare_goal(B, G, Facts),
+    (   Facts == []
+    ->  Result = believed
+    ;   \+ \+ all_believed(B, Facts)
+    ->  Result = believed
+    ;   G:'$top'(Base),
+        msort(Facts, Sorted),
+        G:'$goal'(Base, Id),
+        goal_facts(G, Id, Existing),
+        msort(Existing, Sorted)
+    ->  Result = exists
+    ;   G:'$top'(Base),
+        add_goal(G, Base, Facts),
+        Result = adopted
+    ).
+
+all_believed(B, Facts) :-
+    forall(member(F, Facts), B:F).
+
+add_goal(G, Base, Facts) :-
+    flag('$ga_goal_id', Id, Id + 1),
+    forall(member(F, Facts), assertz(G:'$gf'(Id, F))),
+    assertz(G:'$goal'(Base, Id)).
+
+goal_facts(G, Id, Facts) :-
+    findall(F, G:'$gf'(Id, F), Facts).
+
+remove_goal(G, Id, Facts) :-
+    goal_facts(G, Id, Facts),
+    retractall(G:'$gf'(Id, _)),
+    retractall(G:'$goal'(_, Id)).
+
+%!  drop(+B, +G, +Formula, -Removed) is det.
+%   Removes every goal of the top goal base from which Formula follows.
+
+drop(B, G, Formula, Removed) :-
+    declare(B, G, [Formula]),
+    G:'$top'(Base),
+    findall(Id, ( G:'$goal'(Base, Id),
+                  \+ \+ ( b_setval('$ga_g', Id), G:Formula ) ), Ids),
+    maplist(remove_goal(G), Ids, Removed).
+
+%!  blind_commitment(+B, +G, -Removed) is det.
+%   Removes every goal (all goal bases) whose facts are all believed.
+
+blind_commitment(B, G, Removed) :-
+    findall(Id, ( G:'$goal'(_, Id),
+                  goal_facts(G, Id, Facts),
+                  \+ \+ all_believed(B, Facts) ), Ids),
+    maplist(remove_goal(G), Ids, Removed).
+
+%!  goals(+G, -Goals) is det.
+goals(G, Goals) :-
+    G:'$top'(Base),
+    findall(Facts, ( G:'$goal'(Base, Id), goal_facts(G, Id, Facts) ), Goals).
+
+%!  push(+B, +G, +Goals) is det.
+push(B, G, Goals) :-
+    maplist(conjuncts_or_list, Goals, FactLists),
+    forall(( member(Facts, FactLists), member(F, Facts) ), must_be_fact(F, "goal")),
+    forall(member(Facts, FactLists), declare_goal(B, G, Facts)),
+    retract(G:'$top'(Base0)),
+    Base is Base0 + 1,
+    assertz(G:'$top'(Base)),
+    forall(member(Facts, FactLists), add_goal(G, Base, Facts)).
+
+conjuncts_or_list(Goal, Facts) :-
+    (   is_list(Goal)
+    ->  Facts = Goal
+    ;   conjuncts(Goal, Facts)
+    ).
+
+%!  pop(+G, -Goals) is det.
+pop(G, Goals) :-
+    G:'$top'(Base),
+    (   Base > 0
+    ->  findall(Id, G:'$goal'(Base, Id), Ids),
+        maplist(remove_goal(G), Ids, Goals),
+        retract(G:'$top'(Base)),
+        Base1 is Base - 1,
+        assertz(G:'$top'(Base1))
+    ;   throw(ga_error("pop_goal_base: only the agent's own goal base is left"))
+    ).
+
+		 /*******************************
+		 *   BELIEFS, PERCEPTS, MAIL    *
+		 *******************************/
+
+%!  beliefs(+B, -Facts) is det.
+%   Facts of B's dynamic predicates, except knowledge predicates, percepts and internals.
+
+beliefs(B, Facts) :-
+    findall(Head, ( current_predicate(B:N/A),
+                    \+ sub_atom(N, 0, _, _, '$'),
+                    N/A \== percept/1,
+                    \+ B:'$kpred'(N/A),
+                    functor(Head, N, A),
+                    predicate_property(B:Head, dynamic),
+                    \+ predicate_property(B:Head, imported_from(_)),
+                    clause(B:Head, true)
+                  ), Facts).
+
+%!  set_percepts(+B, +Percepts) is det.
+set_percepts(B, Percepts) :-
+    retractall(B:percept(_)),
+    forall(member(P, Percepts), assertz(B:percept(P))).
+
+%!  percepts(+B, -Percepts) is det.
+percepts(B, Percepts) :-
+    findall(P, B:percept(P), Percepts).
+
+%!  add_once(+B, +Fact, -Added) is det.
+%   Asserts Fact unless already there; Added is true or false.
+
+add_once(B, Fact, Added) :-
+    (   clause(B:Fact, true)
+    ->  Added = false
+    ;   assertz(B:Fact),
+        Added = true
+    ).
+
+%!  set_identity(+B, +G, +Me, +Agents) is det.
+set_identity(B, _G, Me, Agents) :-
+    retractall(B:me(_)),
+    retractall(B:agent(_)),
+    assertz(B:me(Me)),
+    forall(member(A, Agents), assertz(B:agent(A))).

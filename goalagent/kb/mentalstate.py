@@ -1,0 +1,356 @@
+"""The mental state of one agent on SWI-Prolog: knowledge, beliefs, goals, percepts, mailbox.
+
+Each agent owns two fresh Prolog modules (based on ``system`` only, so nothing from ``user``
+or another agent leaks in): a belief module (knowledge + beliefs + percepts + messages) and a
+goal module (knowledge again + the goal bases). ``goal(φ)`` is evaluated against knowledge and
+ONE goal at a time (see mentalstate.pl). A rule's whole condition is compiled once into a
+clause of the belief module and evaluated in one Prolog call with the bindings passed in.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+from goalagent import ast
+from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, get_engine
+from goalagent.kb.terms import Atom, Struct, Term, Var
+
+__all__ = ["CompiledCondition", "MentalState"]
+
+_WRAPPERS = {
+    "bel": "$bel",
+    "goal": "$goal",
+    "a-goal": "$agoal",
+    "goal-a": "$goala",
+    "percept": "$percept",
+}
+_MOODS = {":": None, "!": "imp", "?": "int"}
+_QUERY_POS = ast.Pos("<query>", 1, 1)
+
+# Condition body text -> clause name, shared by all agents: equal conditions use the same
+# predicate name in every agent module, so 10,000 agents do not create 10,000 functors.
+_condition_names: dict[str, str] = {}
+
+
+class CompiledCondition:
+    """A mental state condition compiled into one clause of an agent's belief module."""
+
+    __slots__ = ("_state", "_pred", "names", "_index", "text")
+
+    def __init__(self, state: MentalState, pred: int, names: tuple[str, ...], text: str) -> None:
+        self._state = state
+        self._pred = pred
+        self.names = names  # named variables, in order of first appearance
+        self._index = {name: i for i, name in enumerate(names)}
+        self.text = text  # the Prolog body the condition was compiled from
+
+    def __repr__(self) -> str:
+        return f"CompiledCondition({self.text!r}, names={self.names!r})"
+
+
+def _literal_text(literal: ast.Literal) -> str:
+    """The Prolog text of one literal for mentalstate.pl's compile/5."""
+    if isinstance(literal, ast.NotLiteral):
+        inner = ", ".join(_literal_text(item) for item in literal.condition) or "true"
+        return f"\\+ ({inner})"
+    if literal.op == "true":
+        return "true"
+    if literal.op not in _WRAPPERS:
+        raise KBError(f"unknown mental literal `{literal.op}` at {literal.pos}")
+    if literal.query is None:
+        raise KBError(f"`{literal.op}` needs a query at {literal.pos}")
+    return f"'{_WRAPPERS[literal.op]}'(({literal.query.text}\n))"
+
+
+def _literals(condition: ast.Condition) -> Iterable[ast.MentalLiteral]:
+    """Every mental literal of a condition, also those inside not(...)."""
+    for literal in condition:
+        if isinstance(literal, ast.NotLiteral):
+            yield from _literals(literal.condition)
+        else:
+            yield literal
+
+
+def _substitute(term: Term, bindings: Mapping[str, Term]) -> Term:
+    """``term`` with every bound ``Var`` replaced by its value (lists are rebuilt)."""
+    if isinstance(term, Var):
+        return bindings.get(term.name, term) if term.name != "_" else term
+    if isinstance(term, Struct):
+        return Struct(term.name, tuple(_substitute(arg, bindings) for arg in term.args))
+    if isinstance(term, list):
+        return [_substitute(item, bindings) for item in term]
+    return term
+
+
+def _match(pattern: Term, value: Term, out: dict[str, Term]) -> None:
+    """Collects what each variable of ``pattern`` became in its instance ``value``."""
+    if isinstance(pattern, Var):
+        if pattern.name != "_":
+            out[pattern.name] = value
+    elif isinstance(pattern, list) and isinstance(value, list):
+        for item, instance in zip(pattern, value, strict=False):
+            _match(item, instance, out)
+    elif isinstance(pattern, Struct):
+        if pattern.name == "[|]" and len(pattern.args) == 2 and isinstance(value, list) and value:
+            _match(pattern.args[0], value[0], out)
+            _match(pattern.args[1], value[1:], out)
+        elif isinstance(value, Struct):
+            for arg, instance in zip(pattern.args, value.args, strict=False):
+                _match(arg, instance, out)
+
+
+def _text_of(formula: ast.PrologText | str) -> str:
+    if isinstance(formula, ast.PrologText):
+        return formula.text
+    if isinstance(formula, str):
+        return formula
+    raise KBError(f"Prolog text expected, got {formula!r}")
+
+
+class MentalState:
+    """Knowledge, beliefs, goal bases, percepts and mailbox of one agent (two Prolog modules)."""
+
+    def __init__(self, agent_name: str, *, knowledge: Sequence[ast.PrologText] = (),
+                 beliefs: Sequence[ast.PrologText] = (), engine: Engine | None = None) -> None:
+        self._engine = engine or get_engine()
+        self.agent_name = agent_name
+        number = self._engine.unique_name("")
+        self._b = Atom(f"ga_b{number}")
+        self._g = Atom(f"ga_g{number}")
+        self._closed = False
+        self._compiled: dict[str, CompiledCondition] = {}
+        self._engine.call("new_agent", self._b, self._g)
+        clauses = [("knowledge", text) for text in knowledge]
+        clauses += [("beliefs", text) for text in beliefs]
+        items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
+        result = self._call("load", self._b, self._g, items, None)[3]
+        if isinstance(result, Struct) and result.name == "error":
+            index, message = result.args
+            kind, text = clauses[int(index)]
+            self.close()
+            pos = text.pos if isinstance(text, ast.PrologText) else None
+            where = f" at {pos}" if pos else ""
+            raise KBError(f"{kind} clause `{_text_of(text)}`{where}: {message}", pos)
+
+    # ------------------------------------------------------------------ plumbing
+
+    def _call(self, name: str, *args: Term | None) -> list[Term]:
+        """Runs ga_kb:name(args) once (it must succeed); raises KBError when closed."""
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        result = self._engine.call(name, *args)
+        if result is None:
+            raise KBError(f"internal: ga_kb:{name}/{len(args)} failed")
+        return result
+
+    def _term(self, formula: ast.PrologText | str, bindings: Mapping[str, Term] | None) -> Term:
+        term = self._engine.parse_term(_text_of(formula))
+        return _substitute(term, bindings) if bindings else term
+
+    def __enter__(self) -> MentalState:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    # ------------------------------------------------------------------ conditions
+
+    def declare_updates(self, formulas: Iterable[ast.PrologText | str]) -> None:
+        """Declares dynamic every predicate in these conjunctions (also under not/1), so that
+        querying them before the first insert/adopt fails instead of raising an error."""
+        terms = [self._engine.parse_term(_text_of(formula)) for formula in formulas]
+        self._call("declare", self._b, self._g, terms)
+
+    def compile(self, condition: ast.Condition) -> CompiledCondition:
+        """Compiles a condition once (cached per body text) into a clause of this agent."""
+        text = ", ".join(_literal_text(literal) for literal in condition) or "true"
+        compiled = self._compiled.get(text)
+        if compiled is not None:
+            return compiled
+        name = _condition_names.get(text)
+        if name is None:
+            name = self._engine.unique_name("$ga_c")
+            _condition_names[text] = name
+        try:
+            names = self._call("compile", self._b, self._g, Atom(name), text, None)[4]
+        except PrologRuntimeError as error:
+            raise self._condition_error(condition, error) from None
+        assert isinstance(names, list)
+        names_tuple = tuple(str(item) for item in names)
+        pred = self._engine.predicate(name, len(names_tuple), str(self._b))
+        compiled = CompiledCondition(self, pred, names_tuple, text)
+        self._compiled[text] = compiled
+        return compiled
+
+    def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
+        """The error of the first literal SWI's reader rejects (with its position)."""
+        for literal in _literals(condition):
+            if literal.query is None:
+                continue
+            try:
+                self._engine.check_query(literal.query.text)
+            except KBError as syntax:
+                return KBError(f"{literal.op}({literal.query.text}) at {literal.query.pos}: "
+                               f"{syntax}", literal.query.pos)
+        return error
+
+    def solutions(self, cond: CompiledCondition, bindings: Mapping[str, Term] | None = None,
+                  *, limit: int | None = None) -> list[dict[str, Term]]:
+        """All (or the first ``limit``) answers of a compiled condition, in Prolog order; each
+        maps every named variable of the condition and every given binding to its value."""
+        if cond._state is not self:
+            raise KBError("this condition was compiled for another mental state")
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        index = cond._index
+        if bindings:
+            inputs = [(index[name], value) for name, value in bindings.items() if name in index]
+            extra = {name: value for name, value in bindings.items() if name not in index}
+        else:
+            inputs, extra = [], {}
+        rows = self._engine.solve(cond._pred, len(cond.names), inputs, limit)
+        names = cond.names
+        if extra:
+            return [{**extra, **dict(zip(names, row, strict=True))} for row in rows]
+        return [dict(zip(names, row, strict=True)) for row in rows]
+
+    def query(self, op: str, text: str, bindings: Mapping[str, Term] | None = None, *,
+              limit: int | None = None) -> list[dict[str, Term]]:
+        """Answers of one literal ``op(text)``, op in bel/goal/a-goal/goal-a/percept/true."""
+        if op not in _WRAPPERS and op != "true":
+            raise KBError(f"unknown mental literal `{op}`: use one of "
+                          f"{', '.join([*_WRAPPERS, 'true'])}")
+        query = ast.PrologText(text, _QUERY_POS) if op != "true" else None
+        literal = ast.MentalLiteral(op, query, _QUERY_POS)  # type: ignore[arg-type]
+        return self.solutions(self.compile((literal,)), bindings, limit=limit)
+
+    def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
+        """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
+        return self._term(text, bindings)
+
+    def unify(self, pattern: ast.PrologText | str, value: Term,
+              bindings: Mapping[str, Term] | None = None) -> dict[str, Term] | None:
+        """Unifies ``pattern`` (with ``bindings`` applied) with ``value`` as Prolog's =/2 does;
+        returns ``bindings`` extended with the pattern's variables, or None."""
+        term = self._term(pattern, bindings)
+        result = self._engine.call("=", term, value, module="system")
+        if result is None:
+            return None
+        out = dict(bindings or {})
+        _match(term, result[0], out)
+        return out
+
+    # ------------------------------------------------------------------ beliefs
+
+    def insert(self, formula: ast.PrologText | str,
+               bindings: Mapping[str, Term] | None = None) -> list[tuple[str, Term]]:
+        """Adds the positive literals, deletes those under not(..); returns the changes."""
+        return self._update("insert", formula, bindings)
+
+    def delete(self, formula: ast.PrologText | str,
+               bindings: Mapping[str, Term] | None = None) -> list[tuple[str, Term]]:
+        """Deletes the positive literals, adds those under not(..); returns the changes."""
+        return self._update("delete", formula, bindings)
+
+    def _update(self, mode: str, formula: ast.PrologText | str,
+                bindings: Mapping[str, Term] | None) -> list[tuple[str, Term]]:
+        term = self._term(formula, bindings)
+        changes = self._call("update", self._b, self._g, Atom(mode), term, None)[4]
+        assert isinstance(changes, list)
+        return [(change.name, change.args[0]) for change in changes]
+
+    def beliefs(self) -> list[Term]:
+        """The belief facts (not knowledge, not percepts), in Prolog clause order."""
+        facts = self._call("beliefs", self._b, None)[1]
+        assert isinstance(facts, list)
+        return facts
+
+    # ------------------------------------------------------------------ goals
+
+    def adopt(self, formula: ast.PrologText | str,
+              bindings: Mapping[str, Term] | None = None) -> bool:
+        """Adds the conjunction as one goal; False when already believed or already a goal."""
+        term = self._term(formula, bindings)
+        result = self._call("adopt", self._b, self._g, term, None)[3]
+        return result == "adopted"
+
+    def drop(self, formula: ast.PrologText | str,
+             bindings: Mapping[str, Term] | None = None) -> list[list[Term]]:
+        """Removes every goal (of the top goal base) from which the formula follows."""
+        term = self._term(formula, bindings)
+        removed = self._call("drop", self._b, self._g, term, None)[3]
+        assert isinstance(removed, list)
+        return removed
+
+    def blind_commitment(self) -> list[list[Term]]:
+        """Removes every goal whose facts are all believed (all goal bases); returns them."""
+        removed = self._call("blind_commitment", self._b, self._g, None)[2]
+        assert isinstance(removed, list)
+        unique: list[list[Term]] = []
+        for goal in removed:
+            if goal not in unique:
+                unique.append(goal)
+        return unique
+
+    def goals(self) -> list[list[Term]]:
+        """The top goal base; each goal is the list of its facts."""
+        goals = self._call("goals", self._g, None)[1]
+        assert isinstance(goals, list)
+        return goals
+
+    def push_goal_base(self, goals: Iterable[Iterable[Term]] = ()) -> None:
+        """Starts a new top goal base (module focus) holding ``goals`` (lists of facts)."""
+        self._call("push", self._b, self._g, [list(goal) for goal in goals])
+
+    def pop_goal_base(self) -> list[list[Term]]:
+        """Removes the top goal base and returns its goals."""
+        goals = self._call("pop", self._g, None)[1]
+        assert isinstance(goals, list)
+        return goals
+
+    # ------------------------------------------------------------------ percepts, mail
+
+    def set_percepts(self, percepts: Iterable[Term]) -> None:
+        """Replaces the percept base (``percept(φ)`` and ``bel(percept(φ))`` see it)."""
+        self._call("set_percepts", self._b, list(percepts))
+
+    def percepts(self) -> list[Term]:
+        """The current percepts."""
+        percepts = self._call("percepts", self._b, None)[1]
+        assert isinstance(percepts, list)
+        return percepts
+
+    def _message(self, peer: str, mood: str, content: Term) -> list[Term]:
+        if mood not in _MOODS:
+            raise KBError(f"unknown message mood {mood!r}: use ':', '!' or '?'")
+        wrapper = _MOODS[mood]
+        body = Struct(wrapper, (content,)) if wrapper else content
+        return [peer if isinstance(peer, Atom) else Atom(peer), body]
+
+    def add_received(self, sender: str, mood: str, content: Term) -> None:
+        """Believes ``received(Sender, φ)`` (``imp(φ)`` for '!', ``int(φ)`` for '?')."""
+        fact = Struct("received", tuple(self._message(sender, mood, content)))
+        self._call("add_once", self._b, fact, None)
+
+    def add_sent(self, receiver: str, mood: str, content: Term) -> bool:
+        """Believes ``sent(Receiver, φ)`` (moods as for received); False if already there."""
+        fact = Struct("sent", tuple(self._message(receiver, mood, content)))
+        return self._call("add_once", self._b, fact, None)[2] == "true"
+
+    def set_identity(self, me: str, agents: Iterable[str]) -> None:
+        """Believes ``me(Me)`` and ``agent(A)`` for every agent of the system."""
+        names = [name if isinstance(name, Atom) else Atom(name) for name in agents]
+        self._call("set_identity", self._b, self._g, Atom(me), names)
+
+    # ------------------------------------------------------------------ lifetime
+
+    def close(self) -> None:
+        """Frees both Prolog modules; the object is unusable afterwards."""
+        if self._closed:
+            return
+        self._call("destroy", self._b, self._g)
+        self._engine.forget_module(str(self._b))
+        self._engine.forget_module(str(self._g))
+        self._compiled.clear()
+        self._closed = True
