@@ -1,0 +1,423 @@
+"""The garbage-can world: one MuJoCo scene of sim/scene.py plus the calls a robot body offers.
+
+``GarbageWorld`` owns the physics (model, data), moves the Cartesian arm (position-controlled,
+force-limited slide actuators; every move is a straight-line ramp of the set-point followed by
+settling), grasps and drops the ball (a weld equality switched on and off), reports ground
+truth (``state()``), renders the head camera headless (EGL) and records mp4 videos.
+
+The opening is the straight-line gap (m) between the rim's front edge and the lid's front edge,
+i.e. the width of the dark gap the thesis measures in the image (eq. 5.14).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+
+from sim.scene import (  # noqa: E402
+    ARM_RANGE,
+    BALL_RADIUS,
+    CANS,
+    GRIP_OFFSET,
+    HOME,
+    LID_RANGE,
+    MARKER_SIZE,
+    TABLE_TOP,
+    WALL,
+    CanSpec,
+    build_mjcf,
+)
+
+__all__ = [
+    "ACTION_DIRECTIONS", "ACTION_TYPES", "CANS", "MARKER_SIZE", "THETA_BOUNDS", "CameraModel",
+    "CanSpec", "GarbageWorld", "PartState", "WorldState",
+]
+
+ACTION_TYPES: tuple[str, ...] = (
+    "extend_arm", "contract_arm", "sweep_left", "sweep_right", "lift_up", "sweep_down",
+)
+"""Thesis §5.6.1 / §6.4.1 action types: push forward, pull back, sweep left/right, lift, down."""
+ACTION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
+    "extend_arm": (1.0, 0.0, 0.0),
+    "contract_arm": (-1.0, 0.0, 0.0),
+    "sweep_left": (0.0, 1.0, 0.0),
+    "sweep_right": (0.0, -1.0, 0.0),
+    "lift_up": (0.0, 0.0, 1.0),
+    "sweep_down": (0.0, 0.0, -1.0),
+}
+"""Unit direction of each action type in the world frame (robot faces +x, left is +y)."""
+THETA_BOUNDS: dict[str, tuple[float, float]] = {a: (0.0, 0.1) for a in ACTION_TYPES}
+"""Allowed θ per action type: lo < θ <= hi metres (thesis: 0 < θ <= θ0 = 0.1 m)."""
+
+ARM_SPEED = 0.4
+"""Speed (m/s) of the arm's set-point along a straight-line move."""
+ARRIVE_TOL = 1.5e-3
+"""Distance (m) from the set-point at which the hand counts as arrived."""
+FRAME_RATE = 25.0
+"""Frames per second of simulated time in recorded videos."""
+
+
+@dataclass(frozen=True)
+class PartState:
+    """Ground-truth pose of one part's colour marker: centre, orientation, full extents (m)."""
+
+    pos: tuple[float, float, float]
+    quat: tuple[float, float, float, float]
+    size: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class WorldState:
+    """Ground truth of the world at one instant."""
+
+    opening: float
+    lid_angle: float
+    parts: dict[str, PartState]
+    ball_pos: tuple[float, float, float]
+    holding_ball: bool
+    ball_in_can: bool
+    effector_pos: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class CameraModel:
+    """Pinhole model of a rendered camera: intrinsics plus its pose in the world."""
+
+    width: int
+    height: int
+    fovy: float
+    fx: float
+    fy: float
+    cx: float
+    cy: float
+    pos: np.ndarray
+    rot: np.ndarray
+    """World-from-camera rotation; camera looks along its -z, +y is image up."""
+
+    def project(self, points: Sequence[Sequence[float]] | np.ndarray) -> np.ndarray:
+        """Pixel coordinates (u right, v down) of world points, shape (N, 2)."""
+        p = np.atleast_2d(np.asarray(points, dtype=float))
+        cam = (p - self.pos) @ self.rot  # rows are camera-frame coordinates
+        depth = -cam[:, 2]
+        u = self.cx + self.fx * cam[:, 0] / depth
+        v = self.cy - self.fy * cam[:, 1] / depth
+        return np.stack([u, v], axis=1)
+
+
+class GarbageWorld:
+    """One can on a table, a Cartesian arm with a grasping hand, a ball and a head camera."""
+
+    def __init__(self, can: str = "o1", seed: int = 0, width: int = 320, height: int = 240):
+        """Build the scene of ``can`` and reset it under ``seed``."""
+        if width <= 0 or height <= 0 or width > 640 or height > 480:
+            raise ValueError(f"image size {width}x{height} must lie within 1x1..640x480")
+        self._width, self._height = width, height
+        self._can = ""
+        self._seed = seed
+        self._renderer: mujoco.Renderer | None = None
+        self._recorder: _Recorder | None = None
+        self.model: mujoco.MjModel
+        self.data: mujoco.MjData
+        self.reset(can, seed)
+
+    # ----------------------------------------------------------------- set-up
+    def reset(self, can: str | None = None, seed: int | None = None) -> None:
+        """Restore the initial scene (closed lid, ball on the table, hand home)."""
+        can = self._can if can is None else can
+        if can not in CANS:
+            raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
+        if can != self._can:
+            self.model = mujoco.MjModel.from_xml_string(build_mjcf(can))
+            self.data = mujoco.MjData(self.model)
+            self._can = can
+            if self._renderer is not None:
+                self._renderer.close()
+                self._renderer = None
+        if seed is not None:
+            self._seed = seed
+        m, d = self.model, self.data
+        mujoco.mj_resetData(m, d)
+        rng = np.random.default_rng(self._seed)
+        ball = d.joint("ball_free").qpos
+        ball[:2] += rng.uniform(-0.01, 0.01, size=2)
+        self._grip_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, "grip")
+        d.eq_active[self._grip_id] = 0
+        self._hand_qadr = [m.jnt_qposadr[m.joint(f"arm_{a}").id] for a in "xyz"]
+        self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
+        self._ball_body = m.body("ball").id
+        self._hand_body = m.body("hand").id
+        self.steps = 0
+        mujoco.mj_forward(m, d)
+        self.settle(500)
+
+    @property
+    def can(self) -> str:
+        """Name of the current can (o1..o5)."""
+        return self._can
+
+    @property
+    def spec(self) -> CanSpec:
+        """Geometry and mechanism of the current can."""
+        return CANS[self._can]
+
+    @property
+    def parts(self) -> tuple[str, ...]:
+        """Parts of the current can."""
+        return CANS[self._can].parts
+
+    @property
+    def seed(self) -> int:
+        """Seed of the last reset."""
+        return self._seed
+
+    # ---------------------------------------------------------------- physics
+    def step(self, n: int = 1) -> None:
+        """Advance the physics ``n`` steps (and feed the recorder, if one is running)."""
+        for _ in range(n):
+            mujoco.mj_step(self.model, self.data)
+            self.steps += 1
+            if self._recorder is not None:
+                self._recorder.maybe_capture(self)
+
+    def settle(self, max_steps: int = 2000) -> None:
+        """Step until every joint is (nearly) at rest, or ``max_steps`` have passed."""
+        calm = 0
+        for _ in range(max_steps):
+            self.step()
+            calm = calm + 1 if float(np.max(np.abs(self.data.qvel))) < 2e-3 else 0
+            if calm >= 20:
+                return
+
+    # -------------------------------------------------------------------- arm
+    @property
+    def effector_pos(self) -> np.ndarray:
+        """Current hand centre in the world (m)."""
+        return self.data.xpos[self._hand_body].copy()
+
+    @property
+    def setpoint(self) -> np.ndarray:
+        """Where the arm's position controllers currently aim the hand (world frame)."""
+        return np.asarray(HOME) + self.data.ctrl[:3]
+
+    def move_arm(self, dx: float, dy: float, dz: float) -> bool:
+        """Move the hand by (dx, dy, dz) m from where it is; True if it got there."""
+        return self.move_arm_to(self.effector_pos + np.array([dx, dy, dz], dtype=float))
+
+    def move_arm_to(self, target_xyz: Sequence[float] | np.ndarray,
+                    stop_if: Callable[[], bool] | None = None) -> bool:
+        """Move the hand in a straight line to ``target_xyz`` (clipped to the reachable box).
+
+        The set-point ramps at ``ARM_SPEED``; the hand follows with force-limited actuators, so
+        an obstacle stops it. ``stop_if`` (checked every step) ends the move early, freezing
+        the set-point where the hand is. Returns True if the hand reached the target.
+        """
+        target = np.asarray(target_xyz, dtype=float)
+        if target.shape != (3,) or not np.all(np.isfinite(target)):
+            raise ValueError(f"arm target must be three finite numbers, got {target_xyz!r}")
+        lo = np.array([b[0] for b in ARM_RANGE])
+        hi = np.array([b[1] for b in ARM_RANGE])
+        target = np.clip(target, lo, hi)
+        start = self.setpoint
+        step_len = ARM_SPEED * self.model.opt.timestep
+        n = max(1, math.ceil(np.linalg.norm(target - start) / step_len))
+        home = np.asarray(HOME)
+        for i in range(1, n + 1):
+            self.data.ctrl[:3] = start + (target - start) * (i / n) - home
+            self.step()
+            if stop_if is not None and stop_if():
+                self.data.ctrl[:3] = self.effector_pos - home
+                self.settle(300)
+                return False
+        for _ in range(400):
+            self.step()
+            if (np.linalg.norm(self.effector_pos - target) < ARRIVE_TOL
+                    and float(np.max(np.abs(self.data.qvel[self._hand_dadr]))) < 1e-2):
+                break
+        return bool(np.linalg.norm(self.effector_pos - target) < 3 * ARRIVE_TOL)
+
+    def home(self) -> bool:
+        """Move the hand back to its resting position beside the can."""
+        return self.move_arm_to(HOME)
+
+    # ------------------------------------------------------------------- ball
+    @property
+    def grip_point(self) -> np.ndarray:
+        """Where a grasped ball's centre is held (just in front of the hand)."""
+        return self.effector_pos + np.array([GRIP_OFFSET, 0.0, 0.0])
+
+    def grasp(self) -> bool:
+        """Close the hand on the ball if it is within reach of the grip point; True if held."""
+        ball = self.data.xpos[self._ball_body]
+        if np.linalg.norm(ball - self.grip_point) > 0.015:
+            return bool(self.data.eq_active[self._grip_id])
+        self.data.eq_active[self._grip_id] = 1
+        self.step(100)
+        return True
+
+    def drop(self) -> None:
+        """Open the hand: the ball (if held) falls; then let the world settle."""
+        self.data.eq_active[self._grip_id] = 0
+        self.settle(1500)
+
+    def ball_touches_can(self) -> bool:
+        """True if the ball currently touches the can's body, lid or handle."""
+        m, d = self.model, self.data
+        can_bodies = {m.body(n).id for n in ("can_body", "lid", "handle") if _has_body(m, n)}
+        for c in d.contact[: d.ncon]:
+            b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
+            if (b1 == self._ball_body and b2 in can_bodies) or (
+                    b2 == self._ball_body and b1 in can_bodies):
+                return True
+        return False
+
+    # ------------------------------------------------------------------ truth
+    def opening(self) -> float:
+        """Gap (m) between the rim's front edge and the lid's front edge."""
+        gap = self.data.site("lid_front").xpos - self.data.site("rim_front").xpos
+        return float(np.linalg.norm(gap))
+
+    def set_opening(self, width: float) -> None:
+        """Put the lid (and a geared handle) where the opening is ``width`` m, at rest."""
+        m, d = self.model, self.data
+        hinge = d.joint("lid_hinge")
+        slide = d.joint("handle_slide") if "handle" in self.parts else None
+        gear = self.spec.gear
+
+        def place(angle: float) -> float:
+            hinge.qpos[0] = angle
+            if slide is not None:
+                slide.qpos[0] = angle / gear
+            mujoco.mj_kinematics(m, d)
+            return self.opening()
+
+        top = place(LID_RANGE)
+        if not 0.0 <= width <= top:
+            place(0.0)
+            raise ValueError(f"opening {width} m outside 0..{top:.3f} m for can {self.can}")
+        lo, hi = 0.0, LID_RANGE
+        for _ in range(50):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if place(mid) < width else (lo, mid)
+        place((lo + hi) / 2)
+        hinge.qvel[:] = 0.0
+        if slide is not None:
+            slide.qvel[:] = 0.0
+        mujoco.mj_forward(m, d)
+
+    def state(self) -> WorldState:
+        """Ground truth now: opening, part markers, ball and hand."""
+        m, d = self.model, self.data
+        parts = {}
+        for part in self.parts:
+            g = m.geom(f"marker_{part}").id
+            quat = np.zeros(4)
+            mujoco.mju_mat2Quat(quat, d.geom_xmat[g])
+            parts[part] = PartState(_tup(d.geom_xpos[g]), _tup(quat), _tup(2 * m.geom_size[g]))
+        ball = d.xpos[self._ball_body]
+        return WorldState(
+            opening=self.opening(),
+            lid_angle=float(d.joint("lid_hinge").qpos[0]),
+            parts=parts,
+            ball_pos=_tup(ball),
+            holding_ball=bool(d.eq_active[self._grip_id]),
+            ball_in_can=self._inside_can(ball),
+            effector_pos=_tup(self.effector_pos),
+        )
+
+    def _inside_can(self, p: np.ndarray) -> bool:
+        """True if point ``p`` lies inside the can's walls, below the rim."""
+        c = self.spec
+        return bool(WALL < p[0] < c.depth - WALL and abs(p[1]) < c.width / 2 - WALL
+                    and TABLE_TOP < p[2] < c.rim - BALL_RADIUS / 2)
+
+    # ----------------------------------------------------------------- camera
+    def _renderer_for(self) -> mujoco.Renderer:
+        """The (lazily created) offscreen renderer of this world."""
+        if self._renderer is None:
+            self._renderer = mujoco.Renderer(self.model, self._height, self._width)
+        return self._renderer
+
+    def render(self, camera: str = "head") -> np.ndarray:
+        """RGB frame (H, W, 3) uint8 of ``camera`` as the world is now."""
+        self._check_camera(camera)
+        r = self._renderer_for()
+        r.update_scene(self.data, camera)
+        return r.render().copy()
+
+    def camera_intrinsics(self, camera: str = "head") -> CameraModel:
+        """Pinhole intrinsics and world pose of ``camera`` for the current image size."""
+        self._check_camera(camera)
+        cam = self.model.camera(camera)
+        fovy = float(cam.fovy[0])
+        f = (self._height / 2) / math.tan(math.radians(fovy) / 2)
+        dc = self.data.camera(camera)
+        return CameraModel(self._width, self._height, fovy, f, f, self._width / 2,
+                           self._height / 2, dc.xpos.copy(), dc.xmat.reshape(3, 3).copy())
+
+    def _check_camera(self, camera: str) -> None:
+        """Refuse unknown camera names with the list of known ones."""
+        names = [self.model.camera(i).name for i in range(self.model.ncam)]
+        if camera not in names:
+            raise ValueError(f"unknown camera {camera!r}; this scene has {', '.join(names)}")
+
+    @contextmanager
+    def record(self, path: str | Path, camera: str = "head") -> Iterator[Path]:
+        """Record an mp4 of the ``camera`` view of everything simulated inside the block."""
+        import imageio.v2 as imageio
+
+        self._check_camera(camera)
+        out = Path(path)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        writer = imageio.get_writer(str(out), fps=FRAME_RATE, macro_block_size=1)
+        self._recorder = _Recorder(writer, camera, self.data.time)
+        try:
+            self._recorder.capture(self)
+            yield out
+        finally:
+            self._recorder = None
+            writer.close()
+
+    def close(self) -> None:
+        """Free the renderer's GL context."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+
+class _Recorder:
+    """Captures a frame every 1/FRAME_RATE s of simulated time into an imageio writer."""
+
+    def __init__(self, writer: object, camera: str, start: float):
+        """Remember where frames go and when the next one is due."""
+        self.writer = writer
+        self.camera = camera
+        self.next_time = start
+
+    def capture(self, world: GarbageWorld) -> None:
+        """Append the current frame."""
+        self.writer.append_data(world.render(self.camera))  # type: ignore[attr-defined]
+        self.next_time += 1.0 / FRAME_RATE
+
+    def maybe_capture(self, world: GarbageWorld) -> None:
+        """Append a frame if one is due at the world's current time."""
+        if world.data.time >= self.next_time:
+            self.capture(world)
+
+
+def _has_body(model: mujoco.MjModel, name: str) -> bool:
+    """True if the model has a body called ``name``."""
+    return mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name) >= 0
+
+
+def _tup(a: np.ndarray) -> tuple[float, ...]:
+    """Plain-float tuple of a numpy vector (immutable, comparable, printable)."""
+    return tuple(float(x) for x in a)
