@@ -1,0 +1,285 @@
+"""Conformance: every shipped example agent runs on the real runtime (SWI-Prolog, the real
+environments) and reaches its goal or prints what it should, through the Python API and
+through the ``goalagent`` command line.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from goalagent.agent import Agent
+from goalagent.kb.terms import Atom, Struct
+from goalagent.parser import GoalSyntaxError
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "agents" / "examples"
+BROKEN = Path(__file__).resolve().parent / "agents" / "broken"
+
+SUSSMAN = "[on(c,a), on(a,table), on(b,table)]"
+
+
+def on(block: str, below: str) -> Struct:
+    """The term on(block, below)."""
+    return Struct("on", (Atom(block), Atom(below)))
+
+
+SUSSMAN_TERMS = [on("c", "a"), on("a", "table"), on("b", "table")]
+TOWER = {("a", "b"), ("b", "c"), ("c", "table")}
+
+
+def load(name: str, **kwargs: object) -> Agent:
+    """An example agent, loaded through the public API."""
+    return Agent.from_file(EXAMPLES / name, **kwargs)
+
+
+def pairs(agent: Agent, query: str, x: str = "X", y: str = "Y") -> set[tuple[object, object]]:
+    """The answers of ``bel(query)`` as (x, y) pairs."""
+    return {(answer[x], answer[y]) for answer in agent.query("bel", query)}
+
+
+def holds(agent: Agent, query: str) -> bool:
+    """True when ``bel(query)`` has an answer."""
+    return bool(agent.query("bel", query))
+
+
+def line_of(name: str, fragment: str) -> int:
+    """The line of ``fragment`` in an example file (to recognise which rule fired)."""
+    for number, line in enumerate((EXAMPLES / name).read_text().splitlines(), start=1):
+        if fragment in line:
+            return number
+    raise AssertionError(f"{fragment!r} not in {name}")
+
+
+def goalagent(*args: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
+    """Run the ``goalagent`` command (the installed console script's module) in a subprocess."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-m", "goalagent", *args],
+        capture_output=True, text=True, timeout=timeout, cwd=ROOT, env=env,
+    )
+
+
+# ----------------------------------------------------------------------------- no environment
+
+
+def test_hello_world_greets_three_times_then_stops(capsys: pytest.CaptureFixture[str]) -> None:
+    agent = load("hello_world.goal")
+    assert agent.name == "helloWorld"
+    report = agent.step()
+    assert [f.module for f in report.fired] == ["main"]
+    assert {k: report.fired[0].bindings[k] for k in ("Count", "Next", "Target")} == {
+        "Count": 0, "Next": 1, "Target": 3,
+    }
+    assert len(report.fired[0].actions) == 3  # print + delete + insert
+    result = agent.run(max_cycles=20)
+    assert result.terminated and result.goals_left == []
+    assert result.cycles == 3
+    assert agent.query("bel", "greeted(N)") == [{"N": 3}]
+    assert capsys.readouterr().out.splitlines() == ["Hello, world!"] * 3
+
+
+def test_stack_builder_solves_the_sussman_anomaly_through_postconditions() -> None:
+    agent = load("stack_builder.goal")
+    moved = []
+    while not agent.terminated and agent.cycle < 20:
+        report = agent.step()
+        moved += [(f.bindings["X"], f.bindings.get("Y", "table")) for f in report.fired]
+    assert moved == [("c", "table"), ("b", "c"), ("a", "b")]
+    assert pairs(agent, "on(X, Y)") == TOWER
+    assert agent.goals() == []
+
+
+def test_nested_rules_carry_outer_bindings_inward(capsys: pytest.CaptureFixture[str]) -> None:
+    agent = load("nested_rules.goal")
+    outer = line_of("nested_rules.goal", "if bel(parcel(P, City, Kg)")
+    first = agent.step()
+    outer_fired = [f for f in first.fired if f.pos.line == outer]
+    assert len(outer_fired) == 1
+    assert {k: outer_fired[0].bindings[k] for k in ("P", "City", "Kg")} == {
+        "P": "p1", "City": "Den Haag", "Kg": 3,
+    }
+    result = agent.run(max_cycles=20)
+    assert result.terminated and result.goals_left == []
+    assert pairs(agent, "loaded(X, Y)") == {("p1", "van"), ("p2", "t7")}
+    assert agent.query("bel", "waiting(P)") == [{"P": "p3"}]
+    assert capsys.readouterr().out.splitlines() == ["by van", "t7"]
+
+
+def test_listall_and_macros_pack_one_sorted_box(capsys: pytest.CaptureFixture[str]) -> None:
+    agent = load("listall_macros.goal")
+    result = agent.run(max_cycles=10)
+    assert result.terminated and result.goals_left == []
+    assert result.cycles == 2
+    assert agent.query("bel", "box(B)") == [{"B": ["apple", "kiwi", "plum"]}]
+    assert {a["F"] for a in agent.query("bel", "kept(F)")} == {"pear", "fig"}
+    assert capsys.readouterr().out.splitlines() == ["[apple,kiwi,plum]", "3", "shipped"]
+
+
+def test_user_modules_with_focus_and_exit_module(capsys: pytest.CaptureFixture[str]) -> None:
+    agent = load("user_modules.goal")
+    result = agent.run(max_cycles=30)
+    assert result.terminated and result.goals_left == []
+    assert {a["T"] for a in agent.query("bel", "done(T)")} == {"dishes", "laundry"}
+    assert agent.query("bel", "skipped(T)") == [{"T": "ironing"}]
+    assert capsys.readouterr().out.splitlines() == ["dishes", "laundry"]
+
+
+# ----------------------------------------------------------------------------- environments
+
+
+def test_script_printer_prints_the_script_on_the_printer(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    agent = load("script_printer.goal", env="printer")
+    result = agent.run(max_cycles=20)
+    assert result.terminated and result.goals_left == []
+    assert agent.query("bel", "printed(N)") == [{"N": 4}]
+    assert capsys.readouterr().out.splitlines() == [
+        "To be, or not to be, that is the question:",
+        "Whether 'tis nobler in the mind to suffer",
+        "The slings and arrows of outrageous fortune,",
+        "Or to take arms against a sea of troubles",
+    ]
+
+
+def test_blocks_builder_builds_the_tower_in_the_blocks_world() -> None:
+    agent = load("blocks_builder.goal", env="blocksworld", env_params={"state": SUSSMAN_TERMS})
+    warnings: list[str] = []
+    while not agent.terminated and agent.cycle < 30:
+        warnings += agent.step().warnings
+    assert agent.terminated and agent.goals() == []
+    assert pairs(agent, "on(X, Y)") == TOWER
+    assert warnings == []  # the environment accepted every move
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_blocks_builder_from_random_towers(seed: int) -> None:
+    agent = load("blocks_builder.goal", env="blocksworld",
+                 env_params={"blocks": 3, "seed": seed}, seed=seed)
+    result = agent.run(max_cycles=30)
+    assert result.terminated and result.goals_left == []
+    assert pairs(agent, "on(X, Y)") == TOWER
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_table_agent_clears_any_world_in_random_order_skipping_internally(seed: int) -> None:
+    agent = load("table_agent.goal", env="blocksworld", env_params={"seed": seed}, seed=seed)
+    actions: list[str] = []
+    warnings: list[str] = []
+    while not agent.terminated and agent.cycle < 200:
+        report = agent.step()
+        actions += [a for f in report.fired for a in f.actions]
+        warnings += report.warnings
+    assert agent.terminated and agent.goals() == []
+    blocks = {a["X"] for a in agent.query("bel", "block(X)")}
+    assert len(blocks) == 5
+    assert pairs(agent, "on(X, Y)") == {(b, "table") for b in blocks}
+    assert any(a.startswith("skip") for a in actions)
+    assert warnings == []  # skip@int never reached the environment, which would refuse it
+
+
+def test_table_agent_is_reproducible_under_a_seed() -> None:
+    def trace(seed: int) -> list[str]:
+        agent = load("table_agent.goal", env="blocksworld", env_params={"seed": 1}, seed=seed)
+        seen: list[str] = []
+        while not agent.terminated and agent.cycle < 200:
+            seen += [a for f in agent.step().fired for a in f.actions]
+        return seen
+
+    assert trace(7) == trace(7)
+
+
+def test_tower_builder_uses_the_gripper() -> None:
+    agent = load("tower_builder.goal", env="towerworld", env_params={"state": SUSSMAN_TERMS})
+    actions: list[str] = []
+    while not agent.terminated and agent.cycle < 40:
+        actions += [a for f in agent.step().fired for a in f.actions]
+    assert agent.terminated and agent.goals() == []
+    assert pairs(agent, "on(X, Y)") == TOWER
+    assert not holds(agent, "holding(_)")
+    assert [a.split("(")[0] for a in actions if not a.startswith("nil")] == [
+        "pickup", "putdown", "pickup", "putdown", "pickup", "putdown",
+    ]
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_tower_builder_from_random_towers(seed: int) -> None:
+    agent = load("tower_builder.goal", env="towerworld",
+                 env_params={"blocks": 3, "seed": seed}, seed=seed)
+    result = agent.run(max_cycles=40)
+    assert result.terminated and result.goals_left == []
+    assert pairs(agent, "on(X, Y)") == TOWER
+
+
+# ----------------------------------------------------------------------------- errors
+
+
+def test_unknown_action_is_reported_where_it_is_used() -> None:
+    text = "main module {\n  program {\n    if true then jump(high).\n  }\n}\n"
+    with pytest.raises(GoalSyntaxError) as caught:
+        Agent.from_string(text, "jump.goal")
+    assert (caught.value.file, caught.value.line, caught.value.col) == ("jump.goal", 3, 18)
+    assert "jump" in caught.value.message
+
+
+# ----------------------------------------------------------------------------- command line
+
+
+def test_cli_runs_hello_world() -> None:
+    done = goalagent("run", "agents/examples/hello_world.goal")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["Hello, world!"] * 3
+    assert "Traceback" not in done.stderr
+
+
+def test_cli_runs_the_blocks_builder_with_env_params() -> None:
+    done = goalagent("run", "agents/examples/blocks_builder.goal", "--env", "blocksworld",
+                     "--env-param", f"state={SUSSMAN}", "--max-cycles", "30", "--seed", "3")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == ""  # the agent prints nothing; summaries go to stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_cli_coffee_system_ends_with_coffee_made() -> None:
+    done = goalagent("run", "agents/examples/coffee.mas2g", "--max-cycles", "40")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["made(coffee)"]
+    summary = done.stderr.splitlines()
+    assert any("maker" in line for line in summary) and any("grinder" in line for line in summary)
+
+
+def test_cli_blocks_team_cooperates_to_the_tower() -> None:
+    done = goalagent("run", "agents/examples/blocks_team.mas2g", "--max-cycles", "40")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["finished"]
+    summary = done.stderr.splitlines()
+    assert any("builder" in line for line in summary) and any("helper" in line for line in summary)
+
+
+def test_cli_check_accepts_every_example() -> None:
+    paths = sorted(str(p.relative_to(ROOT)) for p in EXAMPLES.iterdir()
+                   if p.suffix in (".goal", ".mas2g"))
+    done = goalagent("check", *paths)
+    assert done.returncode == 0, done.stderr
+    assert "warning" not in done.stderr
+
+
+def test_cli_check_reports_a_broken_file_without_traceback() -> None:
+    path = BROKEN / "missing_then.goal"
+    done = goalagent("check", str(path))
+    assert done.returncode == 2
+    assert f"{path}:5:23: " in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_cli_reports_a_broken_file_on_run_with_exit_code_2() -> None:
+    path = BROKEN / "unterminated_comment.goal"
+    done = goalagent("run", str(path))
+    assert done.returncode == 2
+    assert f"{path}:5:9: " in done.stderr
+    assert "Traceback" not in done.stderr
