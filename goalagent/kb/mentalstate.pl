@@ -13,6 +13,16 @@
 
 :- initialization(nb_setval('$ga_g', none)).
 
+%   Agent texts are read with SWI's operators except the prefix operator `table` (tabling
+%   directives), so that the everyday atom `table` (blocks worlds: `Y \= table, ...`) reads
+%   as an atom. Plain texts are read in module ga_read, agent texts in the agent's modules.
+
+:- set_module(ga_read:base(system)).
+:- op(0, fx, ga_read:table).
+
+hide_operators(M) :-
+    op(0, fx, M:table).
+
 		 /*******************************
 		 *          READING TEXT        *
 		 *******************************/
@@ -49,7 +59,7 @@ check(Text, Kind, Result) :-
     catch(check_(Text, Kind, Result), E, syntax_result(E, Text, Result)).
 
 check_(Text, Kind, ok(Names)) :-
-    read_text(Text, user, Term, Bindings),
+    read_text(Text, ga_read, Term, Bindings),
     (   Kind == clause, \+ callable_clause(Term)
     ->  throw(error(syntax_error(not_a_clause), exact(0)))
     ;   true
@@ -130,7 +140,7 @@ drop_prefix(Prefix, String, Rest) :-
 %   Term with every named variable V bound to '$ga_var'(Name) (Python makes it a Var).
 
 parse(Text, Term) :-
-    read_text(Text, user, Term, Bindings),
+    read_text(Text, ga_read, Term, Bindings),
     maplist(name_var, Bindings).
 
 name_var(Name=Var) :- Var = '$ga_var'(Name).
@@ -197,6 +207,7 @@ new_agent(B, G) :-
     forall(member(M, [B, G]),
            ( set_module(M:class(temporary)),
              set_module(M:base(system)),
+             hide_operators(M),
              forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
                     dynamic(M:PI))
            )),
