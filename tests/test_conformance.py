@@ -8,12 +8,14 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from goalagent.agent import Agent
-from goalagent.kb.terms import Atom, Struct
+from goalagent.kb.terms import Atom, Struct, Term
+from goalagent.mas import MultiAgentSystem
 from goalagent.parser import GoalSyntaxError
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -33,8 +35,32 @@ TOWER = {("a", "b"), ("b", "c"), ("c", "table")}
 
 
 def load(name: str, **kwargs: object) -> Agent:
-    """An example agent, loaded through the public API."""
+    """An example agent without an environment, loaded through the public API."""
     return Agent.from_file(EXAMPLES / name, **kwargs)
+
+
+@pytest.fixture
+def systems() -> Iterator[list[MultiAgentSystem]]:
+    """Systems made by a test; their environments and Prolog modules are freed afterwards."""
+    made: list[MultiAgentSystem] = []
+    yield made
+    for system in made:
+        system.close()
+
+
+@pytest.fixture
+def on_env(systems: list[MultiAgentSystem]):
+    """``on_env(name, env, params, seed)``: an example agent connected to an environment."""
+
+    def connect(name: str, env: str, params: dict[str, Term] | None = None,
+                seed: int = 0) -> Agent:
+        system = MultiAgentSystem.for_agent_file(
+            EXAMPLES / name, environment=env, env_params=params or {}, seed=seed
+        )
+        systems.append(system)
+        return system.agents[0]
+
+    return connect
 
 
 def pairs(agent: Agent, query: str, x: str = "X", y: str = "Y") -> set[tuple[object, object]]:
@@ -133,9 +159,9 @@ def test_user_modules_with_focus_and_exit_module(capsys: pytest.CaptureFixture[s
 
 
 def test_script_printer_prints_the_script_on_the_printer(
-    capsys: pytest.CaptureFixture[str],
+    on_env, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    agent = load("script_printer.goal", env="printer")
+    agent = on_env("script_printer.goal", "printer")
     result = agent.run(max_cycles=20)
     assert result.terminated and result.goals_left == []
     assert agent.query("bel", "printed(N)") == [{"N": 4}]
@@ -147,8 +173,8 @@ def test_script_printer_prints_the_script_on_the_printer(
     ]
 
 
-def test_blocks_builder_builds_the_tower_in_the_blocks_world() -> None:
-    agent = load("blocks_builder.goal", env="blocksworld", env_params={"state": SUSSMAN_TERMS})
+def test_blocks_builder_builds_the_tower_in_the_blocks_world(on_env) -> None:
+    agent = on_env("blocks_builder.goal", "blocksworld", {"state": SUSSMAN_TERMS})
     warnings: list[str] = []
     while not agent.terminated and agent.cycle < 30:
         warnings += agent.step().warnings
@@ -158,17 +184,18 @@ def test_blocks_builder_builds_the_tower_in_the_blocks_world() -> None:
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
-def test_blocks_builder_from_random_towers(seed: int) -> None:
-    agent = load("blocks_builder.goal", env="blocksworld",
-                 env_params={"blocks": 3, "seed": seed}, seed=seed)
+def test_blocks_builder_from_random_towers(on_env, seed: int) -> None:
+    agent = on_env("blocks_builder.goal", "blocksworld", {"blocks": 3, "seed": seed}, seed)
     result = agent.run(max_cycles=30)
     assert result.terminated and result.goals_left == []
     assert pairs(agent, "on(X, Y)") == TOWER
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_table_agent_clears_any_world_in_random_order_skipping_internally(seed: int) -> None:
-    agent = load("table_agent.goal", env="blocksworld", env_params={"seed": seed}, seed=seed)
+def test_table_agent_clears_any_world_in_random_order_skipping_internally(
+    on_env, seed: int
+) -> None:
+    agent = on_env("table_agent.goal", "blocksworld", {"seed": seed}, seed)
     actions: list[str] = []
     warnings: list[str] = []
     while not agent.terminated and agent.cycle < 200:
@@ -183,9 +210,9 @@ def test_table_agent_clears_any_world_in_random_order_skipping_internally(seed: 
     assert warnings == []  # skip@int never reached the environment, which would refuse it
 
 
-def test_table_agent_is_reproducible_under_a_seed() -> None:
+def test_table_agent_is_reproducible_under_a_seed(on_env) -> None:
     def trace(seed: int) -> list[str]:
-        agent = load("table_agent.goal", env="blocksworld", env_params={"seed": 1}, seed=seed)
+        agent = on_env("table_agent.goal", "blocksworld", {"seed": 1}, seed)
         seen: list[str] = []
         while not agent.terminated and agent.cycle < 200:
             seen += [a for f in agent.step().fired for a in f.actions]
@@ -194,26 +221,61 @@ def test_table_agent_is_reproducible_under_a_seed() -> None:
     assert trace(7) == trace(7)
 
 
-def test_tower_builder_uses_the_gripper() -> None:
-    agent = load("tower_builder.goal", env="towerworld", env_params={"state": SUSSMAN_TERMS})
+def test_tower_builder_uses_the_gripper(on_env) -> None:
+    agent = on_env("tower_builder.goal", "towerworld", {"state": SUSSMAN_TERMS})
     actions: list[str] = []
     while not agent.terminated and agent.cycle < 40:
-        actions += [a for f in agent.step().fired for a in f.actions]
+        actions += [a for f in agent.step().fired if f.module == "main" for a in f.actions]
     assert agent.terminated and agent.goals() == []
     assert pairs(agent, "on(X, Y)") == TOWER
     assert not holds(agent, "holding(_)")
-    assert [a.split("(")[0] for a in actions if not a.startswith("nil")] == [
+    assert [a.split("(")[0] for a in actions if a != "nil"] == [
         "pickup", "putdown", "pickup", "putdown", "pickup", "putdown",
     ]
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
-def test_tower_builder_from_random_towers(seed: int) -> None:
-    agent = load("tower_builder.goal", env="towerworld",
-                 env_params={"blocks": 3, "seed": seed}, seed=seed)
+def test_tower_builder_from_random_towers(on_env, seed: int) -> None:
+    agent = on_env("tower_builder.goal", "towerworld", {"blocks": 3, "seed": seed}, seed)
     result = agent.run(max_cycles=40)
     assert result.terminated and result.goals_left == []
     assert pairs(agent, "on(X, Y)") == TOWER
+
+
+# ----------------------------------------------------------------------------- multi-agent
+
+
+def test_coffee_pair_trades_questions_answers_and_requests(
+    systems: list[MultiAgentSystem], capsys: pytest.CaptureFixture[str]
+) -> None:
+    system = MultiAgentSystem.from_mas_file(EXAMPLES / "coffee.mas2g")
+    systems.append(system)
+    summaries = system.run(max_cycles=40)
+    assert [(s.name, s.status, s.goals_left) for s in summaries] == [
+        ("maker", "terminated", 0), ("grinder", "terminated", 0),
+    ]
+    maker, grinder = system.agents
+    assert holds(maker, "have(coffee)") and holds(grinder, "have(grounds)")
+    # The moods left their marks: a question, an answer and a request went back and forth.
+    assert holds(maker, "sent(grinder, int(canMake(_, _)))")
+    assert holds(maker, "received(grinder, canMake(grinder, [grounds]))")
+    assert holds(maker, "sent(grinder, imp(have(grounds)))")
+    assert capsys.readouterr().out.splitlines() == ["made(coffee)"]
+
+
+def test_blocks_team_shares_one_world(systems: list[MultiAgentSystem]) -> None:
+    system = MultiAgentSystem.from_mas_file(EXAMPLES / "blocks_team.mas2g")
+    systems.append(system)
+    summaries = system.run(max_cycles=40)
+    assert [(s.name, s.status) for s in summaries] == [
+        ("builder", "terminated"), ("helper", "terminated"),
+    ]
+    builder, helper = system.agents
+    assert {("a", "b"), ("b", "c"), ("c", "table"), ("d", "table")} == pairs(
+        helper, "on(X, Y)"
+    )
+    assert holds(helper, "wanted(on(a, b))") and holds(helper, "released")
+    assert holds(builder, "announced")
 
 
 # ----------------------------------------------------------------------------- errors
