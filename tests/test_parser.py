@@ -309,6 +309,14 @@ def test_keywords_inside_prolog_text_stay_prolog() -> None:
     ]
 
 
+def test_table_is_a_plain_atom_as_in_classic_blocks_world_code() -> None:
+    """SWI-Prolog 9 makes ``table`` a prefix operator; GOAL programs use it as an atom."""
+    rule = one_rule("if bel(on(X, Y), Y \\= table, X == table ; true) then move(X, table).")
+    literal = rule.condition[0]
+    assert isinstance(literal, ast.MentalLiteral) and literal.query is not None
+    assert literal.query.text == "on(X, Y), Y \\= table, X == table ; true"
+
+
 def test_query_variables_are_recorded_in_order() -> None:
     rule = one_rule("if bel(on(X, Y), Y \\= X, tower([Y | T])) then print(T).")
     literal = rule.condition[0]
