@@ -64,6 +64,10 @@ class Store(PythonEnvironment):
         self.calls.append((anything, param, untyped))
         return Percept.of("got", param)
 
+    @action("label")
+    def label(self, entity: str, value: bool | int | str) -> None:
+        self.calls.append((value,))
+
     @action("crash")
     def crash(self, entity: str) -> None:
         raise ZeroDivisionError("division by zero")
@@ -87,7 +91,7 @@ def act(env: PythonEnvironment, name: str, *values: object) -> dict[str, Percept
 def test_one_entity_by_default(store: Store) -> None:
     assert store.entities() == ["entity"]
     assert store.entity_type("entity") == "entity"
-    assert Store.action_names() == ["crash", "put", "raw", "typed"]
+    assert Store.action_names() == ["crash", "label", "put", "raw", "typed"]
 
 
 def test_percept_shorthands_are_converted(store: Store) -> None:
@@ -106,6 +110,15 @@ def test_parameters_are_converted_by_type_hints(store: Store) -> None:
     assert isinstance(store.calls[0][1], float)
     act(store, "raw", Function("on", (Identifier("a"),)), "x", TruthValue(False))
     assert store.calls[1] == (Struct("on", (Atom("a"),)), Identifier("x"), False)
+
+
+def test_union_hints_try_each_alternative_in_order(store: Store) -> None:
+    act(store, "label", "false")
+    act(store, "label", 4)
+    act(store, "label", "x")
+    assert store.calls == [(False,), (4,), ("x",)]
+    with pytest.raises(ActException, match="must be true or false or an integer or a name or"):
+        act(store, "label", 2.5)
 
 
 def test_optional_parameters_may_be_left_out(store: Store) -> None:
@@ -139,7 +152,7 @@ def test_wrong_parameters_name_the_action_and_what_it_expects(
 
 
 def test_unknown_action_lists_the_known_ones(store: Store) -> None:
-    with pytest.raises(ActException, match=r"no action 'fly' \(actions: crash, put, raw, typed"):
+    with pytest.raises(ActException, match=r"'fly' \(actions: crash, label, put, raw, typed\)"):
         act(store, "fly")
 
 
@@ -266,8 +279,8 @@ def test_subclasses_inherit_actions() -> None:
         def take(self, entity: str) -> None:
             self.items.pop()
 
-    assert MoreStore.action_names() == ["crash", "put", "raw", "take", "typed"]
-    assert Store.action_names() == ["crash", "put", "raw", "typed"]
+    assert MoreStore.action_names() == ["crash", "label", "put", "raw", "take", "typed"]
+    assert Store.action_names() == ["crash", "label", "put", "raw", "typed"]
 
 
 def test_init_accepts_python_shorthand_values() -> None:

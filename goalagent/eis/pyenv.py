@@ -12,9 +12,10 @@ class Printer(PythonEnvironment):
 Action parameters are converted to Python by the type hints of the method: ``str`` (an atom or
 a string), ``int``, ``float`` (accepts integers too), ``bool`` (``true``/``false``), ``list`` or
 ``list[X]``, ``Struct`` (a compound term), an EIS parameter class (raw), ``object`` or no hint
-(``to_python``). Wrong arity or type is an ``ActException`` naming the action and what it
-expects; ``ActionRefused("why")`` refuses (the method must then leave the world unchanged); any
-other exception becomes an ``ActException`` of kind failure wrapping it.
+(``to_python``), or a union of these, tried left to right (``bool | str``). Wrong arity or type
+is an ``ActException`` naming the action and what it expects; ``ActionRefused("why")`` refuses
+(the method must then leave the world unchanged); any other exception becomes an
+``ActException`` of kind failure wrapping it.
 
 Percepts may be ``Percept`` objects, tuples ``("on", "a", "b")`` (shorthand values, see
 ``terms.to_parameter``), atoms/strings ``"ready"`` or kb terms (``Struct``). Init parameters go
@@ -27,6 +28,7 @@ override ``initial_entities``); agents are associated with entities on request b
 from __future__ import annotations
 
 import inspect
+import types
 import typing
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -79,8 +81,17 @@ class _Mismatch(Exception):
     """A parameter that does not fit its type hint; the message says what was expected."""
 
 
+def _alternatives(hint: object) -> tuple[object, ...]:
+    """The members of a union hint (``bool | str``), or () for any other hint."""
+    if typing.get_origin(hint) in (typing.Union, types.UnionType):
+        return typing.get_args(hint)
+    return ()
+
+
 def _describe(hint: object) -> str:
     """Words for what a type hint accepts, used in error messages."""
+    if _alternatives(hint):
+        return " or ".join(_describe(alternative) for alternative in _alternatives(hint))
     if hint is str:
         return "a name or string"
     if hint is int:
@@ -105,6 +116,10 @@ def _check_hint(hint: object, where: str) -> None:
         return
     if isinstance(hint, type) and issubclass(hint, _PARAMETER_CLASSES):
         return
+    if _alternatives(hint):
+        for alternative in _alternatives(hint):
+            _check_hint(alternative, where)
+        return
     if typing.get_origin(hint) is list:
         (item,) = typing.get_args(hint) or (object,)
         _check_hint(item, where)
@@ -121,6 +136,12 @@ def _convert(param: Parameter, hint: object) -> object:
         return to_python(param)
     if hint is Parameter:
         return param
+    if _alternatives(hint):
+        for alternative in _alternatives(hint):
+            try:
+                return _convert(param, alternative)
+            except _Mismatch:
+                continue
     if isinstance(hint, type) and issubclass(hint, _PARAMETER_CLASSES):
         if isinstance(param, hint):
             return param
