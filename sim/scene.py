@@ -43,7 +43,7 @@ HANDLE_DEPTH = 0.01
 HANDLE_GAP = 0.03
 """Free space between the handle bar and the can's front face (room for the hand)."""
 HAND_RADIUS = 0.012
-BALL_RADIUS = 0.018
+BALL_RADIUS = 0.025
 GRIP_OFFSET = HAND_RADIUS + BALL_RADIUS + 0.001
 """The grasped ball sits this far in front (+x) of the hand centre."""
 HOME = (-0.22, 0.20, 0.70)
@@ -87,7 +87,7 @@ class CanSpec:
     lid_height: float
     lid_marker_z: float
     gear: float = 0.0
-    handle_drop: float = 0.055
+    handle_drop: float = 0.13
 
     @property
     def rim(self) -> float:
@@ -109,11 +109,11 @@ CANS: dict[str, CanSpec] = {
     "o3": CanSpec("o3", ("body", "lid"), ("lid", "extend_arm"), 0.20, 0.24, 0.24, 0.19, 0.17),
     "o4": CanSpec(
         "o4", ("body", "lid", "handle"), ("handle", "lift_up"), 0.24, 0.28, 0.28, 0.03, 0.015,
-        gear=10.0,
+        gear=13.0,
     ),
     "o5": CanSpec(
         "o5", ("body", "lid", "handle"), ("handle", "contract_arm"), 0.22, 0.28, 0.27, 0.03,
-        0.015, gear=6.0,
+        0.015, gear=6.0, handle_drop=0.07,
     ),
 }
 """The five cans of thesis Fig. 5.2 / Table 5.3."""
@@ -180,7 +180,7 @@ def _body_xml(c: CanSpec) -> list[str]:
         rows.append(_box(name, (d / 2, sign * (w - t - li), z0 + h / 2 + t / 2),
                          (inner[0], li, h / 2 - t / 2 - li), RGBA["dark"], collide=False))
     mw, mh = MARKER_SIZE["body"]
-    rows.append(_box("marker_body", (-MARKER_THICKNESS / 2, 0, z0 + 0.30 * h),
+    rows.append(_box("marker_body", (-MARKER_THICKNESS / 2, 0, z0 + 0.20 * h),
                      (MARKER_THICKNESS / 2, mw / 2, mh / 2), RGBA["red"], collide=False))
     rows.append(f'<site name="rim_front" pos="0 0 {z0 + h:.5g}" {SITE}/>')
     rows.append("</body>")

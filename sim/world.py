@@ -151,6 +151,7 @@ class GarbageWorld:
         ball[:2] += rng.uniform(-0.01, 0.01, size=2)
         self._grip_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, "grip")
         d.eq_active[self._grip_id] = 0
+        self.set_ball_collisions(True)
         self._hand_qadr = [m.jnt_qposadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._ball_body = m.body("ball").id
@@ -260,13 +261,25 @@ class GarbageWorld:
         if np.linalg.norm(ball - self.grip_point) > 0.015:
             return bool(self.data.eq_active[self._grip_id])
         self.data.eq_active[self._grip_id] = 1
+        self.set_ball_collisions(False)
         self.step(100)
         return True
 
     def drop(self) -> None:
         """Open the hand: the ball (if held) falls; then let the world settle."""
         self.data.eq_active[self._grip_id] = 0
+        self.set_ball_collisions(True)
         self.settle(1500)
+
+    def set_ball_collisions(self, on: bool) -> None:
+        """Let the ball collide (free or presented) or not (tucked in the closed hand).
+
+        A held ball is tucked away so that carrying it does not change what the arm skills
+        do to the can; ``drop_ball`` presents it (collisions on) before guiding it in.
+        """
+        geom = self.model.geom("ball").id
+        self.model.geom_contype[geom] = int(on)
+        self.model.geom_conaffinity[geom] = int(on)
 
     def ball_touches_can(self) -> bool:
         """True if the ball currently touches the can's body, lid or handle."""

@@ -1,0 +1,156 @@
+"""Motor skills of the garbage-can robot: parameterised arm actions, grasp and drop (thesis §5.3.2).
+
+Every arm skill ``a(θ)`` approaches the vicinity of the chosen part, moves the hand by θ metres
+in the action type's direction, withdraws along the same line, returns home, lets the world
+settle and reports the effect on the part (displacement of its marker, eq. 5.15) and on the
+object (change of the opening, eq. 5.3), both from ground truth.
+
+Approach points: a flat part (body, lid) can only be touched on its face, so every action
+starts just in front of the face's marker (only pushing meets resistance there). A handle is a
+bar standing off the can, so the hand starts on the side of the bar opposite to the motion:
+in front of it to push, in the gap behind it to pull, below it to lift, above it to press
+down, beside it to sweep; the hand reaches the gap from below the bar.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from sim.scene import BALL_RADIUS, GRIP_OFFSET, HAND_RADIUS, WALL
+from sim.world import ACTION_DIRECTIONS, ACTION_TYPES, THETA_BOUNDS, GarbageWorld
+
+__all__ = ["SkillError", "SkillResult", "check_skill", "drop_ball", "grasp_ball",
+           "perform_skill"]
+
+MARGIN = 0.004
+"""Free space (m) left between the hand and a part when the hand arrives in its vicinity."""
+CLEAR_X = -0.12
+"""x (m) of the free corridor in front of every can the hand travels through."""
+
+
+class SkillError(ValueError):
+    """A skill request that cannot be carried out (refused before the world is touched)."""
+
+
+@dataclass(frozen=True)
+class SkillResult:
+    """Outcome of one arm skill ``action(part, θ)`` measured from ground truth."""
+
+    action: str
+    part: str
+    theta: float
+    part_displacement: float
+    opening_before: float
+    opening_after: float
+    effect: float
+
+
+def check_skill(world: GarbageWorld, action: str, part: str, theta: float) -> float:
+    """Validate a skill request; return θ as a float or raise ``SkillError`` saying why."""
+    if action not in ACTION_TYPES:
+        raise SkillError(f"unknown action {action!r}; known actions: {', '.join(ACTION_TYPES)}")
+    if part not in world.parts:
+        raise SkillError(f"can {world.can} has no part {part!r}; its parts are "
+                         f"{', '.join(world.parts)}")
+    if isinstance(theta, bool) or not isinstance(theta, (int, float)):
+        raise SkillError(f"theta must be a number of metres, got {theta!r}")
+    value = float(theta)
+    lo, hi = THETA_BOUNDS[action]
+    if not (math.isfinite(value) and lo < value <= hi):
+        raise SkillError(f"theta {theta} m out of bounds for {action}: need {lo} < theta <= {hi}")
+    return value
+
+
+def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
+    """Waypoints from the free corridor to the start point of ``action`` on ``part``."""
+    ps = world.state().parts[part]
+    centre = np.array(ps.pos)
+    half = np.array(ps.size) / 2
+    axes = _rotation(ps.quat)
+    direction = np.array(ACTION_DIRECTIONS[action])
+    if part != "handle":
+        normal = axes[:, 0] if axes[0, 0] >= 0 else -axes[:, 0]
+        start = centre - normal * (half[0] + HAND_RADIUS + MARGIN)
+        return [np.array([CLEAR_X, start[1], start[2]]), start]
+    start = centre - direction * (half @ np.abs(direction) + HAND_RADIUS + MARGIN)
+    if action == "contract_arm":  # the gap behind the bar is reached from below the bar
+        below = centre[2] - half[2] - HAND_RADIUS - MARGIN
+        return [np.array([CLEAR_X, start[1], below]), np.array([start[0], start[1], below]),
+                start]
+    return [np.array([CLEAR_X, start[1], start[2]]), start]
+
+
+def _rotation(quat: tuple[float, float, float, float]) -> np.ndarray:
+    """3x3 rotation matrix of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = quat
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def perform_skill(world: GarbageWorld, action: str, part: str, theta: float) -> SkillResult:
+    """Approach ``part``, move the hand by ``theta`` m as ``action``, withdraw and measure."""
+    value = check_skill(world, action, part, theta)
+    before = world.state()
+    waypoints = _approach(world, action, part)
+    for point in waypoints:
+        world.move_arm_to(point)
+    start = world.setpoint
+    world.move_arm_to(start + np.array(ACTION_DIRECTIONS[action]) * value)
+    world.move_arm_to(start)
+    for point in reversed(waypoints[:-1]):
+        world.move_arm_to(point)
+    world.home()
+    world.settle()
+    after = world.state()
+    moved = np.subtract(after.parts[part].pos, before.parts[part].pos)
+    return SkillResult(
+        action=action,
+        part=part,
+        theta=value,
+        part_displacement=float(np.linalg.norm(moved)),
+        opening_before=before.opening,
+        opening_after=after.opening,
+        effect=after.opening - before.opening,
+    )
+
+
+def grasp_ball(world: GarbageWorld) -> bool:
+    """Reach the ball from above, close the hand on it and lift it; True if it is held."""
+    if world.state().holding_ball:
+        return True
+    ball = np.array(world.state().ball_pos)
+    grip = ball - np.array([GRIP_OFFSET, 0.0, 0.0])
+    world.move_arm_to(grip + np.array([0.0, 0.0, 0.08]))
+    world.move_arm_to(grip)
+    held = world.grasp()
+    world.move_arm(0.0, 0.0, 0.10)
+    world.home()
+    return held and world.state().holding_ball
+
+
+def drop_ball(world: GarbageWorld) -> bool:
+    """Carry the held ball into the can's front gap and let go; True if it lands in the can.
+
+    The hand slides the ball in just above the rim; the move is guarded, so a closed (or not
+    open enough) lid stops the ball at the lid and it is dropped there, outside the can.
+    Without a ball in hand nothing moves and the answer is False.
+    """
+    if not world.state().holding_ball:
+        return False
+    z = world.spec.rim + BALL_RADIUS + 0.006
+    inside = np.array([WALL + BALL_RADIUS + 0.006 - GRIP_OFFSET, 0.0, z])
+    outside = np.array([CLEAR_X + 0.04 - GRIP_OFFSET, 0.0, z])
+    world.move_arm_to(outside)
+    world.set_ball_collisions(True)
+    world.move_arm_to(inside, stop_if=world.ball_touches_can)
+    world.drop()
+    world.move_arm_to(np.array([outside[0], 0.0, world.effector_pos[2]]))
+    world.home()
+    world.settle()
+    return world.state().ball_in_can
