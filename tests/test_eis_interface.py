@@ -112,21 +112,25 @@ def test_life_cycle_and_hooks() -> None:
     assert ("new", "e1", "counter") in recorder.calls
 
 
-def test_initializing_can_start_or_be_killed_directly() -> None:
+def test_initializing_can_start_pause_or_be_killed_directly() -> None:
     environment = Counter()
     environment.start()  # initialises with no parameters on the way
     assert environment.state is S.RUNNING
     assert environment.entities() == ["e1", "e2"]
     assert environment.hooks == ["start"]
+    paused = Counter()
+    paused.pause()  # the same as init({})
+    assert paused.state is S.PAUSED and paused.entities() == ["e1", "e2"]
+    assert paused.hooks == []
     other = Counter()
-    other.kill()
+    other.kill()  # nothing was built, so there is nothing to release
     assert other.state is S.KILLED
+    assert other.hooks == []
 
 
 @pytest.mark.parametrize(
     ("setup", "move", "message"),
     [
-        ([], "pause", "cannot be paused before init"),
         (["kill"], "start", "cannot go from killed to running .*killed; create a new one"),
         (["kill"], "pause", "cannot go from killed to paused"),
         (["init"], "init", "already initialised .*use reset"),

@@ -203,13 +203,11 @@ class Environment:
         self._set_state(EnvironmentState.RUNNING)
 
     def pause(self) -> None:
-        """Pause the environment; the state becomes PAUSED."""
-        if self._state is EnvironmentState.INITIALIZING:
-            raise ManagementException(
-                f"environment '{self.name}' cannot be paused before init(params)"
-            )
+        """Pause the environment (initialising it without parameters if need be): PAUSED."""
         self._check_transition(EnvironmentState.PAUSED)
-        if self._state is not EnvironmentState.PAUSED:
+        if self._state is EnvironmentState.INITIALIZING:
+            self.init({})
+        elif self._state is EnvironmentState.RUNNING:
             self.do_pause()
         self._set_state(EnvironmentState.PAUSED)
 
@@ -218,7 +216,8 @@ class Environment:
         if self._state is EnvironmentState.KILLED:
             return
         try:
-            self.do_kill()
+            if self._state is not EnvironmentState.INITIALIZING:
+                self.do_kill()
         finally:
             self._set_state(EnvironmentState.KILLED)
 
