@@ -6,6 +6,7 @@ through the ``goalagent`` command line.
 from __future__ import annotations
 
 import os
+import random
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -14,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from goalagent.agent import Agent
+from goalagent.eis.envs.blocksworld import random_towers
 from goalagent.kb.terms import Atom, Struct, Term
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import GoalSyntaxError
@@ -276,6 +278,22 @@ def test_blocks_team_shares_one_world(systems: list[MultiAgentSystem]) -> None:
     )
     assert holds(helper, "wanted(on(a, b))") and holds(helper, "released")
     assert holds(builder, "announced")
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_blocks_team_from_random_towers_of_four(
+    systems: list[MultiAgentSystem], seed: int
+) -> None:
+    start = random_towers(["a", "b", "c", "d"], random.Random(seed))
+    state: list[Term] = [on(block, below) for block, below in sorted(start.items())]
+    system = MultiAgentSystem.from_mas_file(
+        EXAMPLES / "blocks_team.mas2g", env_params={"state": state}, seed=seed
+    )
+    systems.append(system)
+    summaries = system.run(max_cycles=60)
+    assert [s.status for s in summaries] == ["terminated", "terminated"]
+    tower = pairs(system.agents[1], "on(X, Y)")
+    assert TOWER <= tower and ("d", "table") in tower
 
 
 # ----------------------------------------------------------------------------- errors
