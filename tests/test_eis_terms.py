@@ -111,6 +111,16 @@ def test_known_texts(param: Parameter, text: str) -> None:
     assert through_prolog(text) == expected
 
 
+def test_prolog_spellings_of_the_same_atom_read_alike() -> None:
+    assert through_prolog("'it''s'") == Identifier("it's")
+    assert through_prolog("'abc'") == Identifier("abc")
+    assert through_prolog("\"tab\\there\"") == Identifier("tab\there", string=True)
+    assert through_prolog("f( -1 , [ a | [ b ] ] )") == Function(
+        "f", (Numeral(-1), ParameterList((Identifier("a"), Identifier("b"))))
+    )
+    assert through_prolog("- 1") == Function("-", (Numeral(1),))  # standard: not a numeral
+
+
 def test_identifier_maps_to_atom_and_string_flag_to_prolog_string() -> None:
     assert to_term(Identifier("a")) == Atom("a")
     assert isinstance(to_term(Identifier("a")), Atom)
