@@ -256,6 +256,24 @@ def test_user_module_with_parameters_and_its_call() -> None:
     assert (call.name, [a.text for a in call.args]) == ("chore", ["T", "me"])
 
 
+def test_module_parameters_are_bound_not_singletons() -> None:
+    program = parse_agent(
+        """
+        main module { program { if bel(task(T)) then chore(T). } }
+        module chore(Task) { program { if true then print(Task). } }
+        """
+    )
+    assert program.warnings == ()
+
+
+def test_singleton_variables_are_warnings_with_their_place() -> None:
+    program = parse_agent("main module {\n program {\n  if bel(p(X)) then print(y).\n } }",
+                          "single.goal")
+    assert len(program.warnings) == 1
+    assert program.warnings[0].startswith("single.goal:3:3: ")
+    assert "X" in program.warnings[0]
+
+
 # ----------------------------------------------------------------------------- rules
 
 
