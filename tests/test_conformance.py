@@ -349,12 +349,15 @@ def test_cli_check_accepts_every_example() -> None:
     assert "warning" not in done.stderr
 
 
-def test_cli_check_reports_a_broken_file_without_traceback() -> None:
-    path = BROKEN / "missing_then.goal"
-    done = goalagent("check", str(path))
+def test_cli_check_reports_every_broken_file_without_traceback() -> None:
+    paths = sorted(BROKEN.glob("*.goal")) + sorted(BROKEN.glob("*.mas2g"))
+    done = goalagent("check", *map(str, paths))
     assert done.returncode == 2
-    assert f"{path}:5:23: " in done.stderr
     assert "Traceback" not in done.stderr
+    for path in paths:
+        line, col = path.read_text().splitlines()[0].removeprefix("% expect-error: ").split(":")
+        place = f"{path}:{line}:" + ("" if col == "*" else f"{col}: ")
+        assert place in done.stderr, f"{path.name}: no {place!r} in\n{done.stderr}"
 
 
 def test_cli_reports_a_broken_file_on_run_with_exit_code_2() -> None:
