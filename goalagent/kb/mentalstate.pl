@@ -378,24 +378,41 @@ translate((A0, B0), Name, (A, B), N0, N, Aux0, Aux) :- !,
 translate(\+ A0, Name, \+ A, N0, N, Aux0, Aux) :- !,
     translate(A0, Name, A, N0, N, Aux0, Aux).
 translate(true, _, true, N, N, Aux, Aux) :- !.
-translate('$bel'(Q), _, Q, N, N, Aux, Aux) :- !.
+translate('$bel'(Q0), _, Q, N, N, Aux, Aux) :- !,
+    local_cut(Q0, Q).
 translate('$goal'(Q), Name, Call, N0, N, [Clause|Aux], Aux) :- !,
     in_goal(Q, Name, N0, Call, Clause),
     N is N0 + 1.
 translate('$agoal'(Q), Name, (Call, \+ Q), N0, N, [Clause|Aux], Aux) :- !,
     in_goal(Q, Name, N0, Call, Clause),
     N is N0 + 1.
-translate('$goala'(Q), Name, (Call, Q), N0, N, [Clause|Aux], Aux) :- !,
+translate('$goala'(Q), Name, (Call, LocalQ), N0, N, [Clause|Aux], Aux) :- !,
     in_goal(Q, Name, N0, Call, Clause),
+    local_cut(Q, LocalQ),
     N is N0 + 1.
 translate('$percept'(Q), _, Body, N, N, Aux, Aux) :-
     percept_body(Q, Body).
 
 in_goal(Q, Name, I, ('$ga_gm'(G), G:AuxHead),
-        (AuxHead :- '$top'(Base), '$goal'(Base, Id), b_setval('$ga_g', Id), Q)) :-
+        (AuxHead :- '$top'(Base), '$goal'(Base, Id), b_setval('$ga_g', Id), LocalQ)) :-
+    local_cut(Q, LocalQ),
     format(atom(AuxName), '~w_~w', [Name, I]),
     term_variables(Q, Vars),
     AuxHead =.. [AuxName|Vars].
+
+%   A cut in a query cuts that query only, as if each literal were its own Prolog query.
+local_cut(Q, Local) :-
+    (   has_cut(Q)
+    ->  Local = call(Q)
+    ;   Local = Q
+    ).
+
+has_cut(Q) :- var(Q), !, fail.
+has_cut(!).
+has_cut((A, B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A ; B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A -> B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A *-> B)) :- ( has_cut(A) -> true ; has_cut(B) ).
 
 percept_body(Q, percept(Q)) :- var(Q), !.
 percept_body((A0, B0), (A, B)) :- !,

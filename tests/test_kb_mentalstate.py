@@ -1,0 +1,449 @@
+"""The mental state on SWI-Prolog: the MSC table, the actions table, isolation, errors."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+
+from goalagent import ast
+from goalagent.kb import (
+    Atom,
+    KBError,
+    MentalState,
+    PrologRuntimeError,
+    Struct,
+    Var,
+    get_engine,
+)
+
+POS = ast.Pos("test.goal", 3, 5, 40)
+
+
+def text(source: str, pos: ast.Pos = POS) -> ast.PrologText:
+    return ast.PrologText(source, pos)
+
+
+def lit(op: str, source: str | None = None) -> ast.MentalLiteral:
+    return ast.MentalLiteral(op, text(source) if source is not None else None, POS)  # type: ignore[arg-type]
+
+
+def neg(*literals: ast.Literal) -> ast.NotLiteral:
+    return ast.NotLiteral(tuple(literals), POS)
+
+
+def a(name: str) -> Atom:
+    return Atom(name)
+
+
+def on(x: str, y: str) -> Struct:
+    return Struct("on", (Atom(x), Atom(y)))
+
+
+BLOCKS_KNOWLEDGE = [
+    text("block(a)"),
+    text("block(b)"),
+    text("block(c)"),
+    text("clear(table)"),
+    text("clear(X) :- block(X), \\+ on(_, X)"),
+    text("tower([X]) :- on(X, table)"),
+    text("tower([X, Y | T]) :- on(X, Y), tower([Y | T])"),
+]
+
+
+@pytest.fixture
+def blocks() -> Iterator[MentalState]:
+    """c on a, a and b on the table; the goal tower a-b-c (one goal of three facts)."""
+    state = MentalState(
+        "blocks",
+        knowledge=BLOCKS_KNOWLEDGE,
+        beliefs=[text("on(a, table)"), text("on(b, table)"), text("on(c, a)")],
+    )
+    assert state.adopt("on(a, b), on(b, c), on(c, table)")
+    yield state
+    state.close()
+
+
+@pytest.fixture
+def empty() -> Iterator[MentalState]:
+    state = MentalState("empty")
+    yield state
+    state.close()
+
+
+def values(answers: list[dict], name: str) -> list:
+    return [answer[name] for answer in answers]
+
+
+# --------------------------------------------------------------------------- MSC table
+
+
+def test_bel_uses_knowledge_and_beliefs(blocks: MentalState) -> None:
+    assert values(blocks.query("bel", "clear(X)"), "X") == [a("table"), a("b"), a("c")]
+    assert blocks.query("bel", "tower([c, a])") == [{}]
+    assert blocks.query("bel", "tower([a, b])") == []
+
+
+def test_bel_accepts_any_prolog_query(blocks: MentalState) -> None:
+    answers = blocks.query(
+        "bel",
+        "findall(B, block(B), Bs), length(Bs, N), member(X, Bs), \\+ on(X, table), "
+        "(X == c -> Kind = top ; Kind = other), not(on(_, c)), N * 2 > 5",
+    )
+    assert answers == [{"B": Var(answers[0]["B"].name), "Bs": [a("a"), a("b"), a("c")],
+                        "N": 3, "X": a("c"), "Kind": a("top")}]
+    assert isinstance(answers[0]["B"], Var)
+
+
+def test_goal_follows_from_knowledge_and_one_goal(blocks: MentalState) -> None:
+    towers = values(blocks.query("goal", "tower(T)"), "T")
+    assert towers == [[a("c")], [a("a"), a("b"), a("c")], [a("b"), a("c")]]
+    assert blocks.query("goal", "on(a, b), on(b, c)") == [{}]
+
+
+def test_goal_checks_each_goal_on_its_own(empty: MentalState) -> None:
+    assert empty.adopt("on(a, b)")
+    assert empty.adopt("on(b, c)")
+    assert empty.query("goal", "on(a, b)") == [{}]
+    assert empty.query("goal", "on(b, c)") == [{}]
+    assert empty.query("goal", "on(a, b), on(b, c)") == []
+
+
+def test_goal_sees_knowledge_rules_over_the_goal_facts() -> None:
+    with MentalState("k", knowledge=[text("tower([X]) :- on(X, table)")]) as state:
+        assert state.adopt("on(a, table)")
+        assert state.query("goal", "tower([a])") == [{}]
+        assert state.query("bel", "tower([a])") == []
+
+
+def test_a_goal_and_goal_a(blocks: MentalState) -> None:
+    todo = blocks.query("a-goal", "on(X, Y)")
+    assert [(x["X"], x["Y"]) for x in todo] == [
+        (a("a"), a("b")), (a("b"), a("c")), (a("c"), a("table"))]
+    assert blocks.query("goal-a", "on(X, Y)") == []
+    blocks.insert("not(on(c, a)), on(c, table)")
+    assert values(blocks.query("goal-a", "on(X, Y)"), "X") == [a("c")]
+    assert values(blocks.query("a-goal", "on(X, Y)"), "X") == [a("a"), a("b")]
+    assert values(blocks.query("a-goal", "tower([X | T])"), "X") == [a("a"), a("b")]
+
+
+def test_percept_and_bel_percept_see_this_cycles_percepts(empty: MentalState) -> None:
+    empty.set_percepts([on("a", "b"), Struct("block", (a("a"),))])
+    assert values(empty.query("percept", "on(X, b)"), "X") == [a("a")]
+    assert empty.query("bel", "percept(on(a, b))") == [{}]
+    assert empty.query("percept", "on(a, b), block(a)") == [{}]
+    empty.set_percepts([on("c", "d")])
+    assert empty.percepts() == [on("c", "d")]
+    assert empty.query("percept", "on(a, b)") == []
+    assert empty.beliefs() == []
+
+
+def test_true_and_not(blocks: MentalState) -> None:
+    assert blocks.query("true", "") == [{}]
+    cond = (lit("bel", "block(X)"), neg(lit("bel", "on(_, X)")), neg(lit("goal-a", "on(X, _)")))
+    assert values(blocks.solutions(blocks.compile(cond)), "X") == [a("b"), a("c")]
+    blocks.insert("not(on(c, a)), on(c, table)")
+    assert values(blocks.solutions(blocks.compile(cond)), "X") == [a("a"), a("b")]
+    cond_true = (lit("true"),)
+    assert blocks.solutions(blocks.compile(cond_true)) == [{}]
+
+
+def test_a_condition_is_one_conjunction_sharing_variables(blocks: MentalState) -> None:
+    cond = (lit("a-goal", "on(X, Y)"), lit("bel", "clear(X), clear(Y)"))
+    compiled = blocks.compile(cond)
+    assert compiled.names == ("X", "Y")
+    assert blocks.solutions(compiled) == [
+        {"X": a("b"), "Y": a("c")}, {"X": a("c"), "Y": a("table")}]
+    blocks.delete("on(c, a)")
+    blocks.insert("on(c, table)")
+    assert blocks.solutions(compiled) == [{"X": a("a"), "Y": a("b")}, {"X": a("b"), "Y": a("c")}]
+
+
+def test_solutions_with_bindings_limit_and_duplicates(empty: MentalState) -> None:
+    empty.insert("p(1), p(2), p(3)")
+    compiled = empty.compile((lit("bel", "p(X), member(Y, [x, x])"),))
+    answers = empty.solutions(compiled)
+    assert [(x["X"], x["Y"]) for x in answers] == [
+        (1, a("x")), (1, a("x")), (2, a("x")), (2, a("x")), (3, a("x")), (3, a("x"))]
+    assert empty.solutions(compiled, limit=1) == [{"X": 1, "Y": a("x")}]
+    assert empty.solutions(compiled, limit=0) == []
+    bound = empty.solutions(compiled, {"X": 2, "Other": "kept"})
+    assert bound == [{"Other": "kept", "X": 2, "Y": a("x")}] * 2
+
+
+def test_compile_is_cached_per_condition_text(empty: MentalState) -> None:
+    first = empty.compile((lit("bel", "p(X)"),))
+    assert empty.compile((lit("bel", "p(X)"),)) is first
+
+
+def test_cut_inside_a_query_only_cuts_that_query(empty: MentalState) -> None:
+    empty.insert("p(1), p(2), q(a), q(b)")
+    cond = (lit("bel", "p(X)"), lit("bel", "q(Y), !"))
+    assert [(x["X"], x["Y"]) for x in empty.solutions(empty.compile(cond))] == [
+        (1, a("a")), (2, a("a"))]
+
+
+# --------------------------------------------------------------------------- actions table
+
+
+def test_insert_and_delete_with_not(empty: MentalState) -> None:
+    assert empty.insert("on(a, b), on(b, table)") == [("+", on("a", "b")), ("+", on("b", "table"))]
+    assert empty.insert("on(a, b)") == []
+    changes = empty.insert("not(on(a, b)), on(a, table)")
+    assert changes == [("-", on("a", "b")), ("+", on("a", "table"))]
+    assert empty.beliefs() == [on("b", "table"), on("a", "table")]
+    changes = empty.delete("on(a, table), not(holding(a))")
+    assert changes == [("-", on("a", "table")), ("+", Struct("holding", (a("a"),)))]
+    assert empty.delete("on(x, y)") == []
+
+
+def test_updates_apply_bindings_and_report_what_changed(empty: MentalState) -> None:
+    changes = empty.insert(text("at(X, Y)"), {"X": a("r1"), "Y": 3})
+    assert changes == [("+", Struct("at", (a("r1"), 3)))]
+    assert empty.delete("at(r1, _)") == [("-", Struct("at", (a("r1"), 3)))]
+
+
+def test_insert_of_a_non_ground_fact_is_a_clear_error(empty: MentalState) -> None:
+    with pytest.raises(KBError, match="not ground"):
+        empty.insert("on(X, b)")
+    assert empty.beliefs() == []
+
+
+def test_adopt_refused_when_believed_or_already_a_goal(blocks: MentalState) -> None:
+    assert not blocks.adopt("on(a, table)")
+    assert not blocks.adopt("on(c, table), on(a, b), on(b, c)")
+    assert blocks.adopt("on(b, c)")
+    assert not blocks.adopt(text("on(X, c)"), {"X": a("b")})
+    assert len(blocks.goals()) == 2
+
+
+def test_adopt_needs_ground_facts(empty: MentalState) -> None:
+    with pytest.raises(KBError, match="not ground"):
+        empty.adopt("on(X, b)")
+    assert empty.goals() == []
+
+
+def test_adopt_then_goals_lists_facts(empty: MentalState) -> None:
+    assert empty.adopt(text("on(X, b), on(b, c)"), {"X": a("a")})
+    assert empty.goals() == [[on("a", "b"), on("b", "c")]]
+
+
+def test_drop_removes_every_goal_entailing_the_formula() -> None:
+    with MentalState("d", knowledge=[text("tower([X]) :- on(X, table)")]) as state:
+        state.adopt("on(a, b), on(b, table)")
+        state.adopt("on(c, table)")
+        state.adopt("on(d, e)")
+        dropped = state.drop("tower([_])")
+        assert dropped == [[on("a", "b"), on("b", "table")], [on("c", "table")]]
+        assert state.goals() == [[on("d", "e")]]
+        assert state.drop("never(seen)") == []
+
+
+def test_blind_commitment_removes_achieved_goals(blocks: MentalState) -> None:
+    blocks.adopt("on(a, table)")  # refused: already believed
+    blocks.adopt("holding(c)")
+    assert blocks.blind_commitment() == []
+    blocks.insert("not(on(c, a)), on(c, table), on(b, c), on(a, b)")
+    assert blocks.blind_commitment() == [[on("a", "b"), on("b", "c"), on("c", "table")]]
+    assert blocks.goals() == [[Struct("holding", (a("c"),))]]
+
+
+def test_blind_commitment_uses_knowledge() -> None:
+    with MentalState("k", knowledge=[text("done(X) :- finished(X)")]) as state:
+        state.declare_updates(["finished(job)"])
+        assert state.adopt("done(job)")
+        state.insert("finished(job)")
+        assert state.blind_commitment() == [[Struct("done", (a("job"),))]]
+
+
+def test_goal_bases_for_module_focus(blocks: MentalState) -> None:
+    outer = blocks.goals()
+    blocks.push_goal_base([[on("x", "y")]])
+    assert blocks.goals() == [[on("x", "y")]]
+    assert blocks.query("goal", "on(a, b)") == []
+    assert blocks.adopt("on(p, q)")
+    assert blocks.pop_goal_base() == [[on("x", "y")], [on("p", "q")]]
+    assert blocks.goals() == outer
+    with pytest.raises(KBError, match="pop_goal_base"):
+        blocks.pop_goal_base()
+
+
+def test_messages_received_and_sent_moods(empty: MentalState) -> None:
+    empty.add_received("bob", ":", on("a", "b"))
+    empty.add_received("bob", "!", on("a", "b"))
+    empty.add_received("eve", "?", Struct("free", (a("c"),)))
+    answers = empty.query("bel", "received(S, M)")
+    assert [(x["S"], x["M"]) for x in answers] == [
+        (a("bob"), on("a", "b")),
+        (a("bob"), Struct("imp", (on("a", "b"),))),
+        (a("eve"), Struct("int", (Struct("free", (a("c"),)),))),
+    ]
+    assert empty.add_sent("bob", "!", on("a", "b"))
+    assert not empty.add_sent("bob", "!", on("a", "b"))
+    assert empty.query("bel", "sent(bob, imp(on(a, b)))") == [{}]
+    with pytest.raises(KBError, match="mood"):
+        empty.add_sent("bob", "#", on("a", "b"))
+
+
+def test_identity(empty: MentalState) -> None:
+    empty.set_identity("alice", ["alice", "bob"])
+    assert empty.query("bel", "me(Me)") == [{"Me": a("alice")}]
+    assert values(empty.query("bel", "agent(A)"), "A") == [a("alice"), a("bob")]
+    empty.set_identity("alice", ["alice"])
+    assert values(empty.query("bel", "agent(A)"), "A") == [a("alice")]
+
+
+def test_vocabulary_is_always_queryable(empty: MentalState) -> None:
+    for query in ["percept(X)", "received(S, M)", "sent(R, M)", "me(X)", "agent(X)"]:
+        assert empty.query("bel", query) == []
+        assert empty.query("goal", query) == []
+
+
+def test_beliefs_exclude_knowledge_and_percepts(blocks: MentalState) -> None:
+    blocks.set_percepts([a("ping")])
+    assert blocks.beliefs() == [on("a", "table"), on("b", "table"), on("c", "a")]
+
+
+def test_belief_rules_and_directives_are_loaded() -> None:
+    with MentalState(
+        "r",
+        knowledge=[text(":- dynamic holding/1"), text("heavy(X) :- weight(X, W), W > 10")],
+        beliefs=[text("weight(box, 12)"), text("light(X) :- weight(X, W), W < 5")],
+    ) as state:
+        assert state.query("bel", "holding(X)") == []
+        assert state.query("goal", "holding(X)") == []
+        assert state.query("bel", "heavy(box)") == [{}]
+        assert state.query("bel", "light(box)") == []
+        assert state.beliefs() == [Struct("weight", (a("box"), 12))]
+
+
+def test_declare_updates_makes_predicates_queryable(empty: MentalState) -> None:
+    with pytest.raises(PrologRuntimeError, match="Unknown procedure: holding/1"):
+        empty.query("bel", "holding(X)")
+    empty.declare_updates([text("not(on(X, Y)), holding(X)"), "at(r, 1)"])
+    for op in ["bel", "goal", "a-goal", "goal-a"]:
+        assert empty.query(op, "holding(X), on(X, Y)") == []
+        assert empty.query(op, "at(_, _)") == []
+
+
+def test_instantiate_and_unify(empty: MentalState) -> None:
+    term = empty.instantiate(text("move(X, Y, [X | T])"), {"X": a("a")})
+    assert term == Struct("move", (a("a"), Var("Y"), Struct("[|]", (a("a"), Var("T")))))
+    assert empty.unify("move(X, Y)", Struct("move", (a("a"), [1, 2]))) == {
+        "X": a("a"), "Y": [1, 2]}
+    assert empty.unify("move(X, X)", Struct("move", (a("a"), a("b")))) is None
+    assert empty.unify("move(X, Y)", Struct("move", (a("a"), a("b"))), {"X": a("b")}) is None
+    assert empty.unify("move(X, Y)", Struct("move", (a("a"), a("b"))), {"Z": 1}) == {
+        "Z": 1, "X": a("a"), "Y": a("b")}
+    assert empty.unify("f([H | T])", Struct("f", ([1, 2, 3],))) == {"H": 1, "T": [2, 3]}
+    assert empty.unify("n(1)", Struct("n", (1.0,))) is None
+    assert empty.unify("s(abc)", Struct("s", ("abc",))) is None
+
+
+# --------------------------------------------------------------------------- errors
+
+
+def test_unknown_procedure_and_type_error_then_state_still_works(blocks: MentalState) -> None:
+    with pytest.raises(PrologRuntimeError) as info:
+        blocks.query("bel", "no_such_thing(X)")
+    assert info.value.message == "Unknown procedure: no_such_thing/1"
+    with pytest.raises(PrologRuntimeError, match="Type error"):
+        blocks.query("bel", "block(X), atom_length(X, foo)")
+    with pytest.raises(PrologRuntimeError, match="Arithmetic"):
+        blocks.query("goal", "on(X, _), Y is X + 1")
+    with pytest.raises(PrologRuntimeError, match="Unknown procedure: nope/0"):
+        blocks.query("goal", "nope")
+    assert values(blocks.query("bel", "clear(X)"), "X") == [a("table"), a("b"), a("c")]
+    assert blocks.insert("on(b, c)") == [("+", on("b", "c"))]
+
+
+def test_error_inside_an_update_is_a_kb_error(empty: MentalState) -> None:
+    with pytest.raises(KBError, match="permission|modify"):
+        empty.insert("atom(x)")
+    assert empty.insert("ok(1)") == [("+", Struct("ok", (1,)))]
+
+
+def test_bad_clause_names_the_clause_and_position() -> None:
+    bad = ast.Pos("agent.goal", 7, 9, 120)
+    with pytest.raises(KBError) as info:
+        MentalState("bad", knowledge=[text("ok(1)"), text("atom(X) :- true", bad)])
+    assert "atom(X) :- true" in info.value.message
+    assert info.value.pos == bad
+    with pytest.raises(KBError) as info:
+        MentalState("bad", beliefs=[text("p(")])
+    assert "p(" in info.value.message and "syntax error" in info.value.message
+    assert info.value.pos == POS
+    with pytest.raises(KBError, match="directive failed"):
+        MentalState("bad", knowledge=[text(":- fail")])
+
+
+def test_condition_syntax_error_names_the_literal() -> None:
+    with MentalState("c") as state:
+        where = ast.Pos("agent.goal", 12, 3, 200)
+        literal = ast.MentalLiteral("bel", text("p(X", where), where)
+        with pytest.raises(KBError) as info:
+            state.compile((lit("bel", "true"), literal))
+        assert info.value.pos == where
+        with pytest.raises(KBError, match="unknown mental literal"):
+            state.query("believe", "p")
+
+
+def test_closed_state_is_unusable() -> None:
+    state = MentalState("gone")
+    compiled = state.compile((lit("bel", "true"),))
+    state.close()
+    state.close()
+    with pytest.raises(KBError, match="closed"):
+        state.query("bel", "true")
+    with pytest.raises(KBError, match="closed"):
+        state.solutions(compiled)
+
+
+def test_condition_of_another_state_is_rejected(empty: MentalState) -> None:
+    with MentalState("other") as other:
+        compiled = other.compile((lit("bel", "true"),))
+        with pytest.raises(KBError, match="another mental state"):
+            empty.solutions(compiled)
+
+
+# --------------------------------------------------------------------------- isolation
+
+
+def test_agents_never_see_each_other() -> None:
+    with MentalState("twin", knowledge=[text("k(1)")]) as one, \
+            MentalState("twin", knowledge=[text("k(2)")]) as two:
+        one.insert("on(a, b)")
+        one.adopt("on(x, y)")
+        one.set_percepts([a("seen")])
+        two.declare_updates(["on(a, b)"])
+        assert two.query("bel", "on(X, Y)") == []
+        assert two.query("goal", "on(X, Y)") == []
+        assert two.query("bel", "percept(X)") == []
+        assert values(two.query("bel", "k(X)"), "X") == [2]
+        assert values(one.query("bel", "k(X)"), "X") == [1]
+        assert two.goals() == [] and two.beliefs() == []
+
+
+def test_nothing_leaks_into_user_and_user_does_not_leak_in(empty: MentalState) -> None:
+    engine = get_engine()
+    empty.insert("leak_probe(1)")
+    assert engine.call("current_predicate", Struct("/", (a("leak_probe"), 1)),
+                       module="user") is None
+    engine.call("assertz", Struct("user_only", (1,)), module="user")
+    with pytest.raises(PrologRuntimeError, match="Unknown procedure"):
+        empty.query("bel", "user_only(X)")
+
+
+def test_library_predicates_are_available(empty: MentalState) -> None:
+    answers = empty.query("bel", "last([1, 2, 3], X), sum_list([1, 2], S), msort([b, a], L)")
+    assert answers == [{"X": 3, "S": 3, "L": [a("a"), a("b")]}]
+
+
+def test_close_frees_the_modules() -> None:
+    engine = get_engine()
+    state = MentalState("tmp")
+    state.insert("p(1)")
+    module = state._b
+    assert engine.call("current_module", module, module="system") is not None
+    state.close()
+    assert engine.call("current_module", module, module="system") is None
