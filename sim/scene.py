@@ -52,8 +52,8 @@ ARM_RANGE = ((-0.42, 0.25), (-0.28, 0.45), (0.40, 0.95))
 """World-frame box (x, y, z bounds) the hand can reach."""
 ARM_FORCE = 60.0
 """Force limit of each arm actuator (N): strong enough to open a lid, too weak to break one."""
-HEAD_CAMERA_POS = (-0.62, 0.0, 0.98)
-HEAD_CAMERA_TARGET = (0.08, 0.0, 0.70)
+HEAD_CAMERA_POS = (-0.75, 0.0, 0.87)
+HEAD_CAMERA_TARGET = (0.08, 0.0, 0.67)
 """The head camera is the same in every scene: it looks at the can's upper front."""
 HEAD_CAMERA_FOVY = 45.0
 
