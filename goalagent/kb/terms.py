@@ -50,14 +50,13 @@ class Struct:
 
 Term = Union[Atom, str, int, float, Struct, Var, list]
 
-_SOLO_ATOMS = {"[]", "!", ";", "{}", ","}
 _LETTER_ATOM = re.compile(r"[a-z][A-Za-z0-9_]*\Z")
 _SYMBOL_ATOM = re.compile(r"[+\-*/\\^<>=~:.?@#&$]+\Z")
 
 
 def quote_atom(name: str) -> str:
     """The atom's name as SWI-Prolog's ``writeq`` would write it (quoted when needed)."""
-    if _LETTER_ATOM.match(name) or name in ("[]", "!", ";", "{}"):
+    if _LETTER_ATOM.match(name) or name in ("!", ";", "{}"):
         return name
     if _SYMBOL_ATOM.match(name) and name != ".":
         return name
