@@ -5,8 +5,10 @@ in the action type's direction, withdraws along the same line, returns home, let
 settle and reports the effect on the part (displacement of its marker, eq. 5.15) and on the
 object (change of the opening, eq. 5.3), both from ground truth.
 
-Approach points: a flat part (body, lid) can only be touched on its face, so every action
-starts just in front of the face's marker (only pushing meets resistance there). A handle is a
+Approach points: a flat part (body, lid) is approached on its face, so an action starts just
+in front of the face's marker (only pushing meets resistance there), except pressing a lid
+down, which starts just above the lid's top near its front edge (this closes an open lid). A
+handle is a
 bar standing off the can, so the hand starts on the side of the bar opposite to the motion:
 in front of it to push, in the gap behind it to pull, below it to lift, above it to press
 down, beside it to sweep; the hand reaches the gap from below the bar.
@@ -27,6 +29,8 @@ __all__ = ["SkillError", "SkillResult", "check_skill", "drop_ball", "grasp_ball"
 
 MARGIN = 0.004
 """Free space (m) left between the hand and a part when the hand arrives in its vicinity."""
+LID_PRESS_INSET = 0.03
+"""How far behind the lid's front edge the hand presses a lid down (m)."""
 CLEAR_X = -0.12
 """x (m) of the free corridor in front of every can the hand travels through."""
 
@@ -71,6 +75,10 @@ def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
     half = np.array(ps.size) / 2
     axes = _rotation(ps.quat)
     direction = np.array(ACTION_DIRECTIONS[action])
+    if part == "lid" and action == "sweep_down":  # press on the lid's top, near its front
+        top = _lid_top_front(world)
+        high = top[2] + 0.08
+        return [np.array([CLEAR_X, top[1], high]), np.array([top[0], top[1], high]), top]
     if part != "handle":
         normal = axes[:, 0] if axes[0, 0] >= 0 else -axes[:, 0]
         start = centre - normal * (half[0] + HAND_RADIUS + MARGIN)
@@ -81,6 +89,15 @@ def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
         return [np.array([CLEAR_X, start[1], below]), np.array([start[0], start[1], below]),
                 start]
     return [np.array([CLEAR_X, start[1], start[2]]), start]
+
+
+def _lid_top_front(world: GarbageWorld) -> np.ndarray:
+    """Point just above the lid's top face, a little behind its front edge (world frame)."""
+    geom = world.model.geom("lid_shell").id
+    half = world.model.geom_size[geom]
+    axes = world.data.geom_xmat[geom].reshape(3, 3)
+    local = np.array([-half[0] + LID_PRESS_INSET, 0.0, half[2] + HAND_RADIUS + MARGIN])
+    return world.data.geom_xpos[geom] + axes @ local
 
 
 def _rotation(quat: tuple[float, float, float, float]) -> np.ndarray:

@@ -48,7 +48,7 @@ GRIP_OFFSET = HAND_RADIUS + BALL_RADIUS + 0.001
 """The grasped ball sits this far in front (+x) of the hand centre."""
 HOME = (-0.22, 0.20, 0.70)
 """Resting position of the hand: beside the can, out of the head camera's view of the can."""
-ARM_RANGE = ((-0.42, 0.25), (-0.28, 0.45), (0.40, 0.95))
+ARM_RANGE = ((-0.42, 0.25), (-0.28, 0.45), (0.40, 1.05))
 """World-frame box (x, y, z bounds) the hand can reach."""
 ARM_FORCE = 60.0
 """Force limit of each arm actuator (N): strong enough to open a lid, too weak to break one."""

@@ -160,3 +160,16 @@ def test_a_held_ball_does_not_change_what_skills_do(world: GarbageWorld) -> None
     assert grasp_ball(world)
     held = perform_skill(world, "extend_arm", "lid", 0.04)
     assert dataclasses.astuple(held) == pytest.approx(dataclasses.astuple(free), abs=3e-3)
+
+
+@pytest.mark.parametrize("can, part, action", [
+    ("o1", "lid", "sweep_down"), ("o3", "lid", "sweep_down"),
+    ("o2", "handle", "sweep_down"), ("o5", "handle", "extend_arm"),
+])
+def test_an_open_can_can_be_closed_again(world: GarbageWorld, can: str, part: str,
+                                         action: str) -> None:
+    """Pressing a push lid down, pushing a lift handle down or a pull handle in closes the can."""
+    world.reset(can, seed=0)
+    fpart, faction = CANS[can].functional
+    assert perform_skill(world, faction, fpart, 0.08).opening_after > GOAL
+    assert perform_skill(world, action, part, 0.1).opening_after < 0.01
