@@ -526,8 +526,8 @@ class Agent:
         receiver = self.ms.instantiate(action.receiver, bindings)
         content = self.ms.instantiate(action.content, bindings)
         text = f"{format_term(receiver)}.{action.name}({action.mood}{format_term(content)})"
-        if isinstance(receiver, Var) or _has_variables(content):
-            self.warn(f"{action.pos}: message {text} is not closed; not sent")
+        if _has_variables(receiver):
+            self.warn(f"{action.pos}: the receiver of {text} is not bound; not sent")
             return None
         everyone = self.postman.agents() if self.postman is not None else [self.name]
         if receiver == "allother":

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Literal as TypingLiteral
-from typing import Union
 
 
 @dataclass(frozen=True)
@@ -57,7 +56,7 @@ class NotLiteral:
     pos: Pos
 
 
-Literal = Union[MentalLiteral, NotLiteral]
+Literal = MentalLiteral | NotLiteral
 Condition = tuple[Literal, ...]
 
 
@@ -107,7 +106,7 @@ class SendAction:
         return "sendonce" if self.once else "send"
 
 
-Action = Union[ActionCall, SendAction]
+Action = ActionCall | SendAction
 
 
 @dataclass(frozen=True)

@@ -444,18 +444,11 @@ class _Builder(Transformer):
             for param, arg in zip(macro.params, args, strict=True)
         }
         suffix = f"_M{next(self._fresh)}"
-        for literal_text in self._texts(macro.condition):
+        for literal_text in _condition_texts(macro.condition):
             for var in variable_occurrences(literal_text.text):
                 if var not in mapping and var != "_":
                     mapping[var] = var + suffix
         return self._rename(macro.condition, mapping)
-
-    def _texts(self, condition: ast.Condition) -> Iterator[ast.PrologText]:
-        for literal in condition:
-            if isinstance(literal, ast.NotLiteral):
-                yield from self._texts(literal.condition)
-            elif literal.query is not None:
-                yield literal.query
 
     def _rename(self, condition: ast.Condition, mapping: dict[str, str]) -> ast.Condition:
         renamed: list[ast.Literal] = []
@@ -783,14 +776,17 @@ def _read(path: str | Path) -> str:
 # ----------------------------------------------------------------------------- warnings
 
 
+def _condition_texts(condition: ast.Condition) -> Iterator[ast.PrologText]:
+    """The Prolog texts of a condition's literals, negated ones included."""
+    for literal in condition:
+        if isinstance(literal, ast.NotLiteral):
+            yield from _condition_texts(literal.condition)
+        elif literal.query is not None:
+            yield literal.query
+
+
 def _rule_texts(rule: ast.Rule) -> Iterator[ast.PrologText]:
-    stack: list[ast.Condition] = [rule.condition]
-    while stack:
-        for literal in stack.pop():
-            if isinstance(literal, ast.NotLiteral):
-                stack.append(literal.condition)
-            elif literal.query is not None:
-                yield literal.query
+    yield from _condition_texts(rule.condition)
     for action in rule.actions:
         if isinstance(action, ast.SendAction):
             yield action.receiver
@@ -809,8 +805,14 @@ def _with_warnings(program: ast.AgentProgram) -> ast.AgentProgram:
             counts: Counter[str] = Counter()
             for text in _rule_texts(rule):
                 counts.update(variable_occurrences(text.text))
-            if rule.list_var:
+            if rule.list_var:  # listall uses its list variable and what it collects
                 counts[rule.list_var] += 1
+                for text in _condition_texts(rule.condition):
+                    counts.update(variable_occurrences(text.text))
+            for param in module.params:  # module parameters are bound by the caller
+                for var in variable_occurrences(param.text):
+                    if counts[var]:
+                        counts[var] += 1
             for var, count in counts.items():
                 if count == 1 and not var.startswith("_") and "_M" not in var:
                     warnings.append(f"{rule.pos}: warning: singleton variable {var} in rule")

@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import Union
 
 
 class Atom(str):
@@ -48,7 +47,7 @@ class Struct:
         return format_term(self)
 
 
-Term = Union[Atom, str, int, float, Struct, Var, list]
+Term = Atom | str | int | float | Struct | Var | list
 
 _LETTER_ATOM = re.compile(r"[a-z][A-Za-z0-9_]*\Z")
 _SYMBOL_ATOM = re.compile(r"[+\-*/\\^<>=~:.?@#&$]+\Z")
