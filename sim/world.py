@@ -360,7 +360,13 @@ class GarbageWorld:
     def _renderer_for(self) -> mujoco.Renderer:
         """The (lazily created) offscreen renderer of this world."""
         if self._renderer is None:
-            self._renderer = mujoco.Renderer(self.model, self._height, self._width)
+            try:
+                self._renderer = mujoco.Renderer(self.model, self._height, self._width)
+            except mujoco.FatalError as exc:
+                raise RuntimeError(
+                    "cannot create an OpenGL context for rendering; run headless with "
+                    "MUJOCO_GL=egl set before mujoco is first imported (MUJOCO_GL is "
+                    f"{os.environ.get('MUJOCO_GL')!r}): {exc}") from exc
         return self._renderer
 
     def render(self, camera: str = "head") -> np.ndarray:
