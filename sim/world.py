@@ -137,6 +137,8 @@ class GarbageWorld:
     def reset(self, can: str | None = None, seed: int | None = None) -> None:
         """Restore the initial scene (closed lid, ball on the table, hand home)."""
         can = self._can if can is None else can
+        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)):
+            raise ValueError(f"seed must be an integer, got {seed!r}")
         if can not in CANS:
             raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
         if can != self._can:
@@ -156,12 +158,13 @@ class GarbageWorld:
         self._grip_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, "grip")
         d.eq_active[self._grip_id] = 0
         self.set_ball_collisions(True)
-        self._hand_qadr = [m.jnt_qposadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._ball_body = m.body("ball").id
         self._hand_body = m.body("hand").id
         self.steps = 0
         mujoco.mj_forward(m, d)
+        if self._recorder is not None:  # simulated time restarts at 0 in the same video
+            self._recorder.next_time = d.time
         self.settle(500)
 
     @property

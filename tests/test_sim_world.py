@@ -50,6 +50,8 @@ def test_unknown_can_and_bad_image_size_are_clear_errors() -> None:
         GarbageWorld("o9")
     with pytest.raises(ValueError, match="image size"):
         GarbageWorld("o1", width=0)
+    with pytest.raises(ValueError, match="seed must be an integer"):
+        GarbageWorld("o1", seed="x")  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("can", sorted(CANS))
@@ -150,8 +152,12 @@ def test_record_writes_an_mp4(world: GarbageWorld, tmp_path) -> None:
     with world.record(out):
         world.move_arm(0.05, 0.0, 0.0)
         world.step(250)  # half a simulated second more
+        simulated = world.data.time
+        world.reset(seed=0)  # time restarts; the video goes on
+        world.step(250)
+        simulated += world.data.time
     reader = imageio.get_reader(str(out))
     frames = [f for f in reader]
     reader.close()
-    assert len(frames) >= 12
+    assert abs(len(frames) - simulated * 25) <= 3
     assert frames[0].shape == (240, 320, 3)
