@@ -38,7 +38,7 @@ WARMUP_CYCLES = 200
 TARGET_VS_AGENTSPEAK = 5.0
 TARGET_VS_FLOOR = 0.5
 
-console = Console(highlight=False)
+console = Console(highlight=False, width=100)
 
 
 class BenchError(Exception):
