@@ -168,3 +168,9 @@ def test_unicode_atoms_and_strings_cross_the_seam() -> None:
 def test_unrepresentable_python_values_are_clear_errors() -> None:
     with pytest.raises(KBError, match="not a Prolog term"):
         engine.call("atom", object(), module="system")  # type: ignore[arg-type]
+
+
+def test_text_prolog_cannot_hold_is_a_clear_error() -> None:
+    with pytest.raises(KBError, match="cannot hold"):
+        engine.call("atom", Atom("bad \udc80"), module="system")
+    assert engine.call("atom", Atom("fine"), module="system") is not None

@@ -111,6 +111,7 @@ PL_cons_functor_v = _fn("PL_cons_functor_v", c_int, _term, c_size_t, _term)
 PL_new_functor = _fn("PL_new_functor_sz", c_size_t, _atom, c_size_t)
 PL_new_atom = _fn("PL_new_atom_mbchars", _atom, c_int, c_size_t, c_char_p)
 PL_register_atom = _fn("PL_register_atom", None, _atom)
+PL_unregister_atom = _fn("PL_unregister_atom", None, _atom)
 PL_thread_self = _fn("PL_thread_self", c_int)
 PL_thread_attach_engine = _fn("PL_thread_attach_engine", c_int, c_void_p)
 
@@ -148,6 +149,7 @@ class Engine:
         self._functors: dict[tuple[str, int], int] = {}
         self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
+        self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
         self._counter = 0
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
@@ -194,19 +196,16 @@ class Engine:
         self._counter += 1
         return f"{prefix}{self._counter}"
 
-    def predicate(self, name: str, arity: int, module: str) -> int:
-        """A (cached) predicate handle for ``module:name/arity``."""
+    def predicate(self, name: str, arity: int, module: str, *, cache: bool = True) -> int:
+        """A predicate handle for ``module:name/arity`` (cached unless the module is an
+        agent's: the caller keeps those, and they die with the module)."""
         key = (name, arity, module)
         handle = self._preds.get(key)
         if handle is None:
             handle = PL_predicate(name.encode(), arity, module.encode())
-            self._preds[key] = handle
+            if cache:
+                self._preds[key] = handle
         return handle
-
-    def forget_module(self, module: str) -> None:
-        """Drops cached predicate handles of a destroyed module."""
-        for key in [key for key in self._preds if key[2] == module]:
-            del self._preds[key]
 
     def call(self, name: str, *args: Term | None, module: str = "ga_kb",
              marks: bool = False) -> list[Term] | None:
@@ -227,9 +226,12 @@ class Engine:
         try:
             base = PL_new_term_refs(arity) if arity else PL_new_term_ref()
             shared: dict[str, int] = {}
-            for index, value in inputs:
-                if value is not None:
-                    self._put(base + index, value, shared)
+            try:
+                for index, value in inputs:
+                    if value is not None:
+                        self._put(base + index, value, shared)
+            except UnicodeEncodeError as error:
+                raise KBError(f"text Prolog cannot hold: {error.object!r}") from None
             qid = PL_open_query(None, _Q_FLAGS, pred, base)
             answers: list[list[Term]] = []
             record = None
@@ -250,6 +252,8 @@ class Engine:
             return answers
         finally:
             PL_discard_foreign_frame(fid)
+            while self._transient_atoms:
+                PL_unregister_atom(self._transient_atoms.pop())
 
     # ------------------------------------------------------------------ internals
 
@@ -301,6 +305,8 @@ class Engine:
             if len(self._atoms) < _ATOM_CACHE_MAX:
                 self._atoms[name] = handle
                 self._atom_names[handle] = Atom(name)
+            else:
+                self._transient_atoms.append(handle)
         return handle
 
     def _functor(self, name: str, arity: int) -> int:

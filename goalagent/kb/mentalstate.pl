@@ -153,6 +153,11 @@ name_var(Name=Var) :- Var = '$ga_var'(Name).
 %   A readable one-line message for Error, without agent-module qualifications.
 
 error_message(ga_error(Message), Message) :- !.
+error_message(E, Message) :-
+    E \= error(_, _),
+    !,
+    strip_agent_modules(E, E1),
+    format(string(Message), "Unhandled exception: ~q", [E1]).
 error_message(E0, Message) :-
     strip_agent_modules(E0, E1),
     drop_useless_context(E1, E),
@@ -189,7 +194,7 @@ drop_useless_context(error(Formal, context(Pred, Msg)), error(Formal, context(_,
     (   Formal = existence_error(procedure, _)
     ->  true
     ;   nonvar(Pred),
-        Pred = _:N/_,
+        ( Pred = _:N/_ ; Pred = N/_ ),
         atom(N),
         ( sub_atom(N, 0, _, _, '$') ; sub_atom(N, 0, _, _, '<') ; N == catch ; N == call )
     ),
@@ -293,7 +298,9 @@ load_directive(set_prolog_flag(_, _)).
 %   Declares Head's predicate dynamic in Module unless it is defined there already.
 
 ensure_dynamic(M, Head) :-
-    (   predicate_property(M:Head, defined)
+    (   current_predicate(_, M:Head)
+    ->  true
+    ;   predicate_property(M:Head, defined)
     ->  true
     ;   functor(Head, N, A),
         dynamic(M:N/A)
@@ -460,7 +467,8 @@ adds(delete, negative).
 
 add_fact(B, G, Fact, Changes0, Changes) :-
     must_be_fact(Fact, "insert"),
-    (   predicate_property(B:Fact, dynamic), clause(B:Fact, true)
+    (   current_predicate(_, B:Fact),
+        catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
     ->  Changes0 = Changes
     ;   assertz(B:Fact),
         ensure_dynamic(G, Fact),
@@ -469,7 +477,7 @@ add_fact(B, G, Fact, Changes0, Changes) :-
 
 delete_fact(B, Fact, Changes0, Changes) :-
     must_be_callable(Fact),
-    (   predicate_property(B:Fact, dynamic)
+    (   current_predicate(_, B:Fact)
     ->  findall('-'(Fact), retract(B:Fact), Deleted)
     ;   Deleted = []
     ),

@@ -178,7 +178,7 @@ class MentalState:
             raise self._condition_error(condition, error) from None
         assert isinstance(names, list)
         names_tuple = tuple(str(item) for item in names)
-        pred = self._engine.predicate(name, len(names_tuple), str(self._b))
+        pred = self._engine.predicate(name, len(names_tuple), str(self._b), cache=False)
         compiled = CompiledCondition(self, pred, names_tuple, text)
         self._compiled[text] = compiled
         return compiled
@@ -350,7 +350,5 @@ class MentalState:
         if self._closed:
             return
         self._call("destroy", self._b, self._g)
-        self._engine.forget_module(str(self._b))
-        self._engine.forget_module(str(self._g))
         self._compiled.clear()
         self._closed = True
