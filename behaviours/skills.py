@@ -17,6 +17,7 @@ down, beside it to sweep; the hand reaches the gap from below the bar.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -59,7 +60,7 @@ def check_skill(world: GarbageWorld, action: str, part: str, theta: float) -> fl
     if part not in world.parts:
         raise SkillError(f"can {world.can} has no part {part!r}; its parts are "
                          f"{', '.join(world.parts)}")
-    if isinstance(theta, bool) or not isinstance(theta, (int, float)):
+    if isinstance(theta, bool) or not isinstance(theta, numbers.Real):
         raise SkillError(f"theta must be a number of metres, got {theta!r}")
     value = float(theta)
     lo, hi = THETA_BOUNDS[action]
