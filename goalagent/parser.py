@@ -139,7 +139,7 @@ def _lark() -> Lark:
         grammar,
         parser="lalr",
         lexer="contextual",
-        start=["agent", "mas"],
+        start=["agent", "mas", "prolog_file"],
         propagate_positions=True,
         maybe_placeholders=False,
     )
@@ -156,19 +156,32 @@ _TOKEN_NAMES = {
     "COMMA": "','",
     "PLUS": "'+'",
     "COLON": "':'",
-    "DOT": "'.'",
     "EQUAL": "'='",
     "NAME": "a name",
     "VAR": "a variable",
     "DQSTRING": "a string",
     "AT_INT": "'@int'",
     "LARROW": "'<-'",
+    "DOT": "'.send(...)' after a receiver",
     "EXIT_MODULE": "'exit-module'",
 }
 
 
+_PROLOG_TOKENS = frozenset({"NAME", "VAR", "NUMBER", "QATOM", "DQSTRING", "BQSTRING",
+                            "CHARCODE", "SYMBOL", "SOLO", "LPAR", "LSQB", "LBRACE", "COMMA",
+                            "VBAR"})
+
+
 def _describe_expected(expected: Iterable[str]) -> str:
-    names = sorted({_TOKEN_NAMES.get(t, t.lower().replace("_kw", "")) for t in expected})
+    """A readable list of what the grammar expected; Prolog tokens are summed up as such."""
+    expected = set(expected)
+    prolog = expected & _PROLOG_TOKENS
+    names = {_TOKEN_NAMES.get(t, t.lower().replace("_kw", "")) for t in expected - prolog}
+    if len(prolog) >= 4:
+        names.add("more Prolog text")
+    else:
+        names |= {_TOKEN_NAMES.get(t, t.lower()) for t in prolog}
+    names = sorted(names)
     if len(names) > 8:
         names = names[:8] + ["..."]
     return ", ".join(names)
@@ -375,6 +388,20 @@ class _Builder(Transformer):
         internal = any(isinstance(c, Token) and c.type == "AT_INT" for c in children)
         pre, post = children[-2], children[-1]
         return ast.ActionSpec(str(name), params, pre, post, self._tpos(name), internal)
+
+    def import_(self, meta, children):
+        """``#import "file.pl".``: the file's clauses become knowledge (GOAL 5)."""
+        name = str(self.engine.parse_term(str(children[1])))
+        pos = self._tpos(children[1])
+        if not name.endswith(".pl"):
+            raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: only Prolog (.pl) files "
+                                     "can be imported; put modules in this file")
+        base = Path(self.source.file).parent
+        clauses = parse_prolog_file(base / name)
+        return _Section("knowledge", clauses, pos)
+
+    def prolog_file(self, meta, children):
+        return self._facts(children)
 
     # --- macros and mental state conditions ---------------------------------------------
     def macro(self, meta, children):
@@ -757,6 +784,12 @@ def _init_pairs(value: ast.PrologText, pos: ast.Pos) -> tuple[tuple[str, ast.Pro
         key = item.args[0]
         pairs.append((str(key), ast.PrologText(format_term(item.args[1]), value.pos)))
     return tuple(pairs)
+
+
+def parse_prolog_file(path: str | Path) -> tuple[ast.PrologText, ...]:
+    """The clauses of a Prolog file, each read by SWI-Prolog (for ``#import``)."""
+    clauses, _ = _parse(_read(path), str(path), "prolog_file")
+    return clauses
 
 
 def parse_mas_file(path: str | Path) -> ast.MasProgram:
