@@ -74,7 +74,7 @@ def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
     ps = world.state().parts[part]
     centre = np.array(ps.pos)
     half = np.array(ps.size) / 2
-    axes = _rotation(ps.quat)
+    axes = world.data.geom_xmat[world.model.geom(f"marker_{part}").id].reshape(3, 3)
     direction = np.array(ACTION_DIRECTIONS[action])
     if part == "lid" and action == "sweep_down":  # press on the lid's top, near its front
         top = _lid_top_front(world)
@@ -99,16 +99,6 @@ def _lid_top_front(world: GarbageWorld) -> np.ndarray:
     axes = world.data.geom_xmat[geom].reshape(3, 3)
     local = np.array([-half[0] + LID_PRESS_INSET, 0.0, half[2] + HAND_RADIUS + MARGIN])
     return world.data.geom_xpos[geom] + axes @ local
-
-
-def _rotation(quat: tuple[float, float, float, float]) -> np.ndarray:
-    """3x3 rotation matrix of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = quat
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ])
 
 
 def perform_skill(world: GarbageWorld, action: str, part: str, theta: float) -> SkillResult:
