@@ -207,6 +207,13 @@ class Engine:
                 self._preds[key] = handle
         return handle
 
+    def forget_atom(self, name: str) -> None:
+        """Drops ``name`` from the atom cache (e.g. a destroyed module) so Prolog can GC it."""
+        handle = self._atoms.pop(name, None)
+        if handle is not None:
+            self._atom_names.pop(handle, None)
+            PL_unregister_atom(handle)
+
     def call(self, name: str, *args: Term | None, module: str = "ga_kb",
              marks: bool = False) -> list[Term] | None:
         """Runs ``module:name(args)`` once; ``None`` args are fresh variables. Returns every

@@ -350,5 +350,7 @@ class MentalState:
         if self._closed:
             return
         self._call("destroy", self._b, self._g)
+        self._engine.forget_atom(self._b)
+        self._engine.forget_atom(self._g)
         self._compiled.clear()
         self._closed = True
