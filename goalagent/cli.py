@@ -7,7 +7,7 @@ User mistakes (a malformed file, an unknown environment, a bad parameter) print 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 from rich.console import Console
@@ -56,12 +56,12 @@ class _TracePrinter:
 @app.command()
 def run(
     path: Annotated[Path, typer.Argument(help="A .goal agent file or a .mas2g system file.")],
-    env: Annotated[Optional[str], typer.Option(help="Environment name or module:Class.")] = None,
+    env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
     env_param: Annotated[
-        Optional[list[str]],
+        list[str] | None,
         typer.Option("--env-param", help="KEY=VALUE environment init parameter (Prolog term)."),
     ] = None,
-    max_cycles: Annotated[Optional[int], typer.Option(help="Stop after this many cycles.")] = None,
+    max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
     trace: Annotated[bool, typer.Option(help="Show rules, bindings, actions per cycle.")] = False,
 ) -> None:

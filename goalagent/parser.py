@@ -129,6 +129,8 @@ class Source:
         return k < 0 or text[k] in "\n{}]."
 
 
+LIBRARY = Path(__file__).parent / "kb"  # Prolog libraries an agent can #import by name
+
 # ----------------------------------------------------------------------------- lark
 
 
@@ -396,8 +398,10 @@ class _Builder(Transformer):
         if not name.endswith(".pl"):
             raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: only Prolog (.pl) files "
                                      "can be imported; put modules in this file")
-        base = Path(self.source.file).parent
-        clauses = parse_prolog_file(base / name)
+        path = Path(self.source.file).parent / name
+        if not path.exists() and (LIBRARY / name).exists():
+            path = LIBRARY / name  # a library shipped with goalagent, e.g. affordance.pl
+        clauses = parse_prolog_file(path)
         return _Section("knowledge", clauses, pos)
 
     def prolog_file(self, meta, children):
