@@ -447,3 +447,9 @@ def test_close_frees_the_modules() -> None:
     assert engine.call("current_module", module, module="system") is not None
     state.close()
     assert engine.call("current_module", module, module="system") is None
+
+
+def test_beliefs_order_is_deterministic(empty: MentalState) -> None:
+    empty.insert("zeta(1), alpha(2), zeta(0), alpha(1)")
+    assert empty.beliefs() == [
+        Struct("alpha", (2,)), Struct("alpha", (1,)), Struct("zeta", (1,)), Struct("zeta", (0,))]

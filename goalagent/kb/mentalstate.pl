@@ -598,16 +598,21 @@ pop(G, Goals) :-
 		 *******************************/
 
 %!  beliefs(+B, -Facts) is det.
-%   Facts of B's dynamic predicates, except knowledge predicates, percepts and internals.
+%   Facts of B's dynamic predicates, except knowledge predicates, percepts and internals;
+%   predicates in standard order of Name/Arity, facts in clause order.
 
 beliefs(B, Facts) :-
-    findall(Head, ( current_predicate(B:N/A),
-                    \+ sub_atom(N, 0, _, _, '$'),
-                    N/A \== percept/1,
-                    \+ B:'$kpred'(N/A),
+    findall(N/A, ( current_predicate(B:N/A),
+                   \+ sub_atom(N, 0, _, _, '$'),
+                   N/A \== percept/1,
+                   \+ B:'$kpred'(N/A),
+                   functor(Head, N, A),
+                   predicate_property(B:Head, dynamic),
+                   \+ predicate_property(B:Head, imported_from(_))
+                 ), PIs0),
+    msort(PIs0, PIs),
+    findall(Head, ( member(N/A, PIs),
                     functor(Head, N, A),
-                    predicate_property(B:Head, dynamic),
-                    \+ predicate_property(B:Head, imported_from(_)),
                     clause(B:Head, true)
                   ), Facts).
 
