@@ -1,14 +1,16 @@
 """The ``learn`` behaviour (thesis §6.3.4): explore an action on a part, report an affordance.
 
-Random mode samples θ uniformly in the action's bounds, measures each effect (the change of
-opening, eq. 5.3) through a plain callable, fits Ĥ(θ) = b + c·θ (eq. 6.7) after every sample and
-stops when the regression has settled (eq. 5.19) or after ``n_max`` samples. The model's
-maximum e_max (eq. 6.8) decides the percept: ``afford(Obj, Act, Eff, 0, 0, r1)`` when
-e_max ≥ δ (6.10, 6.11), else ``afford(Obj, Act, Eff, 0, 0, r2)`` (6.14). θ_max (eq. 6.13) is
-what the agent uses to verify the prediction; ``verification_percept`` turns the observed effect
-into ``afford(..., 1, 1, 1)`` or ``afford(..., 1, 0, 0)`` (§6.3.3).
+Random mode samples θ uniformly in the action's bounds lo < θ <= hi (thesis: 0 < θ <= θ0),
+measures each effect (the change of opening, eq. 5.3) through a plain callable, fits
+Ĥ(θ) = b + c·θ (eq. 6.7) after every sample and stops when the regression has settled
+(eq. 5.19) or after ``n_max`` samples. The model's maximum e_max (eq. 6.8) decides the percept:
+``afford(Obj, Act, Eff, 0, 0, r1)`` when e_max ≥ δ (6.10, 6.11), else
+``afford(Obj, Act, Eff, 0, 0, r2)`` (6.14). θ_max (eq. 6.13) is what the agent uses to verify
+the prediction; ``verification_percept`` turns the observed effect into ``afford(..., 1, 1, 1)``
+or ``afford(..., 1, 0, 0)`` (§6.3.3).
 
-The learner knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
+``learn`` knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
+``learn_in_world`` runs it on the simulated can through ``behaviours.skills.perform_skill``.
 """
 
 from __future__ import annotations
@@ -16,12 +18,16 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
 from behaviours.models import LinearEffectModel, ModelStore, _check_bounds
 from goalagent.kb.terms import Atom, Struct
+
+if TYPE_CHECKING:
+    from sim.world import GarbageWorld
 
 LEARNING_MODES = ("random", "active", "transfer")
 _LATER_MODES = {
@@ -36,7 +42,7 @@ class LearningModeUnavailable(NotImplementedError):
 
 
 class RandomExplorer(BaseEstimator):
-    """Random exploration of one action parameter until Ĥ settles (eq. 5.19) or n_max samples."""
+    """Random exploration of θ in lo < θ <= hi until Ĥ settles (eq. 5.19) or n_max samples."""
 
     def __init__(
         self,
@@ -65,7 +71,7 @@ class RandomExplorer(BaseEstimator):
         model = LinearEffectModel()
         self.settled_ = False
         for k in range(1, self.n_max + 1):
-            theta = float(rng.uniform(low, high))
+            theta = high - float(rng.uniform(0.0, high - low))  # lo < θ <= hi
             effect = effect_fn(theta)
             if not isinstance(effect, (int, float)) or not math.isfinite(effect):
                 raise ValueError(
@@ -107,6 +113,17 @@ def verification_percept(
     return afford_term(obj, action, effect_name, 1, 0, 0)
 
 
+def _check_mode(mode: str) -> None:
+    """Accept "random"; refuse the later modes and unknown names with a clear error."""
+    if mode in _LATER_MODES:
+        raise LearningModeUnavailable(
+            f"learning mode {mode!r} {_LATER_MODES[mode]}; only mode 'random' is available now"
+        )
+    if mode not in LEARNING_MODES:
+        modes = ", ".join(LEARNING_MODES)
+        raise ValueError(f"unknown learning mode {mode!r}; the modes are {modes}")
+
+
 def _check_name(value: object, what: str) -> str:
     """A non-empty string naming an atom, or a clear error."""
     if not isinstance(value, str) or not value:
@@ -137,13 +154,7 @@ def learn(
     ``key`` names the model in ``store`` (normally (can, part, action); default (obj, action));
     a stored model under the same key is replaced by the new one and the store is saved.
     """
-    if mode in _LATER_MODES:
-        raise LearningModeUnavailable(
-            f"learning mode {mode!r} {_LATER_MODES[mode]}; only mode 'random' is available now"
-        )
-    if mode not in LEARNING_MODES:
-        modes = ", ".join(LEARNING_MODES)
-        raise ValueError(f"unknown learning mode {mode!r}; the modes are {modes}")
+    _check_mode(mode)
     for value, what in ((obj, "obj"), (action, "action"), (effect_name, "effect_name")):
         _check_name(value, what)
     if not (isinstance(delta, (int, float)) and math.isfinite(delta)):
@@ -170,3 +181,53 @@ def learn(
         settled=explorer.settled_,
         model=model,
     )
+
+
+def learn_in_world(
+    world: GarbageWorld,
+    *,
+    part: str,
+    action: str,
+    effect_name: str = "opened",
+    mode: str = "random",
+    delta: float,
+    n_max: int,
+    random_state: int | None,
+    store: ModelStore | None = None,
+    **options: float,
+) -> LearnResult:
+    """``learn`` on the simulated can: θ in the action's THETA_BOUNDS, key (can, part, action).
+
+    Like the thesis's exploration (§5.6.1: every try starts from the same object state), each
+    exploratory action starts from the opening the can had when learning began, and the can is
+    put back to that opening afterwards, so the agent's next action meets the can as it left it.
+    ``options`` go to ``learn`` (n_min, settle_tol, r1, r2).
+    """
+    from behaviours.skills import check_skill, perform_skill
+    from sim.world import THETA_BOUNDS
+
+    _check_mode(mode)
+    check_skill(world, action, part, THETA_BOUNDS.get(action, (0.0, 0.0))[1])
+    start = world.opening()
+
+    def effect(theta: float) -> float:
+        world.set_opening(start)
+        return perform_skill(world, action, part, theta).effect
+
+    try:
+        return learn(
+            effect,
+            obj=part,
+            action=action,
+            effect_name=effect_name,
+            mode=mode,
+            bounds=THETA_BOUNDS[action],
+            delta=delta,
+            n_max=n_max,
+            random_state=random_state,
+            store=store,
+            key=(world.can, part, action),
+            **options,
+        )
+    finally:
+        world.set_opening(start)

@@ -86,10 +86,18 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
         return len(history) >= 2 and abs(history[-1] - history[-2]) < tol
 
     def maximum(self, bounds: tuple[float, float]) -> tuple[float, float]:
-        """(θ_max, e_max) of eq. 6.13/6.8: a line peaks at an end of the bounds (upper on ties)."""
+        """(θ_max, e_max) of eq. 6.13/6.8 over lo < θ <= hi, with e_max = Ĥ(θ_max).
+
+        A non-decreasing line peaks at hi. A decreasing one peaks at the open end lo, which
+        no action can use, so θ_max is then the smallest θ explored: the best valid one known.
+        """
         low, high = _check_bounds(bounds)
-        e_low, e_high = (float(e) for e in self.predict([low, high]))
-        return (low, e_low) if e_low > e_high else (high, e_high)
+        if self.coef_ >= 0:
+            theta_max = high
+        else:
+            inside = self.theta_[(self.theta_ > low) & (self.theta_ <= high)]
+            theta_max = float(inside.min()) if inside.size else high
+        return theta_max, float(self.predict(theta_max)[0])
 
 
 def _check_bounds(bounds: Sequence[float]) -> tuple[float, float]:

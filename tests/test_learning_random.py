@@ -18,7 +18,7 @@ from behaviours.models import LinearEffectModel
 from goalagent.kb.terms import Atom, Struct, format_term
 
 EXTEND = (0.0, 0.1)
-CONTRACT = (-0.1, 0.0)
+WIDE_NEGATIVE = (-0.1, 0.0)
 
 
 def linear(theta: float) -> float:
@@ -65,11 +65,20 @@ def test_linear_effect_settles_at_once_and_predicts_opening() -> None:
     assert format_term(result.afford_term) == "afford(lid,extend_arm,opened,0,0,0.3)"
 
 
-def test_ineffective_action_reports_r2_with_the_maximum_at_the_lower_bound() -> None:
-    result = run(lambda t: 0.003 - 0.021 * t, bounds=CONTRACT, action="contract_arm")
-    assert result.theta_max == -0.1
-    assert result.e_max == pytest.approx(0.0051)
+def test_ineffective_action_reports_r2_with_a_usable_theta_max() -> None:
+    """A decreasing line peaks at the open end θ -> 0: θ_max is the smallest θ explored."""
+    result = run(lambda t: 0.003 - 0.021 * t, action="contract_arm")
+    assert result.model.coef_ == pytest.approx(-0.021)
+    assert result.theta_max == result.model.theta_.min() > 0.0
+    assert result.e_max == pytest.approx(0.003 - 0.021 * result.theta_max)
     assert result.afford_term.args[3:] == (0, 0, 0.05)
+
+
+def test_an_effective_decreasing_action_still_gets_a_valid_theta_max() -> None:
+    result = run(lambda t: 0.2 - t, bounds=(0.02, 0.1))
+    assert 0.02 < result.theta_max <= 0.1
+    assert result.e_max == pytest.approx(0.2 - result.theta_max)
+    assert result.afford_term.args[5] == 0.3
 
 
 def test_flat_noisy_effect_settles_and_reports_r2() -> None:
@@ -106,10 +115,10 @@ def test_stop_follows_eq_5_19_on_recorded_samples(seed: int) -> None:
 
 
 def test_samples_stay_in_the_bounds_and_are_seeded() -> None:
-    first = run(saturating, bounds=CONTRACT, n_max=30, settle_tol=1e-9, random_state=5)
-    again = run(saturating, bounds=CONTRACT, n_max=30, settle_tol=1e-9, random_state=5)
-    other = run(saturating, bounds=CONTRACT, n_max=30, settle_tol=1e-9, random_state=6)
-    assert np.all((first.model.theta_ >= -0.1) & (first.model.theta_ < 0.0))
+    first = run(saturating, bounds=WIDE_NEGATIVE, n_max=30, settle_tol=1e-9, random_state=5)
+    again = run(saturating, bounds=WIDE_NEGATIVE, n_max=30, settle_tol=1e-9, random_state=5)
+    other = run(saturating, bounds=WIDE_NEGATIVE, n_max=30, settle_tol=1e-9, random_state=6)
+    assert np.all((first.model.theta_ > -0.1) & (first.model.theta_ <= 0.0))
     assert np.array_equal(first.model.theta_, again.model.theta_)
     assert first.e_max == again.e_max and first.theta_max == again.theta_max
     assert not np.array_equal(first.model.theta_, other.model.theta_)

@@ -1,0 +1,72 @@
+"""``learn_in_world`` on the simulated o1 can (real MuJoCo): the lid is pushed open, not swept."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from behaviours.learning import LearningModeUnavailable, learn_in_world, verification_percept
+from behaviours.models import ModelStore
+from behaviours.skills import SkillError, perform_skill
+from goalagent.kb.terms import format_term
+from sim.world import GarbageWorld
+
+DELTA = 0.1
+"""Thesis §6.4.1: the lid counts as opened beyond 0.1 m."""
+
+
+@pytest.fixture(scope="module")
+def world() -> GarbageWorld:
+    w = GarbageWorld("o1", seed=0)
+    yield w
+    w.close()
+
+
+def test_extend_arm_on_the_lid_is_learned_and_verified(world: GarbageWorld, tmp_path: Path) -> None:
+    world.reset("o1", seed=0)
+    store = ModelStore(tmp_path / "effects.json")
+    result = learn_in_world(
+        world, part="lid", action="extend_arm", delta=DELTA, n_max=8, random_state=1, store=store
+    )
+    assert format_term(result.afford_term) == "afford(lid,extend_arm,opened,0,0,0.3)"
+    assert result.e_max >= DELTA and result.theta_max == 0.1
+    assert 3 <= result.samples <= 8
+    assert result.model.effect_.max() >= DELTA  # the samples really opened the lid
+    assert world.opening() == pytest.approx(0.0, abs=1e-3)  # the can is left as found
+    # rule 6.12 goes on with θ_max (6.13): the observed effect verifies the affordance
+    observed = perform_skill(world, "extend_arm", "lid", result.theta_max).effect
+    percept = verification_percept(
+        obj="lid", action="extend_arm", effect_name="opened", observed_effect=observed, delta=DELTA
+    )
+    assert format_term(percept) == "afford(lid,extend_arm,opened,1,1,1)"
+    stored = ModelStore(tmp_path / "effects.json").get(("o1", "lid", "extend_arm"))
+    assert stored is not None and stored.model.n_samples_ == result.samples
+
+
+def test_sweeping_the_lid_is_predicted_ineffective(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    result = learn_in_world(
+        world, part="lid", action="sweep_left", delta=DELTA, n_max=6, random_state=2
+    )
+    assert format_term(result.afford_term) == "afford(lid,sweep_left,opened,0,0,0.05)"
+    assert result.e_max < DELTA
+
+
+def test_refusals_leave_the_world_untouched(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    world.set_opening(0.05)
+    before = world.state()
+    with pytest.raises(SkillError, match="no part 'handle'"):
+        learn_in_world(world, part="handle", action="lift_up", delta=DELTA, n_max=5, random_state=0)
+    with pytest.raises(LearningModeUnavailable, match="active-learning issue"):
+        learn_in_world(
+            world,
+            part="lid",
+            action="extend_arm",
+            mode="active",
+            delta=DELTA,
+            n_max=5,
+            random_state=0,
+        )
+    assert world.state() == before
