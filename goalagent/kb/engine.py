@@ -424,9 +424,9 @@ class Engine:
             seen.append((PL_copy_term_ref(t), var))
             return var
         if kind == _PL_RATIONAL:
-            numerator, denominator = _text(t, _CVT_WRITEQ).split("r")
+            numerator, denominator = _text(t, _CVT_WRITEQ | _REP_UTF8).split("r")
             return float(Fraction(int(numerator), int(denominator)))
-        return Atom(_text(t, _CVT_WRITEQ))  # blobs (streams, clause refs), dicts
+        return Atom(_text(t, _CVT_WRITEQ | _REP_UTF8))  # blobs (streams, clause refs), dicts
 
     def _atom_name(self, handle: int) -> Atom:
         """The name of atom ``handle`` (cache miss path); caching registers the atom."""
