@@ -11,7 +11,14 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.table import Table
 
+from goalagent.affordance import (
+    ReliabilityHistory,
+    affordances,
+    load_affordances,
+    save_affordances,
+)
 from goalagent.agent import AgentError, validate_program
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.kb.engine import KBError
@@ -64,6 +71,15 @@ def run(
     max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
     trace: Annotated[bool, typer.Option(help="Show rules, bindings, actions per cycle.")] = False,
+    load_beliefs: Annotated[
+        Path | None, typer.Option(help="Prolog facts (e.g. saved afford/6) to add to the "
+                                       "agents' beliefs before they start.")] = None,
+    save_beliefs: Annotated[
+        Path | None, typer.Option(help="Write the final afford/6 beliefs here.")] = None,
+    plot: Annotated[
+        Path | None, typer.Option(help="PNG of afford/6 reliabilities over the actions taken "
+                                       "(default: afford-AGENT.png when agents have any).")
+    ] = None,
 ) -> None:
     """Run an agent (or a multi-agent system) until it terminates or the cycle limit."""
     params = _env_params(env_param or [])
@@ -77,16 +93,48 @@ def run(
         else:
             system = MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
                                                      **options)
+        if load_beliefs is not None:
+            for agent in system.agents:
+                load_affordances(agent, load_beliefs)
     except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
         raise _fail(str(err)) from None
+    histories = {agent.name: ReliabilityHistory() for agent in system.agents}
+    for agent in system.agents:
+        histories[agent.name].record(agent)
     try:
-        summaries = system.run(max_cycles)
+        summaries = system.run(max_cycles,
+                               after_cycle=lambda agent: histories[agent.name].record(agent))
+        _report_affordances(system, histories, save_beliefs, plot)
     finally:
         system.close()
     for summary in summaries:
         err_console.print(str(summary), markup=False)
     if any(summary.status == "failed" for summary in summaries):
         raise typer.Exit(code=1)
+
+
+def _report_affordances(system: MultiAgentSystem, histories: dict[str, ReliabilityHistory],
+                        save: Path | None, plot: Path | None) -> None:
+    """The afford/6 table on stderr, the reliability plot, and the saved beliefs."""
+    for agent in system.agents:
+        rows = affordances(agent)
+        if not rows:
+            continue
+        table = Table(title=f"afford/6 beliefs of {agent.name}")
+        for column in ("Obj", "Act", "Eff", "Tot", "Suc", "Rel"):
+            table.add_column(column, justify="right" if column in "TotSucRel" else "left")
+        for row in rows:
+            table.add_row(row.obj, row.act, row.eff, str(row.tot), str(row.suc),
+                          f"{row.rel:.3f}")
+        err_console.print(table)
+        target = plot if plot is not None and len(system.agents) == 1 else (
+            plot.with_name(f"{plot.stem}-{agent.name}{plot.suffix}") if plot is not None
+            else Path(f"afford-{agent.name}.png"))
+        histories[agent.name].plot(target, f"Affordance reliabilities of {agent.name}")
+        err_console.print(f"reliability plot: {target}", markup=False)
+    if save is not None:
+        count = save_affordances(system.agents, save)
+        err_console.print(f"saved {count} afford/6 beliefs to {save}", markup=False)
 
 
 @app.command()

@@ -204,8 +204,10 @@ class MultiAgentSystem:
         """Environment state changes need no action from the scheduler."""
 
     # ------------------------------------------------------------------ running
-    def run(self, max_cycles: int | None = None) -> list[AgentSummary]:
-        """Round-robin, one cycle per agent per turn, until all stop or ``max_cycles``."""
+    def run(self, max_cycles: int | None = None,
+            after_cycle: Callable[[Agent], None] | None = None) -> list[AgentSummary]:
+        """Round-robin, one cycle per agent per turn, until all stop or ``max_cycles``;
+        ``after_cycle`` is called with each agent after each of its cycles."""
         while True:
             live = [a for a in self.agents if not a.terminated and a.name not in self.failures
                     and (max_cycles is None or a.cycle < max_cycles)]
@@ -213,6 +215,8 @@ class MultiAgentSystem:
                 break
             for agent in live:
                 self._step(agent)
+                if after_cycle is not None:
+                    after_cycle(agent)
         return self.summaries()
 
     def _step(self, agent: Agent) -> None:

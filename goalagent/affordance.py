@@ -1,0 +1,125 @@
+"""Affordance knowledge seen from Python: afford/6 tables, reliability plots, persistence.
+
+The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in ``kb/affordance.pl`` and
+the agent program; this module only reads an agent's ``afford/6`` beliefs, keeps their
+history for a plot, and saves or loads them as Prolog facts (written atomically).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from goalagent.agent import Agent
+from goalagent.kb.terms import Atom, Struct, format_term
+from goalagent.parser import parse_prolog_file
+
+AFFORD_QUERY = "afford(Obj, Act, Eff, Tot, Suc, Rel)"
+
+
+@dataclass(frozen=True)
+class Affordance:
+    """One ``afford(Obj, Act, Eff, Tot, Suc, Rel)`` belief (eq. 6.1)."""
+
+    obj: str
+    act: str
+    eff: str
+    tot: int
+    suc: int
+    rel: float
+
+    @property
+    def key(self) -> tuple[str, str, str]:
+        return (self.obj, self.act, self.eff)
+
+    def as_fact(self) -> str:
+        term = Struct("afford", (Atom(self.obj), Atom(self.act), Atom(self.eff), self.tot,
+                                 self.suc, self.rel))
+        return format_term(term) + "."
+
+
+def affordances(agent: Agent) -> list[Affordance]:
+    """The agent's current ``afford/6`` beliefs, in belief-base order."""
+    if not agent.query("bel", "current_predicate(afford/6)"):
+        return []
+    return [
+        Affordance(str(a["Obj"]), str(a["Act"]), str(a["Eff"]), int(a["Tot"]), int(a["Suc"]),
+                   float(a["Rel"]))
+        for a in agent.query("bel", AFFORD_QUERY)
+    ]
+
+
+@dataclass
+class ReliabilityHistory:
+    """Reliability of each affordance after every cycle, against the actions taken so far."""
+
+    points: dict[tuple[str, str, str], list[tuple[int, float]]] = field(default_factory=dict)
+
+    def record(self, agent: Agent) -> None:
+        for affordance in affordances(agent):
+            series = self.points.setdefault(affordance.key, [])
+            if not series or series[-1] != (agent.total_actions, affordance.rel):
+                series.append((agent.total_actions, affordance.rel))
+
+    def plot(self, path: Path, title: str, tau: float = 0.6) -> None:
+        """A step plot of every affordance's reliability over the actions taken (PNG)."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        figure, axes = plt.subplots(figsize=(9, 5))
+        for (obj, act, eff), series in sorted(self.points.items()):
+            xs = [x for x, _ in series]
+            ys = [y for _, y in series]
+            axes.step(xs, ys, where="post", marker="o", markersize=3,
+                      label=f"{obj} {act} ({eff})")
+        axes.axhline(tau, color="grey", linestyle="--", linewidth=1, label=f"tau = {tau}")
+        axes.set_xlabel("actions taken")
+        axes.set_ylabel("reliability Rel")
+        axes.set_ylim(-0.05, 1.05)
+        axes.set_title(title)
+        axes.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
+        figure.tight_layout()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        figure.savefig(path, dpi=110)
+        plt.close(figure)
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` so that a crash leaves either the old or the new file."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def save_affordances(agents: Iterable[Agent], path: Path) -> int:
+    """Write every agent's ``afford/6`` beliefs as Prolog facts; returns how many."""
+    lines = ["% afford(Obj, Act, Eff, Tot, Suc, Rel) beliefs saved by goalagent"]
+    count = 0
+    for agent in agents:
+        rows = affordances(agent)
+        lines.append(f"% agent {agent.name}")
+        lines.extend(row.as_fact() for row in rows)
+        count += len(rows)
+    write_atomically(path, "\n".join(lines) + "\n")
+    return count
+
+
+def load_affordances(agent: Agent, path: Path) -> int:
+    """Add the facts of a saved file to the agent's beliefs (before its first cycle)."""
+    facts = parse_prolog_file(path)
+    for fact in facts:
+        agent.ms.insert(fact)
+    return len(facts)
