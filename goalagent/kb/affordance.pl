@@ -16,18 +16,21 @@
 %     knowledge{ afford_setting(tau, 0.7). }
 % afford_setting/2 is the agent's own predicate (this library defines no clause for it), so
 % the override never clashes with the defaults: a setting wins, a missing setting falls back
-% to the default. Every lookup checks 0 < r2 < r0 < r1 < tau < 1 and rejects unknown names,
-% raising a domain_error whose context message says what is wrong.
+% to the default. Every lookup checks 0 < r2 < r0 < r1 < tau < 1 and rejects unknown names
+% with a domain_error that says what is wrong.
 %
-% Merging a percept into the belief base (eq. 6.3) is ONE event-module rule, e.g.
-%     forall bel(percept(afford(O, A, E, T1, S1, R1)), afford(O, A, E, T, S, R),
-%                afford_merge(afford(O, A, E, T, S, R), afford(O, A, E, T1, S1, R1), New))
-%         do delete(afford(O, A, E, T, S, R)) + insert(New).
-% (with New spelled out as afford(O, A, E, T2, S2, R2) if the runtime wants a literal term).
-% A percept about an affordance not yet believed is adopted as it is by a second rule placed
-% after the merge rule:
-%     forall bel(percept(afford(O, A, E, T, S, R)), not(afford(O, A, E, _, _, _)))
-%         do insert(afford(O, A, E, T, S, R)).
+% Merging a percept into the belief base (eq. 6.3) is ONE event-module rule, plus one that
+% adopts a percept about an affordance not believed yet (tests/test_affordance_agent.py runs
+% exactly these two in a GOAL agent):
+%     event module { program {
+%         forall bel(percept(afford(O, A, E, T1, S1, R1)), afford(O, A, E, T, S, R),
+%                    afford_merge(afford(O, A, E, T, S, R), afford(O, A, E, T1, S1, R1),
+%                                 afford(O, A, E, T2, S2, R2)))
+%             do delete(afford(O, A, E, T, S, R)) + insert(afford(O, A, E, T2, S2, R2)).
+%         forall bel(percept(afford(O, A, E, T, S, R)), not(afford(O, A, E, _, _, _)))
+%             do insert(afford(O, A, E, T, S, R)).
+%     } }
+% Load the library with  #import "affordance.pl".  in the init module.
 %
 % Predicate overview (Obj, Act, Eff always in the order of afford/6):
 %     afford_param(?Name, ?Value)           a parameter, the agent's setting or the default
@@ -65,12 +68,10 @@ afford_params(R0, R1, R2, Tau) :-
     (   number(R0), number(R1), number(R2), number(Tau),
         0 < R2, R2 < R0, R0 < R1, R1 < Tau, Tau < 1
     ->  true
-    ;   format(atom(Message),
-               'affordance parameters must satisfy 0 < r2 < r0 < r1 < tau < 1, \c
-                got r2=~q r0=~q r1=~q tau=~q (see afford_setting/2 in the agent\'s knowledge)',
-               [R2, R0, R1, Tau]),
-        throw(error(domain_error(afford_params, [r0=R0, r1=R1, r2=R2, tau=Tau]),
-                    context(afford_param/2, Message)))
+    ;   throw(error(domain_error('0 < r2 < r0 < r1 < tau < 1', [r2=R2, r0=R0, r1=R1, tau=Tau]),
+                    context(afford_param/2,
+                            'affordance parameters must be numbers in this order; \c
+                             set them with afford_setting/2 in the agent\'s knowledge')))
     ).
 
 % afford_raw_param(+Name, -Value): the agent's first setting for Name, else the default.
@@ -85,10 +86,8 @@ afford_check_setting_names :-
     (   current_predicate(afford_setting/2),
         afford_setting(Name, _),
         \+ ( atom(Name), afford_default(Name, _) )
-    ->  format(atom(Message),
-               'unknown affordance parameter ~q in afford_setting/2 (known: r0, r1, r2, tau)',
-               [Name]),
-        throw(error(domain_error(afford_param_name, Name), context(afford_param/2, Message)))
+    ->  throw(error(domain_error('an affordance parameter: r0, r1, r2 or tau', Name),
+                    context(afford_param/2, 'unknown parameter in afford_setting/2')))
     ;   true
     ).
 
@@ -186,7 +185,10 @@ afford_to_verify(Obj, Act, Eff) :-
     Rel < Tau.
 
 % afford_learning_exhausted(?Obj, ?Eff): affordances for Obj and Eff are believed and every
-% one has Rel < r2, so learning on Obj stops for good (§6.3.4, termination).
+% one has Rel < r2, so learning on Obj stops for good (§6.3.4, termination). Under eq. 6.3 a
+% learning percept (Tot 0) never lowers a reliability below r2: r0 merged with r2 is exactly
+% r2, and a used affordance only approaches r2 from above. Only failed verifications
+% (afford(..., 1, 0, 0)) take an affordance below r2.
 afford_learning_exhausted(Obj, Eff) :-
     afford_param(r2, R2),
     afford_object_effect(Obj, Eff),
