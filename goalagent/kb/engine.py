@@ -130,6 +130,13 @@ _VAR_MARK = "$ga_var"
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
 
 
+# Output buffers for the getters: Prolog runs on one thread at a time and every value is
+# read right after the call that fills it, so one set of buffers serves all calls.
+_ATOM_BUF, _SIZE_BUF, _INT_BUF, _FLOAT_BUF = _atom(), c_size_t(), c_int64(), c_double()
+_ATOM_REF, _SIZE_REF = byref(_ATOM_BUF), byref(_SIZE_BUF)
+_INT_REF, _FLOAT_REF = byref(_INT_BUF), byref(_FLOAT_BUF)
+
+
 def _text(t: int, flags: int) -> str:
     """The text of an atom/string/number term (UTF-8) or raises on failure."""
     length = c_size_t()
@@ -147,6 +154,7 @@ class Engine:
         self._atoms: dict[str, int] = {}
         self._atom_names: dict[int, Atom] = {}
         self._functors: dict[tuple[str, int], int] = {}
+        self._functor_names: dict[int, str] = {}  # atom handle -> plain str (Struct names)
         self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
         self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
@@ -326,22 +334,37 @@ class Engine:
 
     def _put(self, t: int, value: Term, shared: dict[str, int]) -> None:
         """Stores the Python term ``value`` in term ref ``t``; ``shared`` maps Var names."""
-        if isinstance(value, Atom):
-            PL_put_atom(t, self._atom_handle(value))
-        elif isinstance(value, str):
-            data = value.encode("utf-8")
-            PL_put_chars(t, _PUT_STRING, len(data), data)
-        elif isinstance(value, bool):
-            PL_put_atom(t, self._atom_handle("true" if value else "false"))
-        elif isinstance(value, int):
+        kind = type(value)
+        if kind is Atom:
+            handle = self._atoms.get(value)
+            PL_put_atom(t, handle if handle is not None else self._atom_handle(value))
+        elif kind is Struct:
+            arity = len(value.args)
+            if arity == 0:
+                data = format_term(value).encode("utf-8")
+                PL_put_term_from_chars(t, _REP_UTF8, len(data), data)
+                return
+            args = PL_new_term_refs(arity)
+            put = self._put
+            for i, arg in enumerate(value.args):
+                put(args + i, arg, shared)
+            functor = self._functors.get((value.name, arity))
+            PL_cons_functor_v(t, functor or self._functor(value.name, arity), args)
+        elif kind is int:
             if _INT64_MIN <= value <= _INT64_MAX:
                 PL_put_int64(t, value)
             else:
                 data = str(value).encode()
                 PL_put_term_from_chars(t, _REP_UTF8, len(data), data)
-        elif isinstance(value, float):
-            PL_put_float(t, value)
-        elif isinstance(value, Var):
+        elif kind is list or kind is tuple:
+            PL_put_nil(t)
+            if value:
+                head = PL_new_term_ref()
+                put = self._put
+                for item in reversed(value):
+                    put(head, item, shared)
+                    PL_cons_list(t, head, t)
+        elif kind is Var:
             existing = shared.get(value.name) if value.name != "_" else None
             if existing is None:
                 PL_put_variable(t)
@@ -349,23 +372,15 @@ class Engine:
                     shared[value.name] = PL_copy_term_ref(t)
             else:
                 PL_put_term(t, existing)
-        elif isinstance(value, (list, tuple)):
-            PL_put_nil(t)
-            if value:
-                head = PL_new_term_ref()
-                for item in reversed(value):
-                    self._put(head, item, shared)
-                    PL_cons_list(t, head, t)
-        elif isinstance(value, Struct):
-            arity = len(value.args)
-            if arity == 0:
-                data = format_term(value).encode("utf-8")
-                PL_put_term_from_chars(t, _REP_UTF8, len(data), data)
-                return
-            args = PL_new_term_refs(arity)
-            for i, arg in enumerate(value.args):
-                self._put(args + i, arg, shared)
-            PL_cons_functor_v(t, self._functor(value.name, arity), args)
+        elif kind is float:
+            PL_put_float(t, value)
+        elif kind is bool:
+            PL_put_atom(t, self._atom_handle("true" if value else "false"))
+        elif isinstance(value, Atom):
+            self._put(t, Atom(str(value)), shared)
+        elif isinstance(value, str):
+            data = value.encode("utf-8")
+            PL_put_chars(t, _PUT_STRING, len(data), data)
         else:
             raise KBError(f"not a Prolog term: {value!r}")
 
@@ -374,47 +389,50 @@ class Engine:
         with ``marks``, ``'$ga_var'(Name)`` becomes ``Var(Name)`` (see parse/2)."""
         kind = PL_term_type(t)
         if kind == _PL_ATOM:
-            handle = _atom()
-            PL_get_atom(t, byref(handle))
-            return self._atom_names.get(handle.value) or self._atom_name(handle.value)
+            PL_get_atom(t, _ATOM_REF)
+            handle = _ATOM_BUF.value
+            return self._atom_names.get(handle) or self._atom_name(handle)
+        if kind == _PL_TERM:
+            PL_get_name_arity(t, _ATOM_REF, _SIZE_REF)
+            handle = _ATOM_BUF.value
+            arity = _SIZE_BUF.value
+            name = self._functor_names.get(handle)
+            if name is None:
+                name = str(self._atom_names.get(handle) or self._atom_name(handle))
+                self._functor_names[handle] = name
+            arg = PL_new_term_ref()
+            args = []
+            get = self._get
+            for i in range(1, arity + 1):
+                PL_get_arg(i, t, arg)
+                args.append(get(arg, seen, marks))
+            if marks and name == _VAR_MARK and arity == 1:
+                return Var(str(args[0]))
+            return Struct(name, tuple(args))
         if kind == _PL_INTEGER:
-            number = c_int64()
-            if PL_get_int64(t, byref(number)):
-                return number.value
+            if PL_get_int64(t, _INT_REF):
+                return _INT_BUF.value
             return int(_text(t, _CVT_INTEGER))
-        if kind == _PL_FLOAT:
-            real = c_double()
-            PL_get_float(t, byref(real))
-            return real.value
-        if kind == _PL_STRING:
-            return _text(t, _TEXT_FLAGS)
-        if kind == _PL_NIL:
-            return []
         if kind == _PL_LIST_PAIR:
             items: list[Term] = []
             rest = PL_copy_term_ref(t)
             head = PL_new_term_ref()
+            get = self._get
             while PL_get_list(rest, head, rest):
-                items.append(self._get(head, seen, marks))
+                items.append(get(head, seen, marks))
             if PL_term_type(rest) == _PL_NIL:
                 return items
-            tail = self._get(rest, seen, marks)
+            tail = get(rest, seen, marks)
             for item in reversed(items):
                 tail = Struct("[|]", (item, tail))
             return tail
-        if kind == _PL_TERM:
-            name_handle = _atom()
-            arity = c_size_t()
-            PL_get_name_arity(t, byref(name_handle), byref(arity))
-            name = self._atom_names.get(name_handle.value) or self._atom_name(name_handle.value)
-            arg = PL_new_term_ref()
-            args = []
-            for i in range(1, arity.value + 1):
-                PL_get_arg(i, t, arg)
-                args.append(self._get(arg, seen, marks))
-            if marks and name == _VAR_MARK and len(args) == 1:
-                return Var(str(args[0]))
-            return Struct(str(name), tuple(args))
+        if kind == _PL_NIL:
+            return []
+        if kind == _PL_STRING:
+            return _text(t, _TEXT_FLAGS)
+        if kind == _PL_FLOAT:
+            PL_get_float(t, _FLOAT_REF)
+            return _FLOAT_BUF.value
         if kind == _PL_VARIABLE:
             for ref, var in seen:
                 if PL_compare(ref, t) == 0:
