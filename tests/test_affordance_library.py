@@ -239,3 +239,15 @@ def test_roulette_needs_object_and_effect(agent: AgentBeliefs) -> None:
     agent.believe("lid", "extend_arm", "opened", 0, 0, 0.1)
     with pytest.raises(PrologRuntimeError, match="needs Obj and Eff bound"):
         agent.holds("afford_roulette(_, _, opened)")
+
+
+def test_spin_draws_from_an_agents_own_wheel(agent: AgentBeliefs) -> None:
+    (answer,) = agent.all(
+        "set_random(seed(11)),"
+        " findall(A, (between(1, 3000, _), afford_spin([0.1-a, 0.0-b, 0.3-c, -1-d], A)), As)"
+    )
+    counts = Counter(str(a) for a in answer["As"])
+    assert set(counts) == {"a", "c"}
+    assert chisquare([counts["a"], counts["c"]], [750, 2250]).pvalue > 0.001
+    assert not agent.holds("afford_spin([0.0-a, 0-b], _)")
+    assert not agent.holds("afford_spin([], _)")

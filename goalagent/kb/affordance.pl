@@ -38,6 +38,7 @@
 %     afford_reliable(?Obj, ?Act, ?Eff)     Rel >= tau (usable by rule 6.2)
 %     afford_best(?Obj, -Act, ?Eff)         the most reliable reliable action (rule 6.2)
 %     afford_roulette(+Obj, -Act, +Eff)     reliability-proportional choice (§6.3.4)
+%     afford_spin(+Wheel, -Act)             the same over an agent's own list of Rel-Act
 %     afford_learning_needed(?Obj, ?Eff)    rule 6.4's band: nothing reliable, not exhausted
 %     afford_to_verify(?Obj, ?Act, ?Eff)    rule 6.12's band: r1 =< Rel < tau
 %     afford_learning_exhausted(?Obj, ?Eff) every Rel < r2 (termination, §6.3.4)
@@ -147,13 +148,22 @@ afford_roulette(Obj, Act, Eff) :-
     ;   throw(error(instantiation_error,
                     context(afford_roulette/3, 'afford_roulette/3 needs Obj and Eff bound')))
     ),
-    findall(Rel-A, (afford_belief(Obj, A, Eff, _, _, Rel), Rel > 0), Wheel),
-    afford_wheel_total(Wheel, 0, Total),
+    findall(Rel-A, afford_belief(Obj, A, Eff, _, _, Rel), Wheel),
+    afford_spin(Wheel, Act).
+
+% afford_spin(+Wheel, -Act): one spin of a roulette wheel given as a list of Rel-Act pairs,
+% for agents that build their own wheel (e.g. only the actions not explored yet). Act is
+% drawn with probability Rel / (sum of Rel); pairs with Rel =< 0 are never drawn; fails when
+% no pair has Rel > 0.
+afford_spin(Wheel, Act) :-
+    findall(Rel-A, ( afford_member(Rel-A, Wheel), Rel > 0 ), Live),
+    afford_wheel_total(Live, 0, Total),
     Total > 0,
     Spin is random_float * Total,
-    afford_wheel_pick(Wheel, Spin, Chosen),
+    afford_wheel_pick(Live, Spin, Chosen),
     Act = Chosen.
 
+% afford_wheel_total(+Wheel, +Sum0, -Total): the sum of the wheel's reliabilities.
 afford_wheel_total([], Total, Total).
 afford_wheel_total([Rel-_|Rest], Sum0, Total) :-
     Sum is Sum0 + Rel,
