@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
-from behaviours.models import LinearEffectModel, ModelStore, _check_bounds
+from behaviours.models import LinearEffectModel, ModelStore, check_bounds
 from goalagent.kb.terms import Atom, Struct
 
 if TYPE_CHECKING:
@@ -60,7 +60,7 @@ class RandomExplorer(BaseEstimator):
 
     def explore(self, effect_fn: EffectFn) -> LinearEffectModel:
         """Sample θ, call effect_fn(θ), refit; sets model_, n_samples_ and settled_."""
-        low, high = _check_bounds(self.bounds)
+        low, high = check_bounds(self.bounds)
         if not isinstance(self.n_max, int) or self.n_max < 1:
             raise ValueError(f"n_max must be a positive whole number, got {self.n_max!r}")
         if not isinstance(self.n_min, int) or self.n_min < 2:
@@ -99,7 +99,9 @@ class LearnResult:
     model: LinearEffectModel
 
 
-def afford_term(obj: str, action: str, effect_name: str, tot: int, suc: int, rel: float) -> Struct:
+def afford_percept(
+    obj: str, action: str, effect_name: str, tot: int, suc: int, rel: float
+) -> Struct:
     """The percept afford(Obj, Act, Eff, Tot, Suc, Rel) as a term (eq. 6.1)."""
     return Struct("afford", (Atom(obj), Atom(action), Atom(effect_name), tot, suc, rel))
 
@@ -109,8 +111,8 @@ def verification_percept(
 ) -> Struct:
     """§6.3.3: afford(..., 1, 1, 1) if the observed effect reaches δ (6.9), else (..., 1, 0, 0)."""
     if observed_effect >= delta:
-        return afford_term(obj, action, effect_name, 1, 1, 1)
-    return afford_term(obj, action, effect_name, 1, 0, 0)
+        return afford_percept(obj, action, effect_name, 1, 1, 1)
+    return afford_percept(obj, action, effect_name, 1, 0, 0)
 
 
 def _check_mode(mode: str) -> None:
@@ -174,7 +176,7 @@ def learn(
     if store is not None:
         store.put(tuple(key) if key is not None else (obj, action), explorer.bounds, model)
     return LearnResult(
-        afford_term=afford_term(obj, action, effect_name, 0, 0, reliability),
+        afford_term=afford_percept(obj, action, effect_name, 0, 0, reliability),
         theta_max=theta_max,
         e_max=e_max,
         samples=explorer.n_samples_,

@@ -91,7 +91,7 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
         A non-decreasing line peaks at hi. A decreasing one peaks at the open end lo, which
         no action can use, so θ_max is then the smallest θ explored: the best valid one known.
         """
-        low, high = _check_bounds(bounds)
+        low, high = check_bounds(bounds)
         if self.coef_ >= 0:
             theta_max = high
         else:
@@ -100,7 +100,7 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
         return theta_max, float(self.predict(theta_max)[0])
 
 
-def _check_bounds(bounds: Sequence[float]) -> tuple[float, float]:
+def check_bounds(bounds: Sequence[float]) -> tuple[float, float]:
     """``bounds`` as a (low, high) pair of finite floats with low < high, or a clear error."""
     try:
         low, high = (float(b) for b in bounds)
@@ -140,7 +140,7 @@ class StoredModel:
         key = tuple(str(part) for part in record["key"])
         model = LinearEffectModel(fit_intercept=bool(record["fit_intercept"]))
         model.fit(record["theta"], record["effect"])
-        return cls(key=key, bounds=_check_bounds(record["bounds"]), model=model)
+        return cls(key=key, bounds=check_bounds(record["bounds"]), model=model)
 
 
 class StoreError(ValueError):
@@ -196,7 +196,7 @@ class ModelStore:
         if not key or not all(isinstance(part, str) and part for part in key):
             raise ValueError(f"a model key is a tuple of non-empty strings, got {key!r}")
         models = dict(self._models)
-        models[tuple(key)] = StoredModel(tuple(key), _check_bounds(bounds), model)
+        models[tuple(key)] = StoredModel(tuple(key), check_bounds(bounds), model)
         self._write(models)
         self._models = models
 
