@@ -222,21 +222,33 @@ class Engine:
             self._atom_names.pop(handle, None)
             PL_unregister_atom(handle)
 
-    def call(self, name: str, *args: Term | None, module: str = "ga_kb",
-             marks: bool = False) -> list[Term] | None:
-        """Runs ``module:name(args)`` once; ``None`` args are fresh variables. Returns every
-        argument's value after the first solution, or ``None`` when the goal fails."""
+    def call(self, name: str, *args: Term | None, module: str = "ga_kb", marks: bool = False,
+             read: Sequence[int] | None = None) -> list[Term | None] | None:
+        """Runs ``module:name(args)`` once; ``None`` args are fresh variables. Returns the
+        arguments after the first solution (only the ``None`` ones, or those listed in
+        ``read``, are read back from Prolog; the others are returned as given), or ``None``
+        when the goal fails."""
+        if read is None:
+            read = [i for i, arg in enumerate(args) if arg is None]
         answers = self.solve(self.predicate(name, len(args), module), len(args),
-                             list(enumerate(args)), 1, marks)
-        return answers[0] if answers else None
+                             list(enumerate(args)), 1, marks, read)
+        if not answers:
+            return None
+        result: list[Term | None] = list(args)
+        for index, value in zip(read, answers[0], strict=True):
+            result[index] = value
+        return result
 
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
-              limit: int | None, marks: bool = False) -> list[list[Term]]:
+              limit: int | None, marks: bool = False,
+              outputs: Sequence[int] | None = None) -> list[list[Term]]:
         """All (or the first ``limit``) solutions of ``pred`` called with the given
-        ``(argument index, value)`` inputs; each solution lists every argument's value
-        (``marks``: see :meth:`_get`)."""
+        ``(argument index, value)`` inputs; each solution lists the values of the
+        ``outputs`` arguments (default: all). ``marks``: see :meth:`_get`."""
         if threading.get_ident() != self._thread:
             self._attach_thread()
+        if outputs is None:
+            outputs = range(arity)
         fid = PL_open_foreign_frame()
         try:
             base = PL_new_term_refs(arity) if arity else PL_new_term_ref()
@@ -259,7 +271,7 @@ class Engine:
                             record = PL_record(exception)
                         break
                     seen: list[tuple[int, Var]] = []
-                    answers.append([get(base + i, seen, marks) for i in range(arity)])
+                    answers.append([get(base + i, seen, marks) for i in outputs])
             finally:
                 PL_cut_query(qid)
             if record is not None:

@@ -135,7 +135,7 @@ class MentalState:
 
     # ------------------------------------------------------------------ plumbing
 
-    def _call(self, name: str, *args: Term | None) -> list[Term]:
+    def _call(self, name: str, *args: Term | None) -> list[Any]:
         """Runs ga_kb:name(args) once (it must succeed); raises KBError when closed."""
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
@@ -234,7 +234,7 @@ class MentalState:
         """Unifies ``pattern`` (with ``bindings`` applied) with ``value`` as Prolog's =/2 does;
         returns ``bindings`` extended with the pattern's variables, or None."""
         term = self._term(pattern, bindings)
-        result = self._engine.call("=", term, value, module="system")
+        result = self._engine.call("=", term, value, module="system", read=(0,))
         if result is None:
             return None
         out = dict(bindings or {})
