@@ -27,6 +27,7 @@ from behaviours.models import LinearEffectModel, ModelStore, check_bounds
 from goalagent.kb.terms import Atom, Struct
 
 if TYPE_CHECKING:
+    from behaviours.perception import Perception
     from sim.world import GarbageWorld
 
 LEARNING_MODES = ("random", "active", "transfer")
@@ -196,6 +197,7 @@ def learn_in_world(
     n_max: int,
     random_state: int | None,
     store: ModelStore | None = None,
+    perception: Perception | None = None,
     **options: float,
 ) -> LearnResult:
     """``learn`` on the simulated can: θ in the action's THETA_BOUNDS, key (can, part, action).
@@ -203,7 +205,9 @@ def learn_in_world(
     Like the thesis's exploration (§5.6.1: every try starts from the same object state), each
     exploratory action starts from the opening the can had when learning began, and the can is
     put back to that opening afterwards, so the agent's next action meets the can as it left it.
-    ``options`` go to ``learn`` (n_min, settle_tol, r1, r2).
+    The effect is the change of opening (eq. 5.3) from ground truth, or as ``perception`` sees
+    it (e.g. the camera, eq. 5.14) when one is given. ``options`` go to ``learn`` (n_min,
+    settle_tol, r1, r2).
     """
     from behaviours.skills import check_skill, perform_skill
     from sim.world import THETA_BOUNDS
@@ -214,7 +218,11 @@ def learn_in_world(
 
     def effect(theta: float) -> float:
         world.set_opening(start)
-        return perform_skill(world, action, part, theta).effect
+        if perception is None:
+            return perform_skill(world, action, part, theta).effect
+        before = perception.observe(world).opening
+        perform_skill(world, action, part, theta)
+        return perception.observe(world).opening - before
 
     try:
         return learn(

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from behaviours.learning import LearningModeUnavailable, learn_in_world, verification_percept
 from behaviours.models import ModelStore
+from behaviours.perception import Observation
 from behaviours.skills import SkillError, perform_skill
 from goalagent.kb.terms import format_term
 from sim.world import GarbageWorld
@@ -70,3 +72,20 @@ def test_refusals_leave_the_world_untouched(world: GarbageWorld) -> None:
             random_state=0,
         )
     assert world.state() == before
+
+
+class DoubledOpening:
+    """Reads the true opening at twice its size, to trace where the effects come from."""
+
+    def observe(self, world: GarbageWorld) -> Observation:
+        return Observation(parts={}, above=(), opening=2 * world.opening())
+
+
+def test_effects_come_from_the_given_perception(world: GarbageWorld) -> None:
+    options = dict(part="lid", action="extend_arm", delta=DELTA, n_max=4, random_state=3)
+    world.reset("o1", seed=0)
+    truth = learn_in_world(world, **options)
+    world.reset("o1", seed=0)
+    seen = learn_in_world(world, perception=DoubledOpening(), **options)
+    assert np.array_equal(seen.model.theta_, truth.model.theta_)
+    assert seen.model.effect_ == pytest.approx(2 * truth.model.effect_, abs=1e-6)
