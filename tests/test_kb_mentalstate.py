@@ -453,3 +453,21 @@ def test_beliefs_order_is_deterministic(empty: MentalState) -> None:
     empty.insert("zeta(1), alpha(2), zeta(0), alpha(1)")
     assert empty.beliefs() == [
         Struct("alpha", (2,)), Struct("alpha", (1,)), Struct("zeta", (1,)), Struct("zeta", (0,))]
+
+
+def test_operator_and_library_directives_stay_in_the_agent() -> None:
+    knowledge = [
+        text(":- use_module(library(clpfd))"),
+        text("sum3(X, Y, Z) :- Z #= X + Y"),
+        text(":- op(700, xfx, ===>)"),
+        text("rule(a ===> b)"),
+    ]
+    with MentalState("ops", knowledge=knowledge) as state, MentalState("plain") as plain:
+        assert state.query("bel", "sum3(1, 2, Z)") == [{"Z": 3}]
+        assert state.query("bel", "rule(X ===> Y)") == [{"X": a("a"), "Y": a("b")}]
+        assert state.adopt("wanted(3)")
+        assert state.query("goal", "wanted(W), sum3(1, 2, W)") == [{"W": 3}]
+        with pytest.raises(KBError, match="Operator expected"):
+            plain.query("bel", "X = (a ===> b)")
+        with pytest.raises(KBError, match="Operator expected"):
+            get_engine().check_query("X = (a ===> b)")

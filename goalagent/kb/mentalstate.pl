@@ -281,6 +281,10 @@ directive(dynamic(Spec), _, B, G) :- !,
     dynamic(B:Spec),
     dynamic(G:Spec).
 directive(discontiguous(_), _, _, _) :- !.
+directive(op(Priority, Type, Names), _, B, G) :- !,
+    forall(member(M, [B, G]),
+           ( qualify_op_names(Names, M, Qualified),
+             op(Priority, Type, Qualified) )).
 directive(Directive, Kind, B, G) :-
     once(B:Directive),
     (   Kind == k, load_directive(Directive)
@@ -291,8 +295,16 @@ directive(Directive, Kind, B, G) :-
 load_directive(use_module(_)).
 load_directive(use_module(_, _)).
 load_directive(ensure_loaded(_)).
-load_directive(op(_, _, _)).
-load_directive(set_prolog_flag(_, _)).
+
+%   op/3 acts on the module named in the operator (default: user), so qualify every name.
+qualify_op_names(Names, M, Qualified) :-
+    (   is_list(Names)
+    ->  maplist(qualify_op_name(M), Names, Qualified)
+    ;   qualify_op_name(M, Names, Qualified)
+    ).
+
+qualify_op_name(_, Name, Name) :- Name = _:_, !.
+qualify_op_name(M, Name, M:Name).
 
 %!  ensure_dynamic(+Module, +Head) is det.
 %   Declares Head's predicate dynamic in Module unless it is defined there already.
