@@ -5,7 +5,9 @@ Runs bench/reference_agent.goal for a fixed number of cycles and, in the same pr
 (bench/reference_floor.pl) called once per cycle through goalagent.kb.engine's raw call path,
 on the same SWI-Prolog engine; (b) the same agent in python-agentspeak
 (bench/reference_agent.asl). Each is warmed up, then timed three times from a fresh start; the
-best time counts. All three must end in the same mental state, or the numbers compare
+best time counts. For information, the floor is also run with one Prolog call per rule
+(what compiling each rule, its built-in actions included, into one clause could reach).
+All implementations must end in the same mental state, or the numbers compare
 different work and the run fails. Not a test: ``python bench/cycles.py --cycles 2000``.
 """
 
@@ -33,6 +35,8 @@ GOAL_FILE = BENCH / "reference_agent.goal"
 FLOOR_FILE = BENCH / "reference_floor.pl"
 ASL_FILE = BENCH / "reference_agent.asl"
 FLOOR_MODULE = "ref_floor"
+FLOOR_RULES = ("event_high", "event_low", "count", "accumulate", "flip", "move_checkpoint",
+               "commit")
 REPEATS = 3
 WARMUP_CYCLES = 200
 TARGET_VS_AGENTSPEAK = 5.0
@@ -116,15 +120,26 @@ def load_floor(engine: Engine) -> None:
 
 def floor_run(cycles: int) -> tuple[float, FinalState]:
     """Seconds for ``cycles`` calls of ref_floor:step/0 from its initial state."""
+    return _floor(cycles, ("step",))
+
+
+def floor_per_rule_run(cycles: int) -> tuple[float, FinalState]:
+    """As :func:`floor_run` with one Prolog call per rule (and one for blind commitment)."""
+    return _floor(cycles, FLOOR_RULES)
+
+
+def _floor(cycles: int, predicates: tuple[str, ...]) -> tuple[float, FinalState]:
+    """Seconds for ``cycles`` cycles, each calling ``predicates`` of ref_floor in turn."""
     engine = get_engine()
     load_floor(engine)
     engine.call("reset", module=FLOOR_MODULE)
-    pred = engine.predicate("step", 0, FLOOR_MODULE)
+    preds = [engine.predicate(name, 0, FLOOR_MODULE) for name in predicates]
     solve = engine.solve
     start = time.perf_counter()
     for _ in range(cycles):
-        if not solve(pred, 0, (), 1):
-            raise BenchError("ref_floor:step/0 failed")
+        for pred in preds:
+            if not solve(pred, 0, (), 1):
+                raise BenchError("a ref_floor predicate failed")
     elapsed = time.perf_counter() - start
     result = engine.call("state", None, None, None, None, None, module=FLOOR_MODULE)
     if result is None:
@@ -222,7 +237,7 @@ def report(results: list[Measurement]) -> None:
         ratios.add_row(label, f"{value:.3f}", f">= {target}", met)
     console.print(ratios)
     state = results[0].state
-    console.print(f"All three end in the same state after {state.cycle} cycles: "
+    console.print(f"All implementations end in the same state after {state.cycle} cycles: "
                   f"sum={state.sum}, flag={state.flag}, goal checkpoint({state.checkpoint}), "
                   f"high={list(state.high)}.")
 
@@ -236,6 +251,7 @@ def main(
     implementations: list[tuple[str, Runner]] = [
         ("goalagent", goalagent_run),
         ("floor", floor_run),
+        ("floor, one call per rule", floor_per_rule_run),
         ("python-agentspeak", agentspeak_run),
     ]
     try:

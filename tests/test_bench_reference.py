@@ -54,6 +54,7 @@ def test_goalagent_and_floor_match_the_model(n: int) -> None:
     expected = model(n)
     assert cycles.goalagent_run(n)[1] == expected
     assert cycles.floor_run(n)[1] == expected
+    assert cycles.floor_per_rule_run(n)[1] == expected
 
 
 def test_floor_restarts_from_the_initial_state() -> None:
