@@ -174,3 +174,11 @@ def test_text_prolog_cannot_hold_is_a_clear_error() -> None:
     with pytest.raises(KBError, match="cannot hold"):
         engine.call("atom", Atom("bad \udc80"), module="system")
     assert engine.call("atom", Atom("fine"), module="system") is not None
+
+
+def test_write_shows_terms_like_prolog_write_and_writeq() -> None:
+    term = Struct("-", (Atom("good"), 1))
+    assert engine.write(term) == "good-1"
+    assert engine.write([Atom("a b"), "s", Struct("f", (Atom("table"),))]) == "[a b,s,f(table)]"
+    assert engine.write([Atom("a b"), "s"], quoted=True) == "['a b',\"s\"]"
+    assert engine.write(Struct(",", (Atom("x"), Atom("y")))) == "x,y"

@@ -197,6 +197,13 @@ class Engine:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""
         return format_term(term)
 
+    def write(self, term: Term, *, quoted: bool = False) -> str:
+        """``term`` as SWI's write/1 (or writeq/1) shows it: operators, lists, no quotes
+        (with ``quoted``: quotes where needed) -- for print/log output meant for people."""
+        result = self.call("write_text", term, Atom("true" if quoted else "false"), None)
+        assert result is not None
+        return str(result[2])
+
     # ------------------------------------------------------------------ calling Prolog
 
     def unique_name(self, prefix: str) -> str:

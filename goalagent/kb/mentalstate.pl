@@ -145,6 +145,14 @@ parse(Text, Term) :-
 
 name_var(Name=Var) :- Var = '$ga_var'(Name).
 
+%!  write_text(+Term, +Quoted, -String) is det.
+%   Term as write/1 (Quoted = false) or writeq/1 shows it, with ga_read's operators.
+
+write_text(Term, Quoted, String) :-
+    with_output_to(string(String),
+                   write_term(Term, [quoted(Quoted), module(ga_read), numbervars(true),
+                                     portray(false), spacing(standard)])).
+
 		 /*******************************
 		 *            ERRORS            *
 		 *******************************/
