@@ -54,7 +54,7 @@ def run(effect_fn, bounds=EXTEND, **kwargs):
 
 def test_linear_effect_settles_at_once_and_predicts_opening() -> None:
     result = run(linear)
-    assert result.settled and result.samples == 3  # exact line: RSS stays 0 from m = 2
+    assert result.settled and result.samples == 4  # exact line: RSS stays 0; n_min = 4
     assert result.model.coef_ == pytest.approx(1.293)
     assert result.model.intercept_ == pytest.approx(0.007, abs=1e-12)
     assert result.theta_max == 0.1
@@ -107,7 +107,7 @@ def test_stop_follows_eq_5_19_on_recorded_samples(seed: int) -> None:
     for m in range(1, len(theta) + 1):
         slope, intercept = np.polyfit(theta[:m], effect[:m], 1) if m > 1 else (0.0, effect[0])
         rss.append(float(np.sum((effect[:m] - (intercept + slope * theta[:m])) ** 2)))
-    stops = [m for m in range(3, 26) if m <= len(rss) and abs(rss[m - 1] - rss[m - 2]) < tol]
+    stops = [m for m in range(4, 26) if m <= len(rss) and abs(rss[m - 1] - rss[m - 2]) < tol]
     expected = stops[0] if stops else 25
     assert result.samples == expected == len(theta)
     assert result.settled == bool(stops)

@@ -33,7 +33,7 @@ def test_extend_arm_on_the_lid_is_learned_and_verified(world: GarbageWorld, tmp_
     )
     assert format_term(result.afford_term) == "afford(lid,extend_arm,opened,0,0,0.3)"
     assert result.e_max >= DELTA and result.theta_max == 0.1
-    assert 3 <= result.samples <= 8
+    assert 4 <= result.samples <= 8
     assert result.model.effect_.max() >= DELTA  # the samples really opened the lid
     assert world.opening() == pytest.approx(0.0, abs=1e-3)  # the can is left as found
     # rule 6.12 goes on with θ_max (6.13): the observed effect verifies the affordance
@@ -89,3 +89,14 @@ def test_effects_come_from_the_given_perception(world: GarbageWorld) -> None:
     seen = learn_in_world(world, perception=DoubledOpening(), **options)
     assert np.array_equal(seen.model.theta_, truth.model.theta_)
     assert seen.model.effect_ == pytest.approx(2 * truth.model.effect_, abs=1e-6)
+
+
+def test_default_n_min_does_not_settle_on_three_lucky_samples(world: GarbageWorld) -> None:
+    """o3, seed 8: three short pushes look settled at n_min = 3 and miss the working action."""
+    options = dict(part="lid", action="extend_arm", delta=DELTA, n_max=10, random_state=8)
+    world.reset("o3", seed=0)
+    hasty = learn_in_world(world, n_min=3, **options)
+    world.reset("o3", seed=0)
+    default = learn_in_world(world, **options)
+    assert hasty.samples == 3 and hasty.afford_term.args[5] == 0.05
+    assert default.samples >= 4 and default.afford_term.args[5] == 0.3
