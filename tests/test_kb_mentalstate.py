@@ -471,3 +471,10 @@ def test_operator_and_library_directives_stay_in_the_agent() -> None:
             plain.query("bel", "X = (a ===> b)")
         with pytest.raises(KBError, match="Operator expected"):
             get_engine().check_query("X = (a ===> b)")
+
+
+def test_comments_in_queries_and_cyclic_answers(empty: MentalState) -> None:
+    assert empty.query("bel", "X = 1 % the answer") == [{"X": 1}]
+    with pytest.raises(KBError, match="cyclic"):
+        empty.query("bel", "X = f(X)")
+    assert empty.query("bel", "true") == [{}]

@@ -279,6 +279,10 @@ class Engine:
                         break
                     seen: list[tuple[int, Var]] = []
                     answers.append([get(base + i, seen, marks) for i in outputs])
+            except (RecursionError, ctypes.ArgumentError) as error:
+                if isinstance(error, ctypes.ArgumentError) and "Recursion" not in str(error):
+                    raise
+                raise KBError("an answer is a cyclic or too deeply nested term") from None
             finally:
                 PL_cut_query(qid)
             if record is not None:
