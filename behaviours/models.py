@@ -3,8 +3,8 @@
 ``LinearEffectModel`` is a scikit-learn regressor e = b + c·θ over one action parameter that
 also tracks the residual sum of squares after every (partial) fit, so a learner can tell when
 the regression has settled (eq. 5.18/5.19). ``ModelStore`` keeps one model per key, normally
-(can, part, action), in a JSON file that is replaced atomically on every change, so a crash
-never leaves a half-written store and models survive the process.
+(can, part, action), oldest first, in a JSON file that is replaced atomically on every change,
+so a crash never leaves a half-written store and models survive the process.
 """
 
 from __future__ import annotations
@@ -180,11 +180,24 @@ class ModelStore:
         """The model stored under key, if any."""
         return self._models.get(tuple(key))
 
+    def lookup(self, can: str, part: str, action: str) -> StoredModel | None:
+        """The model for (can, part, action), else the newest one for (part, action) on another
+        can: what the robot knows about that part from elsewhere (§6.4.2, Experiment 2 first
+        uses on o2 the lid model learned on o1)."""
+        exact = self._models.get((can, part, action))
+        if exact is not None:
+            return exact
+        for key in reversed(self._models):
+            if len(key) == 3 and key[1:] == (part, action):
+                return self._models[key]
+        return None
+
     def __contains__(self, key: object) -> bool:
         return isinstance(key, (tuple, list)) and tuple(key) in self._models
 
     def __iter__(self) -> Iterator[tuple[str, ...]]:
-        return iter(sorted(self._models))
+        """Keys from the oldest stored to the newest."""
+        return iter(list(self._models))
 
     def __len__(self) -> int:
         return len(self._models)
@@ -195,7 +208,7 @@ class ModelStore:
         """Store (or replace) the model under key; the store changes only if the write succeeds."""
         if not key or not all(isinstance(part, str) and part for part in key):
             raise ValueError(f"a model key is a tuple of non-empty strings, got {key!r}")
-        models = dict(self._models)
+        models = {k: v for k, v in self._models.items() if k != tuple(key)}  # newest last
         models[tuple(key)] = StoredModel(tuple(key), check_bounds(bounds), model)
         self._write(models)
         self._models = models
@@ -205,7 +218,7 @@ class ModelStore:
         payload = {
             "format": STORE_FORMAT,
             "version": STORE_VERSION,
-            "models": [models[key].to_record() for key in sorted(models)],
+            "models": [stored.to_record() for stored in models.values()],
         }
         text = json.dumps(payload, indent=1)
         self.path.parent.mkdir(parents=True, exist_ok=True)

@@ -41,7 +41,7 @@ def test_models_survive_the_process(tmp_path: Path) -> None:
     body = learn_into(store, ("o1", "body", "extend_arm"), 0.2, seed=1)
     reread = ModelStore(path)
     assert len(reread) == 2
-    assert list(reread) == [("o1", "body", "extend_arm"), ("o1", "lid", "extend_arm")]
+    assert list(reread) == [("o1", "lid", "extend_arm"), ("o1", "body", "extend_arm")]
     for key, result in ((("o1", "lid", "extend_arm"), lid), (("o1", "body", "extend_arm"), body)):
         stored = reread.get(key)
         assert stored is not None and stored.bounds == (0.0, 0.1)
@@ -51,7 +51,7 @@ def test_models_survive_the_process(tmp_path: Path) -> None:
             (result.theta_max, result.e_max)
         )
     assert reread.get(("o2", "lid", "extend_arm")) is None
-    record = json.loads(path.read_text())["models"][1]
+    record = json.loads(path.read_text())["models"][0]
     assert record["key"] == ["o1", "lid", "extend_arm"]
     assert record["slope"] == pytest.approx(lid.model.coef_)
 
@@ -64,6 +64,21 @@ def test_relearning_replaces_the_model_under_its_key(tmp_path: Path) -> None:
     reread = ModelStore(path)
     assert len(reread) == 1
     assert reread.get(("o1", "lid", "extend_arm")).model.coef_ == pytest.approx(second.model.coef_)
+
+
+def test_lookup_falls_back_to_the_newest_model_of_the_part_on_another_can(
+    tmp_path: Path,
+) -> None:
+    store = ModelStore(tmp_path / "effects.json")
+    o1 = learn_into(store, ("o1", "lid", "extend_arm"), 1.3)
+    o3 = learn_into(store, ("o3", "lid", "extend_arm"), 0.9, seed=2)
+    learn_into(store, ("o3", "lid", "lift_up"), 0.0, seed=3)
+    reread = ModelStore(tmp_path / "effects.json")
+    assert reread.lookup("o1", "lid", "extend_arm").model.coef_ == pytest.approx(o1.model.coef_)
+    assert reread.lookup("o2", "lid", "extend_arm").model.coef_ == pytest.approx(o3.model.coef_)
+    assert reread.lookup("o2", "handle", "extend_arm") is None
+    learn_into(reread, ("o1", "lid", "extend_arm"), 1.1, seed=5)  # relearned: newest again
+    assert ModelStore(tmp_path / "effects.json").lookup("o2", "lid", "extend_arm").key[0] == "o1"
 
 
 def test_default_key_is_object_and_action(tmp_path: Path) -> None:
