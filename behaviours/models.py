@@ -181,9 +181,11 @@ class ModelStore:
         return self._models.get(tuple(key))
 
     def lookup(self, can: str, part: str, action: str) -> StoredModel | None:
-        """The model for (can, part, action), else the newest one for (part, action) on another
-        can: what the robot knows about that part from elsewhere (§6.4.2, Experiment 2 first
-        uses on o2 the lid model learned on o1)."""
+        """The model for (can, part, action), else the newest for (part, action) on another can.
+
+        That is what the robot knows of the part from elsewhere: Experiment 2 (§6.4.2) first
+        uses the lid model learned on o1 for o2's lid.
+        """
         exact = self._models.get((can, part, action))
         if exact is not None:
             return exact
