@@ -302,6 +302,7 @@ class Engine:
         self._thread = threading.get_ident()
 
     def _check(self, text: str, kind: str) -> tuple[str, ...]:
+        """Reads ``text`` as a clause or query with SWI's reader (see check/3 in the .pl)."""
         if not isinstance(text, str):
             raise KBError(f"Prolog text expected, got {text!r}")
         result = self.call("check", text, Atom(kind), None)
@@ -336,6 +337,7 @@ class Engine:
             PL_discard_foreign_frame(fid)
 
     def _atom_handle(self, name: str) -> int:
+        """The atom_t for ``name`` (cached and kept registered while the cache has room)."""
         handle = self._atoms.get(name)
         if handle is None:
             data = name.encode("utf-8")
@@ -348,6 +350,7 @@ class Engine:
         return handle
 
     def _functor(self, name: str, arity: int) -> int:
+        """The functor_t for name/arity (functors are never garbage collected: cache them)."""
         key = (name, arity)
         handle = self._functors.get(key)
         if handle is None:

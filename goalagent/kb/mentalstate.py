@@ -101,6 +101,7 @@ def _match(pattern: Term, value: Term, out: dict[str, Term]) -> None:
 
 
 def _text_of(formula: ast.PrologText | str) -> str:
+    """The Prolog text of a program fragment or plain string (anything else is a KBError)."""
     if isinstance(formula, ast.PrologText):
         return formula.text
     if isinstance(formula, str):
@@ -120,10 +121,10 @@ class MentalState:
         self._g = Atom(f"ga_g{number}")
         self._closed = False
         self._compiled: dict[str, CompiledCondition] = {}
-        self._engine.call("new_agent", self._b, self._g)
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
+        self._engine.call("new_agent", self._b, self._g)
         result = self._call("load", self._b, self._g, items, None)[3]
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
@@ -145,13 +146,16 @@ class MentalState:
         return result
 
     def _term(self, formula: ast.PrologText | str, bindings: Mapping[str, Term] | None) -> Term:
+        """The formula as a term with the bindings applied (parsed once per text)."""
         term = self._engine.parse_term(_text_of(formula))
         return _substitute(term, bindings) if bindings else term
 
     def __enter__(self) -> MentalState:
+        """``with MentalState(...) as state:`` closes the state at the end of the block."""
         return self
 
     def __exit__(self, *exc: Any) -> None:
+        """Closes the state (frees its Prolog modules)."""
         self.close()
 
     # ------------------------------------------------------------------ conditions
@@ -255,6 +259,7 @@ class MentalState:
 
     def _update(self, mode: str, formula: ast.PrologText | str,
                 bindings: Mapping[str, Term] | None) -> list[tuple[str, Term]]:
+        """Runs insert or delete (``mode``) in Prolog; returns the changes made."""
         term = self._term(formula, bindings)
         changes = self._call("update", self._b, self._g, Atom(mode), term, None)[4]
         assert isinstance(changes, list)
@@ -322,6 +327,7 @@ class MentalState:
         return percepts
 
     def _message(self, peer: str, mood: str, content: Term) -> list[Term]:
+        """The (peer, content) arguments of received/2 or sent/2 for a message in ``mood``."""
         if mood not in _MOODS:
             raise KBError(f"unknown message mood {mood!r}: use ':', '!' or '?'")
         wrapper = _MOODS[mood]
