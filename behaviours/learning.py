@@ -10,7 +10,8 @@ the prediction; ``verification_percept`` turns the observed effect into ``afford
 or ``afford(..., 1, 0, 0)`` (§6.3.3).
 
 ``learn`` knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
-``learn_in_world`` runs it on the simulated can through ``behaviours.skills.perform_skill``.
+``learn_in_world`` runs it on the simulated can through ``behaviours.skills.perform_skill``,
+and ``AffordanceBehaviours`` turns an agent's ``learn`` and ``apply`` actions into percepts.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
@@ -56,7 +58,7 @@ class RandomExplorer(BaseEstimator):
         n_max: int = 10,
         n_min: int = 4,
         settle_tol: float = 1e-4,
-        random_state: int | None = None,
+        random_state: int | np.random.RandomState | None = None,
     ) -> None:
         self.bounds = bounds
         self.n_max = n_max
@@ -149,7 +151,7 @@ def learn(
     bounds: tuple[float, float],
     delta: float,
     n_max: int,
-    random_state: int | None,
+    random_state: int | np.random.RandomState | None,
     store: ModelStore | None = None,
     key: Sequence[str] | None = None,
     n_min: int = 4,
@@ -191,6 +193,19 @@ def learn(
     )
 
 
+def _measured_effect(
+    world: GarbageWorld, perception: Perception | None, action: str, part: str, theta: float
+) -> float:
+    """Perform action(part, θ); the change of opening (eq. 5.3), by truth or by perception."""
+    from behaviours.skills import perform_skill
+
+    if perception is None:
+        return perform_skill(world, action, part, theta).effect
+    before = perception.observe(world).opening
+    perform_skill(world, action, part, theta)
+    return perception.observe(world).opening - before
+
+
 def learn_in_world(
     world: GarbageWorld,
     *,
@@ -200,7 +215,7 @@ def learn_in_world(
     mode: str = "random",
     delta: float,
     n_max: int,
-    random_state: int | None,
+    random_state: int | np.random.RandomState | None,
     store: ModelStore | None = None,
     perception: Perception | None = None,
     **options: float,
@@ -214,7 +229,7 @@ def learn_in_world(
     it (e.g. the camera, eq. 5.14) when one is given. ``options`` go to ``learn`` (n_min,
     settle_tol, r1, r2).
     """
-    from behaviours.skills import check_skill, perform_skill
+    from behaviours.skills import check_skill
     from sim.world import THETA_BOUNDS
 
     _check_mode(mode)
@@ -223,11 +238,7 @@ def learn_in_world(
 
     def effect(theta: float) -> float:
         world.set_opening(start)
-        if perception is None:
-            return perform_skill(world, action, part, theta).effect
-        before = perception.observe(world).opening
-        perform_skill(world, action, part, theta)
-        return perception.observe(world).opening - before
+        return _measured_effect(world, perception, action, part, theta)
 
     try:
         return learn(
@@ -246,3 +257,93 @@ def learn_in_world(
         )
     finally:
         world.set_opening(start)
+
+
+@dataclass(frozen=True)
+class ApplyResult:
+    """What using an affordance reports: the verification percept, the θ used, the effect."""
+
+    afford_term: Struct  # afford(Obj, Act, Eff, 1, 1, 1) or afford(Obj, Act, Eff, 1, 0, 0)
+    theta: float
+    effect: float
+
+
+class AffordanceBehaviours:
+    """The affordance actions an agent sends to the simulated can: learn and apply (§6.3).
+
+    ``learn(part, action)`` explores (§6.3.4) and reports the r1/r2 percept; ``apply(part,
+    action)`` acts once with the best known θ (eq. 6.13) and reports the verification percept
+    (§6.3.3). One seeded generator feeds every exploration, so a whole run is reproducible.
+    """
+
+    def __init__(
+        self,
+        world: GarbageWorld,
+        *,
+        delta: float = 0.1,
+        n_max: int = 10,
+        seed: int = 0,
+        store: ModelStore | None = None,
+        perception: Perception | None = None,
+        **options: float,
+    ) -> None:
+        self.world = world
+        self.delta = delta
+        self.n_max = n_max
+        self.store = store
+        self.perception = perception
+        self.options = options
+        self._rng = np.random.RandomState(seed)
+        self._theta: dict[tuple[str, str, str], float] = {}
+
+    def learn(
+        self, part: str, action: str, effect_name: str = "opened", mode: str = "random"
+    ) -> LearnResult:
+        """Explore action on part; remember θ_max for this can."""
+        result = learn_in_world(
+            self.world,
+            part=part,
+            action=action,
+            effect_name=effect_name,
+            mode=mode,
+            delta=self.delta,
+            n_max=self.n_max,
+            random_state=self._rng,
+            store=self.store,
+            perception=self.perception,
+            **self.options,
+        )
+        self._theta[(self.world.can, part, action)] = result.theta_max
+        return result
+
+    def theta_for(self, part: str, action: str) -> float:
+        """θ_max learned on this can in this run, else from the store, else the largest θ.
+
+        The store may answer with another can's model of the part (``ModelStore.lookup``).
+        """
+        from sim.world import THETA_BOUNDS
+
+        known = self._theta.get((self.world.can, part, action))
+        if known is not None:
+            return known
+        stored = self.store.lookup(self.world.can, part, action) if self.store else None
+        if stored is not None:
+            return stored.model.maximum(stored.bounds)[0]
+        return THETA_BOUNDS[action][1]
+
+    def apply(self, part: str, action: str, effect_name: str = "opened") -> ApplyResult:
+        """Act once with theta_for(part, action) and verify the effect against δ (6.9)."""
+        from behaviours.skills import check_skill
+        from sim.world import THETA_BOUNDS
+
+        check_skill(self.world, action, part, THETA_BOUNDS.get(action, (0.0, 0.0))[1])
+        theta = self.theta_for(part, action)
+        effect = _measured_effect(self.world, self.perception, action, part, theta)
+        percept = verification_percept(
+            obj=part,
+            action=action,
+            effect_name=effect_name,
+            observed_effect=effect,
+            delta=self.delta,
+        )
+        return ApplyResult(afford_term=percept, theta=theta, effect=effect)

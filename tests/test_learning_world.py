@@ -7,7 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from behaviours.learning import LearningModeUnavailable, learn_in_world, verification_percept
+from behaviours.learning import (
+    AffordanceBehaviours,
+    LearningModeUnavailable,
+    learn_in_world,
+    verification_percept,
+)
 from behaviours.models import ModelStore
 from behaviours.perception import Observation
 from behaviours.skills import SkillError, perform_skill
@@ -100,3 +105,38 @@ def test_default_n_min_does_not_settle_on_three_lucky_samples(world: GarbageWorl
     default = learn_in_world(world, **options)
     assert hasty.samples == 3 and hasty.afford_term.args[5] == 0.05
     assert default.samples >= 4 and default.afford_term.args[5] == 0.3
+
+
+def test_behaviours_learn_apply_and_carry_theta_to_another_can(
+    world: GarbageWorld, tmp_path: Path
+) -> None:
+    """Experiment 1 then 2 in miniature: learned on o1, the lid push fails on o2's lid."""
+    world.reset("o1", seed=0)
+    robot = AffordanceBehaviours(world, store=ModelStore(tmp_path / "effects.json"), seed=4)
+    assert robot.theta_for("lid", "extend_arm") == 0.1  # nothing learned: the largest θ
+    learned = robot.learn("lid", "extend_arm")
+    assert learned.afford_term.args[5] == 0.3
+    used = robot.apply("lid", "extend_arm")
+    assert used.theta == learned.theta_max
+    assert format_term(used.afford_term) == "afford(lid,extend_arm,opened,1,1,1)"
+    assert world.opening() >= DELTA
+
+    world.reset("o2", seed=0)
+    later = AffordanceBehaviours(world, store=ModelStore(tmp_path / "effects.json"))
+    assert later.theta_for("lid", "extend_arm") == learned.theta_max  # o1's model
+    failed = later.apply("lid", "extend_arm")
+    assert format_term(failed.afford_term) == "afford(lid,extend_arm,opened,1,0,0)"
+    with pytest.raises(LearningModeUnavailable, match="transfer-learning issue"):
+        later.learn("handle", "lift_up", mode="transfer")
+
+
+def test_behaviours_are_reproducible_under_a_seed(world: GarbageWorld) -> None:
+    runs = []
+    for _ in range(2):
+        world.reset("o1", seed=0)
+        robot = AffordanceBehaviours(world, seed=9, n_max=5)
+        runs.append(
+            [robot.learn("lid", a).model.theta_.tolist() for a in ("extend_arm", "lift_up")]
+        )
+    assert runs[0] == runs[1]
+    assert runs[0][0] != runs[0][1]  # one generator feeds successive explorations
