@@ -191,6 +191,37 @@ def test_empty_sections_are_allowed() -> None:
     assert main_rules(program) == ()
 
 
+def test_import_of_a_prolog_file_adds_knowledge(tmp_path: Path) -> None:
+    (tmp_path / "coffee.pl").write_text(
+        "% shared knowledge\nrequires(coffee, water).\nrequires(coffee, grounds).\n",
+        encoding="utf-8",
+    )
+    agent = tmp_path / "maker.goal"
+    agent.write_text(
+        'init module {\n    #import "coffee.pl".\n    beliefs { have(water). }\n}\n',
+        encoding="utf-8",
+    )
+    program = parse_agent_file(agent)
+    assert [k.text for k in program.knowledge] == [
+        "requires(coffee, water)", "requires(coffee, grounds)",
+    ]
+    assert program.knowledge[1].pos.file == str(tmp_path / "coffee.pl")
+    assert program.knowledge[1].pos.line == 3
+
+
+def test_import_errors_are_located(tmp_path: Path) -> None:
+    agent = tmp_path / "maker.goal"
+    agent.write_text('init module {\n    #import "missing.pl".\n}\n', encoding="utf-8")
+    with pytest.raises(GoalSyntaxError) as missing:
+        parse_agent_file(agent)
+    assert (missing.value.file, missing.value.line) == (str(agent), 2), str(missing.value)
+    (tmp_path / "bad.pl").write_text("ok(1).\nbroken(a b).\n", encoding="utf-8")
+    agent.write_text('init module {\n    #import "bad.pl".\n}\n', encoding="utf-8")
+    with pytest.raises(GoalSyntaxError) as bad:
+        parse_agent_file(agent)
+    assert (bad.value.file, bad.value.line) == (str(tmp_path / "bad.pl"), 2), str(bad.value)
+
+
 # ----------------------------------------------------------------------------- options
 
 
