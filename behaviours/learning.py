@@ -17,6 +17,7 @@ and ``AffordanceBehaviours`` turns an agent's ``learn`` and ``apply`` actions in
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -81,7 +82,7 @@ class RandomExplorer(BaseEstimator):
         for k in range(1, self.n_max + 1):
             theta = high - float(rng.uniform(0.0, high - low))  # lo < θ <= hi
             effect = effect_fn(theta)
-            if not isinstance(effect, (int, float)) or not math.isfinite(effect):
+            if not isinstance(effect, numbers.Real) or not math.isfinite(effect):
                 raise ValueError(
                     f"the effect function returned {effect!r} for theta={theta:.4f}; "
                     "it must return a finite number (the change of opening in metres)"

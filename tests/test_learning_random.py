@@ -156,6 +156,9 @@ def test_user_mistakes_give_clear_errors(kwargs: dict, message: str) -> None:
 def test_a_bad_effect_value_is_named() -> None:
     with pytest.raises(ValueError, match="returned nan for theta="):
         run(lambda t: float("nan"))
+    with pytest.raises(ValueError, match="returned 'wide' for theta="):
+        run(lambda t: "wide")
+    assert run(lambda t: np.float32(t)).model.coef_ == pytest.approx(1.0)  # any real number
 
 
 def test_verification_percepts_follow_6_3_3() -> None:
