@@ -478,3 +478,12 @@ def test_comments_in_queries_and_cyclic_answers(empty: MentalState) -> None:
     with pytest.raises(KBError, match="cyclic"):
         empty.query("bel", "X = f(X)")
     assert empty.query("bel", "true") == [{}]
+
+
+def test_agent_modules_read_text_like_swi(empty: MentalState) -> None:
+    answers = empty.query("bel", "X = \"abc\", Y = `ab`, Z = 0'c, W = {a}, V = 'it''s'")
+    assert answers == [{"X": "abc", "Y": [97, 98], "Z": 99,
+                        "W": Struct("{}", (a("a"),)), "V": a("it's")}]
+    assert not isinstance(answers[0]["X"], Atom)
+    empty.insert('note("hello world")')
+    assert empty.beliefs() == [Struct("note", ("hello world",))]
