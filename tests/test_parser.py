@@ -415,6 +415,12 @@ def test_listall_rule() -> None:
     assert rule.actions[0].name == "insert"
 
 
+def test_listall_written_left_to_right() -> None:
+    """GOAL 5's grammar also allows ``listall MSC -> Var do ...``."""
+    rule = one_rule("listall bel(room(R)) -> Rooms do insert(rooms(Rooms)).")
+    assert (rule.kind, rule.list_var, literal_ops(rule.condition)) == ("listall", "Rooms", ["bel"])
+
+
 # ----------------------------------------------------------------------------- macros
 
 
@@ -550,6 +556,15 @@ def test_actionspecs_plain_internal_and_without_parameters() -> None:
     assert ([p.text for p in make.params], make.internal) == (["Product"], True)
     assert (skip.arity, skip.internal) == (0, True)
     assert (pick.arity, pick.internal) == (0, False)
+
+
+def test_environment_action_marked_at_env() -> None:
+    """GOAL 5's grammar marks actions for the environment with ``@env`` (the default)."""
+    program = parse_agent(
+        "init module { actionspec { move(X)@env { pre { true } post { at(X) } } } }"
+    )
+    (spec,) = program.actionspecs
+    assert (spec.name, spec.arity, spec.internal) == ("move", 1, False)
 
 
 # ----------------------------------------------------------------------------- comments
