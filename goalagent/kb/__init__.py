@@ -1,4 +1,24 @@
-"""The knowledge-representation layer: the only part of goalagent that talks to SWI-Prolog."""
+"""The knowledge-representation layer: the only part of goalagent that talks to SWI-Prolog.
+
+- ``engine.py``: the process's one SWI-Prolog (``get_engine()``): syntax checks with SWI's own
+  reader (``check_clause``/``check_query`` -> variable names, ``PrologSyntaxError.offset``),
+  ``parse_term``, ``write`` and the Python <-> Prolog term conversion (raw C interface).
+- ``mentalstate.py`` + ``mentalstate.pl``: ``MentalState``, one agent's knowledge, beliefs,
+  goal bases, percepts and mailbox in two private Prolog modules.
+
+Typical use::
+
+    state = MentalState("robot", knowledge=program.knowledge, beliefs=program.beliefs)
+    state.declare_updates(formulas_of_all_inserts_deletes_posts_and_goals)
+    state.adopt("on(a, b), on(b, table)")
+    rule = state.compile(rule.condition)          # once per rule
+    for answer in state.solutions(rule, {"X": Atom("a")}, limit=1):
+        state.insert("not(on(X, Y)), on(X, table)", answer)
+    state.blind_commitment()
+    state.close()
+
+Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).
+"""
 
 from goalagent.kb.engine import (
     Engine,
