@@ -10,6 +10,8 @@ from collections import Counter
 from collections.abc import Iterator
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.stats import chisquare
 
 from goalagent.ast import Pos, PrologText
@@ -251,3 +253,27 @@ def test_spin_draws_from_an_agents_own_wheel(agent: AgentBeliefs) -> None:
     assert chisquare([counts["a"], counts["c"]], [750, 2250]).pvalue > 0.001
     assert not agent.holds("afford_spin([0.0-a, 0-b], _)")
     assert not agent.holds("afford_spin([], _)")
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    start=st.floats(min_value=0.01, max_value=0.99),
+    outcomes=st.lists(st.booleans(), min_size=1, max_size=25),
+)
+def test_verifications_make_reliability_the_success_rate(
+    start: float, outcomes: list[bool]
+) -> None:
+    """Eq. 6.3 from (0, 0, r): after n >= 1 verified uses, Rel = Suc / Tot whatever r was."""
+    beliefs = AgentBeliefs()
+    try:
+        percepts = ",".join(
+            "afford(lid,a,opened,1,1,1)" if ok else "afford(lid,a,opened,1,0,0)" for ok in outcomes
+        )
+        (answer,) = beliefs.all(
+            f"foldl([P, Old, New]>>afford_merge(Old, P, New), [{percepts}],"
+            f" afford(lid,a,opened,0,0,{format_term(start)}), afford(lid,a,opened,T,S,R))"
+        )
+    finally:
+        beliefs.ms.close()
+    assert (answer["T"], answer["S"]) == (len(outcomes), sum(outcomes))
+    assert answer["R"] == pytest.approx(sum(outcomes) / len(outcomes), abs=1e-9)
