@@ -197,6 +197,10 @@ class Engine:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""
         return format_term(term)
 
+    def seed_random(self, seed: int) -> None:
+        """Seeds Prolog's random generator (random/1, random_member/2, ...) for repeatable runs."""
+        self.call("set_random", Struct("seed", (int(seed),)), module="system")
+
     def write(self, term: Term, *, quoted: bool = False) -> str:
         """``term`` as SWI's write/1 (or writeq/1) shows it: operators, lists, no quotes
         (with ``quoted``: quotes where needed) -- for print/log output meant for people."""
