@@ -198,3 +198,10 @@ def test_seeding_makes_prolog_random_repeatable() -> None:
     assert draws() == first
     engine.seed_random(8)
     assert draws() != first
+
+
+def test_a_final_full_stop_is_pointed_at() -> None:
+    with pytest.raises(PrologSyntaxError) as info:
+        engine.check_clause("foo(X) :- X > 0.  ")
+    assert info.value.offset == 15
+    assert "final '.'" in info.value.message

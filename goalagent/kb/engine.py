@@ -316,8 +316,12 @@ class Engine:
         assert isinstance(outcome, Struct)
         if outcome.name == "ok":
             return tuple(str(name) for name in outcome.args[0])
-        message, offset = outcome.args
-        raise PrologSyntaxError(str(message), int(offset))
+        message, offset = str(outcome.args[0]), int(outcome.args[1])
+        stripped = text.rstrip()
+        if stripped.endswith(".") and offset >= len(stripped) - 1:
+            offset = len(stripped) - 1
+            message += " (leave out the final '.')"
+        raise PrologSyntaxError(message, offset)
 
     def _runtime_error(self, record: int) -> PrologRuntimeError:
         """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""

@@ -119,7 +119,7 @@ context_offset(string(_, Char), Char) :- integer(Char), !.
 context_offset(_, 0).
 
 syntax_message(one_term_expected, "end of clause expected (one term only)") :- !.
-syntax_message(end_of_file, "empty text: a term was expected") :- !.
+syntax_message(end_of_file, "end_of_file marks the end of a file: not a term here") :- !.
 syntax_message(not_a_clause, "not a clause: a fact, rule or directive was expected") :- !.
 syntax_message(What, Message) :-
     catch(( '$messages':translate_message(error(syntax_error(What), _), Lines, []),
