@@ -487,3 +487,25 @@ def test_agent_modules_read_text_like_swi(empty: MentalState) -> None:
     assert not isinstance(answers[0]["X"], Atom)
     empty.insert('note("hello world")')
     assert empty.beliefs() == [Struct("note", ("hello world",))]
+
+
+def test_updates_remove_achieved_goals_at_once_and_report_them_once(empty: MentalState) -> None:
+    assert empty.adopt("at(home)")
+    assert empty.adopt("rich")
+    empty.insert("at(home)")
+    assert empty.goals() == [[a("rich")]]
+    assert empty.blind_commitment() == [[Struct("at", (a("home"),))]]
+    assert empty.blind_commitment() == []
+    with MentalState("k", knowledge=[text("happy :- percept(sunny)")]) as other:
+        assert other.adopt("happy")
+        other.set_percepts([a("sunny")])
+        assert other.goals() == [[a("happy")]]
+        assert other.blind_commitment() == [[a("happy")]]
+        assert other.goals() == []
+
+
+def test_instantiate_returns_fresh_terms(empty: MentalState) -> None:
+    first = empty.instantiate("[a, [b]]", {})
+    assert isinstance(first, list)
+    first.append(a("c"))
+    assert empty.instantiate("[a, [b]]", {}) == [a("a"), [a("b")]]

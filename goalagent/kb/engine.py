@@ -182,6 +182,10 @@ class Engine:
 
     def parse_term(self, text: str) -> Term:
         """The term in ``text``: named variables become ``Var(name)``, ``_`` ``Var('_')``."""
+        return _copy(self.parsed(text))
+
+    def parsed(self, text: str) -> Term:
+        """As :meth:`parse_term`, but the shared cached term: callers must not mutate it."""
         cached = self._parsed.get(text)
         if cached is None:
             self.check_query(text)
@@ -191,7 +195,7 @@ class Engine:
             cached = result[1]
             if len(self._parsed) < _PARSE_CACHE_MAX:
                 self._parsed[text] = cached
-        return _copy(cached)
+        return cached
 
     def format(self, term: Term) -> str:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""

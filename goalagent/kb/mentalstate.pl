@@ -470,6 +470,17 @@ update(B, G, Mode, Formula, Changes) :-
     foldl(delete_fact(B), Dels, Changes, Changes1),
     foldl(add_fact(B, G), Adds, Changes1, []).
 
+%!  update(+B, +G, +Mode, +Formula, -Changes, -Achieved) is det.
+%   update/5, then blind commitment when beliefs changed (saves the agent a second call).
+
+update(B, G, Mode, Formula, Changes, Achieved) :-
+    update(B, G, Mode, Formula, Changes),
+    (   Changes \== [],
+        G:'$goal'(_, _)
+    ->  blind_commitment(B, G, Achieved)
+    ;   Achieved = []
+    ).
+
 split_literals([], _, [], []).
 split_literals([L|Ls], Mode, Adds, Dels) :-
     (   nonvar(L), ( L = not(P) ; L = (\+ P) )

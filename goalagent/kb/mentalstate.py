@@ -121,6 +121,8 @@ class MentalState:
         self._g = Atom(f"ga_g{number}")
         self._closed = False
         self._compiled: dict[str, CompiledCondition] = {}
+        self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
+        self._recheck = True  # beliefs or goals changed in a way updates did not check
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
@@ -146,8 +148,9 @@ class MentalState:
         return result
 
     def _term(self, formula: ast.PrologText | str, bindings: Mapping[str, Term] | None) -> Term:
-        """The formula as a term with the bindings applied (parsed once per text)."""
-        term = self._engine.parse_term(_text_of(formula))
+        """The formula as a term with the bindings applied (parsed once per text); without
+        bindings it is the engine's shared cached term, so it is only handed to Prolog."""
+        term = self._engine.parsed(_text_of(formula))
         return _substitute(term, bindings) if bindings else term
 
     def __enter__(self) -> MentalState:
@@ -163,7 +166,7 @@ class MentalState:
     def declare_updates(self, formulas: Iterable[ast.PrologText | str]) -> None:
         """Declares dynamic every predicate in these conjunctions (also under not/1), so that
         querying them before the first insert/adopt fails instead of raising an error."""
-        terms = [self._engine.parse_term(_text_of(formula)) for formula in formulas]
+        terms = [self._engine.parsed(_text_of(formula)) for formula in formulas]
         self._call("declare", self._b, self._g, terms)
 
     def compile(self, condition: ast.Condition) -> CompiledCondition:
@@ -231,7 +234,7 @@ class MentalState:
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
-        return self._term(text, bindings)
+        return _substitute(self._engine.parsed(_text_of(text)), bindings)
 
     def unify(self, pattern: ast.PrologText | str, value: Term,
               bindings: Mapping[str, Term] | None = None) -> dict[str, Term] | None:
@@ -249,20 +252,25 @@ class MentalState:
 
     def insert(self, formula: ast.PrologText | str,
                bindings: Mapping[str, Term] | None = None) -> list[tuple[str, Term]]:
-        """Adds the positive literals, deletes those under not(..); returns the changes."""
+        """Adds the positive literals, deletes those under not(..); returns the changes.
+        Goals the change achieves are removed at once (blind commitment: the agent calls
+        :meth:`blind_commitment` after every action, which then reports them)."""
         return self._update("insert", formula, bindings)
 
     def delete(self, formula: ast.PrologText | str,
                bindings: Mapping[str, Term] | None = None) -> list[tuple[str, Term]]:
-        """Deletes the positive literals, adds those under not(..); returns the changes."""
+        """Deletes the positive literals, adds those under not(..); returns the changes
+        (achieved goals are removed at once, as for :meth:`insert`)."""
         return self._update("delete", formula, bindings)
 
     def _update(self, mode: str, formula: ast.PrologText | str,
                 bindings: Mapping[str, Term] | None) -> list[tuple[str, Term]]:
-        """Runs insert or delete (``mode``) in Prolog; returns the changes made."""
+        """Runs insert or delete (``mode``) in Prolog, with blind commitment in the same call
+        when beliefs changed (its result waits for the next :meth:`blind_commitment`)."""
         term = self._term(formula, bindings)
-        changes = self._call("update", self._b, self._g, Atom(mode), term, None)[4]
-        assert isinstance(changes, list)
+        result = self._call("update", self._b, self._g, Atom(mode), term, None, None)
+        changes, achieved = result[4], result[5]
+        self._achieved.extend(achieved)
         return [(change.name, change.args[0]) for change in changes]
 
     def beliefs(self) -> list[Term]:
@@ -289,9 +297,13 @@ class MentalState:
         return removed
 
     def blind_commitment(self) -> list[list[Term]]:
-        """Removes every goal whose facts are all believed (all goal bases); returns them."""
-        removed = self._call("blind_commitment", self._b, self._g, None)[2]
-        assert isinstance(removed, list)
+        """Removes every goal whose facts are all believed (all goal bases); returns them,
+        with those already removed by insert/delete since the last call. Prolog is asked
+        only when percepts, messages or goal bases changed since (updates check themselves)."""
+        removed, self._achieved = self._achieved, []
+        if self._recheck:
+            removed += self._call("blind_commitment", self._b, self._g, None)[2]
+            self._recheck = False
         unique: list[list[Term]] = []
         for goal in removed:
             if goal not in unique:
@@ -307,6 +319,7 @@ class MentalState:
     def push_goal_base(self, goals: Iterable[Iterable[Term]] = ()) -> None:
         """Starts a new top goal base (module focus) holding ``goals`` (lists of facts)."""
         self._call("push", self._b, self._g, [list(goal) for goal in goals])
+        self._recheck = True
 
     def pop_goal_base(self) -> list[list[Term]]:
         """Removes the top goal base and returns its goals."""
@@ -319,6 +332,7 @@ class MentalState:
     def set_percepts(self, percepts: Iterable[Term]) -> None:
         """Replaces the percept base (``percept(φ)`` and ``bel(percept(φ))`` see it)."""
         self._call("set_percepts", self._b, list(percepts))
+        self._recheck = True
 
     def percepts(self) -> list[Term]:
         """The current percepts."""
@@ -338,16 +352,19 @@ class MentalState:
         """Believes ``received(Sender, φ)`` (``imp(φ)`` for '!', ``int(φ)`` for '?')."""
         fact = Struct("received", tuple(self._message(sender, mood, content)))
         self._call("add_once", self._b, fact, None)
+        self._recheck = True
 
     def add_sent(self, receiver: str, mood: str, content: Term) -> bool:
         """Believes ``sent(Receiver, φ)`` (moods as for received); False if already there."""
         fact = Struct("sent", tuple(self._message(receiver, mood, content)))
+        self._recheck = True
         return self._call("add_once", self._b, fact, None)[2] == "true"
 
     def set_identity(self, me: str, agents: Iterable[str]) -> None:
         """Believes ``me(Me)`` and ``agent(A)`` for every agent of the system."""
         names = [name if isinstance(name, Atom) else Atom(name) for name in agents]
         self._call("set_identity", self._b, self._g, Atom(me), names)
+        self._recheck = True
 
     # ------------------------------------------------------------------ lifetime
 
