@@ -509,3 +509,15 @@ def test_instantiate_returns_fresh_terms(empty: MentalState) -> None:
     assert isinstance(first, list)
     first.append(a("c"))
     assert empty.instantiate("[a, [b]]", {}) == [a("a"), [a("b")]]
+
+
+def test_update_reports_every_removed_copy_and_checks_before_changing() -> None:
+    with MentalState("dup", beliefs=[text("p(1)"), text("p(1)"), text("q(2)")]) as state:
+        assert state.delete("p(1), q(_), r(9)") == [
+            ("-", Struct("p", (1,))), ("-", Struct("p", (1,))), ("-", Struct("q", (2,)))]
+        state.insert("s(1)")
+        with pytest.raises(KBError, match="not ground"):
+            state.insert("not(s(1)), t(X)")
+        assert state.beliefs() == [Struct("s", (1,))]
+        assert state.insert("true, not(s(1)), (u(1), u(2)), true") == [
+            ("-", Struct("s", (1,))), ("+", Struct("u", (1,))), ("+", Struct("u", (2,)))]

@@ -460,22 +460,22 @@ conjuncts((A, B), L) :- !,
 conjuncts(true, []) :- !.
 conjuncts(X, [X]).
 
-%!  update(+B, +G, +Mode, +Formula, -Changes) is det.
-%   Mode insert: positive literals are added, not(L) deleted; delete: the inverse.
-%   Deletions happen first. Changes lists '+'(Fact) / '-'(Fact) actually made.
+%!  update(+B, +G, +Mode, +Formula, -Deleted, -Added, -Achieved) is det.
+%   Mode insert: positive literals are added, not(L) deleted; delete: the inverse. All
+%   additions are checked first, deletions happen first. Results are compact (Python knows
+%   the literals): Deleted has, per deletion, the number of facts removed (ground literal) or
+%   the list of removed instances; Added a 1 (added) or 0 (already believed) per addition.
+%   When beliefs changed and there are goals, blind commitment runs too (Achieved).
 
-update(B, G, Mode, Formula, Changes) :-
+update(B, G, Mode, Formula, Deleted, Added, Achieved) :-
     conjuncts(Formula, Lits),
     split_literals(Lits, Mode, Adds, Dels),
-    foldl(delete_fact(B), Dels, Changes, Changes1),
-    foldl(add_fact(B, G), Adds, Changes1, []).
-
-%!  update(+B, +G, +Mode, +Formula, -Changes, -Achieved) is det.
-%   update/5, then blind commitment when beliefs changed (saves the agent a second call).
-
-update(B, G, Mode, Formula, Changes, Achieved) :-
-    update(B, G, Mode, Formula, Changes),
-    (   Changes \== [],
+    maplist(must_be_inserted, Adds),
+    maplist(delete_fact(B), Dels, Deleted),
+    maplist(add_fact(B, G), Adds, Added),
+    (   (   memberchk(1, Added)
+        ;   member(Result, Deleted), Result \== 0, Result \== []
+        ),
         G:'$goal'(_, _)
     ->  blind_commitment(B, G, Achieved)
     ;   Achieved = []
@@ -496,23 +496,29 @@ split_literals([L|Ls], Mode, Adds, Dels) :-
 adds(insert, positive).
 adds(delete, negative).
 
-add_fact(B, G, Fact, Changes0, Changes) :-
-    must_be_fact(Fact, "insert"),
+must_be_inserted(Fact) :-
+    must_be_fact(Fact, "insert").
+
+add_fact(B, G, Fact, Added) :-
     (   current_predicate(_, B:Fact),
         catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
-    ->  Changes0 = Changes
+    ->  Added = 0
     ;   assertz(B:Fact),
         ensure_dynamic(G, Fact),
-        Changes0 = ['+'(Fact)|Changes]
+        Added = 1
     ).
 
-delete_fact(B, Fact, Changes0, Changes) :-
+delete_fact(B, Fact, Deleted) :-
     must_be_callable(Fact),
-    (   current_predicate(_, B:Fact)
-    ->  findall('-'(Fact), retract(B:Fact), Deleted)
+    (   ground(Fact)
+    ->  (   current_predicate(_, B:Fact)
+        ->  aggregate_all(count, retract(B:Fact), Deleted)
+        ;   Deleted = 0
+        )
+    ;   current_predicate(_, B:Fact)
+    ->  findall(Fact, retract(B:Fact), Deleted)
     ;   Deleted = []
-    ),
-    append(Deleted, Changes, Changes0).
+    ).
 
 must_be_callable(Fact) :-
     (   fact_like(Fact)

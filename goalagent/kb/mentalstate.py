@@ -100,6 +100,25 @@ def _match(pattern: Term, value: Term, out: dict[str, Term]) -> None:
                 _match(arg, instance, out)
 
 
+def _split_update(term: Term, mode: str) -> tuple[list[Term], list[Term]]:
+    """The facts an insert/delete (``mode``) of ``term`` deletes and adds, in the order
+    mentalstate.pl's update/7 handles them (conjunction order, `true` skipped)."""
+    removals: list[Term] = []
+    additions: list[Term] = []
+    pending = [term]
+    while pending:
+        literal = pending.pop()
+        if isinstance(literal, Struct) and literal.name == "," and len(literal.args) == 2:
+            pending.extend(reversed(literal.args))
+        elif type(literal) is Atom and literal == "true":
+            continue
+        elif isinstance(literal, Struct) and literal.name in ("not", "\\+") and literal.arity == 1:
+            (additions if mode == "delete" else removals).append(literal.args[0])
+        else:
+            (additions if mode == "insert" else removals).append(literal)
+    return removals, additions
+
+
 def _text_of(formula: ast.PrologText | str) -> str:
     """The Prolog text of a program fragment or plain string (anything else is a KBError)."""
     if isinstance(formula, ast.PrologText):
@@ -267,11 +286,19 @@ class MentalState:
                 bindings: Mapping[str, Term] | None) -> list[tuple[str, Term]]:
         """Runs insert or delete (``mode``) in Prolog, with blind commitment in the same call
         when beliefs changed (its result waits for the next :meth:`blind_commitment`)."""
-        term = self._term(formula, bindings)
-        result = self._call("update", self._b, self._g, Atom(mode), term, None, None)
-        changes, achieved = result[4], result[5]
+        term = _substitute(self._engine.parsed(_text_of(formula)), bindings or {})
+        result = self._call("update", self._b, self._g, Atom(mode), term, None, None, None)
+        deleted, added, achieved = result[4], result[5], result[6]
         self._achieved.extend(achieved)
-        return [(change.name, change.args[0]) for change in changes]
+        removals, additions = _split_update(term, mode)
+        changes: list[tuple[str, Term]] = []
+        for fact, outcome in zip(removals, deleted, strict=True):
+            if isinstance(outcome, int):
+                changes.extend([("-", fact)] * outcome)
+            else:
+                changes.extend(("-", instance) for instance in outcome)
+        changes.extend(("+", fact) for fact, flag in zip(additions, added, strict=True) if flag)
+        return changes
 
     def beliefs(self) -> list[Term]:
         """The belief facts (not knowledge, not percepts), in Prolog clause order."""
