@@ -20,7 +20,13 @@ from goalagent import ast
 from goalagent.kb.engine import KBError, PrologRuntimeError
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
-from goalagent.parser import GoalSyntaxError, iter_rules, parse_agent, parse_agent_file
+from goalagent.parser import (
+    GoalSyntaxError,
+    iter_rules,
+    parse_agent,
+    parse_agent_file,
+    rename_variables,
+)
 
 Bindings = dict[str, Term]
 
@@ -387,8 +393,9 @@ class Agent:
     def _record(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
                 actions: tuple[str, ...]) -> None:
         self._report.fired.append(FiredRule(module.name, rule.pos, dict(bindings), actions))
-        shown = ", ".join(f"{k}={format_term(v)}" for k, v in bindings.items())
-        self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {' + '.join(actions)}")
+        if self.tracer is not None:
+            shown = ", ".join(f"{k}={format_term(v)}" for k, v in bindings.items())
+            self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {' + '.join(actions)}")
 
     # ------------------------------------------------------------------ actions
     def _perform(self, module: ast.Module, action: ast.Action, bindings: Bindings) -> str | None:
@@ -404,9 +411,14 @@ class Agent:
         target = self._modules[key]  # validated at load time
         return self._call_module(target, action, bindings)
 
-    def _text_of(self, action: ast.ActionCall, bindings: Bindings) -> str:
-        args = [format_term(self.ms.instantiate(arg, bindings)) for arg in action.args]
-        return f"{action.name}({', '.join(args)})" if args else action.name
+    @staticmethod
+    def _text_of(action: ast.ActionCall, bindings: Bindings) -> str:
+        """The action as text with its bindings filled in (no Prolog call: it is hot)."""
+        if not action.args:
+            return action.name
+        values = {name: format_term(value) for name, value in bindings.items()}
+        args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
+        return f"{action.name}({args})"
 
     def _builtin(self, module: ast.Module, action: ast.ActionCall,
                  bindings: Bindings) -> str | None:

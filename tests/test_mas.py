@@ -1,0 +1,115 @@
+"""Multi-agent systems: launch policies, scheduling, failures and isolation."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import pytest
+
+from goalagent.mas import MultiAgentSystem
+from goalagent.parser import GoalSyntaxError
+
+COUNTER = """
+init module { beliefs { n(0). } }
+main module { program {
+    if bel(me(Me), n(N), N < 3, M is N + 1) then delete(n(N)) + insert(n(M)) + print(Me-M).
+} }
+"""
+
+
+def system(tmp_path: Path, mas: str, **agents: str) -> MultiAgentSystem:
+    for name, text in agents.items():
+        (tmp_path / f"{name}.goal").write_text(text)
+    (tmp_path / "sys.mas2g").write_text(mas)
+    return MultiAgentSystem.from_mas_file(tmp_path / "sys.mas2g", output=io.StringIO(),
+                                          warn=lambda message: None)
+
+
+def test_agents_take_turns_one_cycle_each(tmp_path: Path) -> None:
+    mas = system(tmp_path, """
+        agentfiles { "counter.goal" [name = c]. }
+        launchpolicy { launch a : c. launch b : c. }
+    """, counter=COUNTER)
+    mas.run(max_cycles=5)
+    assert mas.output.getvalue().split() == ["a-1", "b-1", "a-2", "b-2", "a-3", "b-3"]
+
+
+def test_number_launches_numbered_copies(tmp_path: Path) -> None:
+    mas = system(tmp_path, """
+        agentfiles { "counter.goal" [name = c, number = 3]. }
+        launchpolicy { launch worker : c. }
+    """, counter=COUNTER)
+    assert [agent.name for agent in mas.agents] == ["worker1", "worker2", "worker3"]
+    assert {str(a["A"]) for a in mas.agents[0].query("bel", "agent(A)")} == {
+        "worker1", "worker2", "worker3"}
+
+
+def test_entity_launch_rule_respects_type_and_max(tmp_path: Path) -> None:
+    mas = system(tmp_path, """
+        environment { env = "blocksworld". init = [robots = 3, blocks = 2, seed = 1]. }
+        agentfiles { "counter.goal" [name = c]. }
+        launchpolicy { when [type = robot, max = 2]@env do launch bot : c. }
+    """, counter=COUNTER)
+    assert [agent.name for agent in mas.agents] == ["bot", "bot2"]
+    env = mas.environment
+    assert [env.associated_entities(agent.name) for agent in mas.agents] == [
+        ["robot1"], ["robot2"]]
+    mas.close()
+
+
+def test_star_names_the_agent_after_its_entity(tmp_path: Path) -> None:
+    mas = system(tmp_path, """
+        environment { env = "blocksworld". init = [robots = 2, blocks = 2]. }
+        agentfiles { "counter.goal" [name = c]. }
+        launchpolicy { when entity@env do launch * : c. }
+    """, counter=COUNTER)
+    assert [agent.name for agent in mas.agents] == ["robot1", "robot2"]
+    mas.close()
+
+
+def test_a_failing_agent_is_reported_and_the_others_go_on(tmp_path: Path) -> None:
+    broken = """
+        main module { program { if true then insert(X). } }
+    """
+    mas = system(tmp_path, """
+        agentfiles { "counter.goal" [name = c]. "broken.goal" [name = b]. }
+        launchpolicy { launch good : c. launch bad : b. }
+    """, counter=COUNTER, broken=broken)
+    summaries = {s.name: s for s in mas.run(max_cycles=4)}
+    assert summaries["good"].actions == 9  # delete + insert + print, three times
+    assert mas.output.getvalue().split() == ["good-1", "good-2", "good-3"]
+    assert summaries["bad"].status in ("failed", "stopped at the cycle limit")
+
+
+def test_agents_cannot_see_each_others_beliefs(tmp_path: Path) -> None:
+    secret = """
+        init module { beliefs { secret(42). } }
+        main module { program { if true then insert(mine). } }
+    """
+    spy = """
+        main module { program [order=linearall] {
+            if bel(secret(X)) then print(X).
+            if true then insert(spying).
+        } }
+    """
+    mas = system(tmp_path, """
+        agentfiles { "secret.goal" [name = s]. "spy.goal" [name = p]. }
+        launchpolicy { launch holder : s. launch spy : p. }
+    """, secret=secret, spy=spy)
+    mas.run(max_cycles=2)
+    holder, spy_agent = mas.agents
+    assert mas.output.getvalue() == ""
+    assert "mine" not in spy_agent.beliefs() and "spying" not in holder.beliefs()
+    assert "mine" in holder.beliefs() and "spying" in spy_agent.beliefs()
+    assert holder.query("bel", "secret(X)") == [{"X": 42}]
+
+
+def test_launch_of_an_unknown_agent_file_is_a_located_error(tmp_path: Path) -> None:
+    with pytest.raises(GoalSyntaxError, match="unknown agent file 'nobody'"):
+        system(tmp_path, """
+            agentfiles { "counter.goal" [name = c]. }
+            launchpolicy {
+                launch x : nobody.
+            }
+        """, counter=COUNTER)
