@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Protocol, TextIO
 
 from goalagent import ast
-from goalagent.kb.engine import KBError, PrologRuntimeError
+from goalagent.kb.engine import KBError, PrologRuntimeError, get_engine
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 from goalagent.parser import (
@@ -169,6 +169,7 @@ class Agent:
         self.io = io
         self.postman = postman
         self.random = random.Random(seed)
+        get_engine().seed_random(seed)  # Prolog's random/1, random_float, roulette choices
         self.output = output or sys.stdout
         self.tracer = tracer
         self._warn = warn or (lambda message: print(message, file=sys.stderr))
@@ -645,10 +646,11 @@ def _has_variables(term: Term) -> bool:
 
 
 def _plain(term: Term) -> str:
-    """``print/1`` output: atoms and strings as their text, other terms as Prolog text."""
+    """``print/1`` output: atoms and strings as their text, other terms as SWI-Prolog's
+    ``writeq`` writes them (operators included: ``a-1``, not ``-(a,1)``)."""
     if isinstance(term, str):
         return str(term)
-    return format_term(term)
+    return get_engine().write(term, quoted=True)
 
 
 def _format_goal(goal: list[Term]) -> str:

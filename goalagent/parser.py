@@ -401,6 +401,9 @@ class _Builder(Transformer):
         path = Path(self.source.file).parent / name
         if not path.exists() and (LIBRARY / name).exists():
             path = LIBRARY / name  # a library shipped with goalagent, e.g. affordance.pl
+        if not path.exists():
+            raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: no such file next to "
+                                     "this program nor in goalagent's Prolog libraries")
         clauses = parse_prolog_file(path)
         return _Section("knowledge", clauses, pos)
 
@@ -564,6 +567,9 @@ class _Builder(Transformer):
 
     def listall_rule(self, meta, children):
         return self._rule("listall", meta, children[3], children[5], list_var=str(children[1]))
+
+    def listall_rule_rtl(self, meta, children):
+        return self._rule("listall", meta, children[1], children[5], list_var=str(children[3]))
 
     # --- modules ---------------------------------------------------------------------------
     def init_head(self, meta, children):
