@@ -3,11 +3,18 @@
 # missing), a virtualenv in .venv, and the package with its dev and bench extras.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if ! command -v swipl >/dev/null 2>&1; then
-    echo "setup: installing SWI-Prolog (swi-prolog-nox)"
-    SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+missing=()
+command -v swipl >/dev/null 2>&1 || missing+=(swi-prolog-nox)
+# Headless MuJoCo rendering (MUJOCO_GL=egl) needs EGL and Mesa's software drivers.
+ldconfig -p | grep -q 'libEGL.so.1 ' || missing+=(libegl1)
+ldconfig -p | grep -q 'libOpenGL.so.0 ' || missing+=(libopengl0)
+[ -e /usr/share/glvnd/egl_vendor.d/50_mesa.json ] || missing+=(libegl-mesa0 libgl1-mesa-dri)
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${missing[*]} with apt-get"
     $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends swi-prolog-nox >/dev/null
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
+        "${missing[@]}" >/dev/null
 fi
 if [ ! -x .venv/bin/python ]; then
     echo "setup: creating .venv"
