@@ -1,13 +1,14 @@
 """Scale benchmark: N copies of the reference agent in one process, stepped round-robin.
 
-For N = 10, 100, 1,000, 10,000 (up to ``--max-agents``), a fresh child process loads N copies
-of bench/reference_agent.goal (one parse, N agents sharing a message postman, each in its own
-Prolog modules), runs one untimed round, then times ``cycles`` rounds in which every agent
-runs one cycle. Reported per N: the per-agent cycle rate (agent-cycles per second: how fast
-one agent's cycle is done when N agents share the process; flat means no per-agent slowdown),
-from the process's CPU time (the machine is shared, so wall time is shown too but is noisy),
-and resident memory per agent (VmRSS from /proc/self/status, after minus before loading the
-N agents). Small N run more cycles so every N does at least ``MIN_AGENT_CYCLES`` agent-cycles.
+For N = 10, 100, 1,000, 10,000 (up to ``--max-agents``), a fresh child process loads N
+copies of bench/reference_agent.goal (one parse, N agents launched by one
+``MultiAgentSystem``, each in its own Prolog modules), runs one untimed round, then times
+``cycles`` rounds in which every agent runs one cycle. Reported per N: the per-agent cycle
+rate (agent-cycles per second: how fast one agent's cycle is done when N agents share the
+process; flat means no per-agent slowdown), from the process's CPU time (the machine is
+shared, so wall time is shown too but is noisy), and resident memory per agent (VmRSS from
+/proc/self/status, after minus before loading the N agents). Small N run more cycles so
+every N does at least ``MIN_AGENT_CYCLES`` agent-cycles.
 Not a test: ``python bench/agents.py [--max-agents 1000]``.
 """
 
@@ -26,7 +27,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from goalagent.agent import Agent, LocalPostman
+from goalagent.agent import Agent
+from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent_file
 
 BENCH = Path(__file__).resolve().parent
@@ -84,14 +86,12 @@ def measure(agents: int, cycles: int) -> ScaleResult:
     """Loads ``agents`` reference agents, times ``cycles`` round-robin rounds, frees them."""
     program = parse_agent_file(GOAL_FILE)
     Agent(program, name="warmup").close()  # engine, support library and caches in place
-    postman = LocalPostman()
+    system = MultiAgentSystem(warn=lambda message: None)
     before = rss_kb()
     start = time.perf_counter()
-    population = []
     for index in range(agents):
-        name = f"agent{index}"
-        postman.register(name)
-        population.append(Agent(program, name=name, postman=postman, seed=index))
+        system.launch(f"agent{index}", program)
+    population = system.agents
     loaded = time.perf_counter()
     for agent in population:  # first cycle (init module, first touches) is not timed
         agent.step()
@@ -107,8 +107,7 @@ def measure(agents: int, cycles: int) -> ScaleResult:
         if counted != [{"C": expected}]:
             raise RuntimeError(f"{agent.name} counted {counted}, expected cycle({expected})")
     close_start = time.perf_counter()
-    for agent in population:
-        agent.close()
+    system.close()
     closed = time.perf_counter()
     return ScaleResult(agents, cycles, loaded - start, run_end - run_start,
                        cpu_end - cpu_start, closed - close_start, before, after)

@@ -20,6 +20,7 @@ from goalagent.eis.interface import Environment, EnvironmentState
 from goalagent.eis.registry import load_environment
 from goalagent.eis.terms import Parameter, action_from_term, from_term, percept_to_term
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
+from goalagent.kb.mentalstate import AgentDirectory
 from goalagent.kb.terms import Atom, Struct, Term
 from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
 
@@ -89,6 +90,7 @@ class MultiAgentSystem:
         self.tracer = tracer
         self.warn = warn or (lambda message: print(message, file=sys.stderr))
         self.postman = LocalPostman()
+        self._directory = AgentDirectory()  # agent/1 of every member, stored once
         self.agents: list[Agent] = []
         self.failures: dict[str, str] = {}
         self._programs: dict[str, ast.AgentProgram] = {}
@@ -163,8 +165,8 @@ class MultiAgentSystem:
                       seed=self.seed + len(self.agents), output=self.output,
                       tracer=self.tracer, warn=self.warn)
         self.agents.append(agent)
-        for other in self.agents:
-            other.ms.set_identity(other.name, self.postman.agents())
+        self._directory.add(name)
+        agent.ms.join(name, self._directory)
         return agent
 
     def _start_environment(self, params: dict[str, Term]) -> None:
@@ -245,6 +247,7 @@ class MultiAgentSystem:
             self.environment.kill()
         for agent in self.agents:
             agent.close()
+        self._directory.close()
 
 
 def _make_environment(spec: str, pos: ast.Pos) -> Environment:

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import io
+import time
 from pathlib import Path
 
 import pytest
 
 from goalagent.mas import MultiAgentSystem
-from goalagent.parser import GoalSyntaxError
+from goalagent.parser import GoalSyntaxError, parse_agent
 
 COUNTER = """
 init module { beliefs { n(0). } }
@@ -113,3 +114,30 @@ def test_launch_of_an_unknown_agent_file_is_a_located_error(tmp_path: Path) -> N
                 launch x : nobody.
             }
         """, counter=COUNTER)
+
+
+def test_every_agent_sees_every_agent_also_those_launched_later() -> None:
+    mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    program = parse_agent(COUNTER, "counter.goal")
+    first = mas.launch("first", program)
+    assert first.query("bel", "agent(A)") == [{"A": "first"}]
+    mas.launch("second", program)
+    for agent in mas.agents:
+        assert [str(a["A"]) for a in agent.query("bel", "agent(A)")] == ["first", "second"]
+        assert agent.query("bel", "me(M)") == [{"M": agent.name}]
+    mas.close()
+
+
+def test_launching_many_agents_is_linear() -> None:
+    """The agent list is shared, not copied into every agent on each launch (that took 7.6 s
+    for 200 agents): 400 launches stay well under a second each way."""
+    mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    program = parse_agent(COUNTER, "counter.goal")
+    start = time.perf_counter()
+    for index in range(400):
+        mas.launch(f"a{index}", program)
+    elapsed = time.perf_counter() - start
+    assert len(mas.agents[0].query("bel", "agent(A)")) == 400
+    assert len(mas.agents[-1].query("bel", "agent(A)")) == 400
+    mas.close()
+    assert elapsed < 5.0, f"launching 400 agents took {elapsed:.1f} s"

@@ -224,7 +224,7 @@ new_agent(B, G) :-
              forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
                     dynamic(M:PI))
            )),
-    dynamic(B:'$kpred'/1),
+    dynamic(B:('$kpred'/1, '$ga_dir'/1)),
     assertz(B:'$ga_gm'(G)),
     dynamic(G:('$gf'/2, '$goal'/2, '$top'/1, '$fwd'/1)),
     assertz(G:'$top'(0)).
@@ -673,8 +673,35 @@ add_once(B, Fact, Added) :-
     ).
 
 %!  set_identity(+B, +G, +Me, +Agents) is det.
+%   B believes me(Me) and agent(A) for each of Agents (its own copy of the list).
 set_identity(B, _G, Me, Agents) :-
     retractall(B:me(_)),
     retractall(B:agent(_)),
     assertz(B:me(Me)),
     forall(member(A, Agents), assertz(B:agent(A))).
+
+%!  new_directory(+S) is det.
+%   Creates module S holding agent/1 for the agents of one system, shared by all of them.
+new_directory(S) :-
+    set_module(S:class(temporary)),
+    set_module(S:base(system)),
+    dynamic(S:agent/1).
+
+%!  directory_add(+S, +Agent) is det.
+directory_add(S, Agent) :-
+    assertz(S:agent(Agent)).
+
+%!  join_directory(+B, +Me, +S) is det.
+%   B believes me(Me), and agent/1 answers from directory S (one list per system: joining is
+%   O(1) and the list is stored once, however many agents there are).
+join_directory(B, Me, S) :-
+    retractall(B:me(_)),
+    retractall(B:agent(_)),
+    retractall(B:'$ga_dir'(_)),
+    assertz(B:me(Me)),
+    assertz(B:'$ga_dir'(S)),
+    assertz(B:(agent(A) :- '$ga_dir'(D), D:agent(A))).
+
+%!  destroy_directory(+S) is det.
+destroy_directory(S) :-
+    '$destroy_module'(S).
