@@ -341,6 +341,27 @@ def test_cli_blocks_team_cooperates_to_the_tower() -> None:
     assert any("builder" in line for line in summary) and any("helper" in line for line in summary)
 
 
+ENV_ARGS = {
+    "script_printer.goal": ["--env", "printer"],
+    "blocks_builder.goal": ["--env", "blocksworld", "--env-param", f"state={SUSSMAN}"],
+    "table_agent.goal": ["--env", "blocksworld"],
+    "tower_builder.goal": ["--env", "towerworld", "--env-param", f"state={SUSSMAN}"],
+}
+RUNNABLE = sorted(p.name for p in EXAMPLES.glob("*.goal") if not p.name.startswith("team_")
+                  and not p.name.startswith("coffee_")) + ["coffee.mas2g", "blocks_team.mas2g"]
+
+
+@pytest.mark.parametrize("name", RUNNABLE)
+def test_cli_traces_every_example_to_its_end(name: str) -> None:
+    done = goalagent("run", f"agents/examples/{name}", *ENV_ARGS.get(name, []),
+                     "--max-cycles", "60", "--trace")
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr and "warning" not in done.stderr
+    assert "fired" in done.stdout  # the trace shows the rules that fired
+    summaries = [line for line in done.stderr.splitlines() if " cycles" in line]
+    assert summaries and all("terminated" in line for line in summaries), done.stderr
+
+
 def test_cli_check_accepts_every_example() -> None:
     paths = sorted(str(p.relative_to(ROOT)) for p in EXAMPLES.iterdir()
                    if p.suffix in (".goal", ".mas2g"))
