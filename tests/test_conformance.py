@@ -22,7 +22,8 @@ from goalagent.parser import GoalSyntaxError
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "agents" / "examples"
-BROKEN = Path(__file__).resolve().parent / "agents" / "broken"
+CORPUS = Path(__file__).resolve().parent / "agents"
+BROKEN = CORPUS / "broken"
 
 SUSSMAN = "[on(c,a), on(a,table), on(b,table)]"
 
@@ -278,6 +279,20 @@ def test_blocks_team_shares_one_world(systems: list[MultiAgentSystem]) -> None:
     )
     assert holds(helper, "wanted(on(a, b))") and holds(helper, "released")
     assert holds(builder, "announced")
+
+
+def test_goal5_style_coffee_machines_run_unmodified(systems: list[MultiAgentSystem]) -> None:
+    """Real GOAL 5 forms at run time: #import, (Var).sendonce, event called as an action, a
+    grinder whose main module never exits."""
+    system = MultiAgentSystem.from_mas_file(CORPUS / "good" / "coffee5" / "coffee.mas2g")
+    systems.append(system)
+    summaries = system.run(max_cycles=15)
+    assert [(s.name, s.status) for s in summaries][0] == ("maker", "terminated")
+    assert summaries[1].cycles == 15 and summaries[1].goals_left == 0
+    maker, grinder = system.agents
+    assert holds(maker, "have(coffee)") and holds(grinder, "have(grounds)")
+    assert holds(maker, "offers(grinder, [grounds])")  # learnt from its answer ...
+    assert not holds(maker, "received(_, offers(_, _))")  # ... whose message was then deleted
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
