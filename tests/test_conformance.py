@@ -158,6 +158,15 @@ def test_user_modules_with_focus_and_exit_module(capsys: pytest.CaptureFixture[s
     assert capsys.readouterr().out.splitlines() == ["dishes", "laundry"]
 
 
+def test_old_single_module_layout_runs() -> None:
+    """Sections at the top level of the wrapper (GOAL 3/4 layout) make a working agent; its
+    main module has no exit option, so it keeps running after reaching its goal."""
+    agent = Agent.from_file(CORPUS / "good" / "goal3_top_level.goal")
+    result = agent.run(max_cycles=5)
+    assert not result.terminated and result.goals_left == []
+    assert pairs(agent, "on(X, Y)") == {("a", "b"), ("b", "table")}
+
+
 # ----------------------------------------------------------------------------- environments
 
 
