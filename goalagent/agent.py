@@ -18,7 +18,7 @@ from typing import Protocol, TextIO
 
 from goalagent import ast
 from goalagent.kb.engine import KBError, PrologRuntimeError, get_engine
-from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.mentalstate import RULE_ACTIONS, CompiledRule, MentalState
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 from goalagent.parser import (
     GoalSyntaxError,
@@ -191,6 +191,7 @@ class Agent:
             pos = getattr(err, "pos", None)
             raise AgentError(f"{pos or program.file}: {err}") from None
         self._compiled: dict[int, object] = {}
+        self._rule_clauses: dict[int, CompiledRule | None] = {}
         self._compile_all()
 
     # ------------------------------------------------------------------ construction
@@ -354,8 +355,39 @@ class Agent:
                       f"condition: {err.message}; the rule is not applicable")
             return []
 
+    def _rule_clause(self, rule: ast.Rule) -> CompiledRule | None:
+        """The rule compiled with its leading built-in actions into one Prolog clause
+        (compiled on first use), or None when Python must do everything: a tracer is set
+        (it sees each step), the rule is nested or listall, its first action is not
+        built in, or it is a forall whose actions are not all built in (every instantiation
+        must finish its combo before the next one starts)."""
+        if self.tracer is not None:
+            return None
+        key = id(rule)
+        if key in self._rule_clauses:
+            return self._rule_clauses[key]
+        leading = []
+        for action in rule.actions:
+            if not isinstance(action, ast.ActionCall) or action.name not in RULE_ACTIONS:
+                break
+            leading.append((action.name, action.args[0]))
+        clause = None
+        if rule.rules is None and leading and (
+            rule.kind == "if" or (rule.kind == "forall" and len(leading) == len(rule.actions))
+        ):
+            try:
+                clause = self.ms.compile_rule(rule.kind, self._compiled[id(rule.condition)],
+                                              leading)
+            except KBError as err:
+                raise AgentError(f"{rule.pos}: {err}") from None
+        self._rule_clauses[key] = clause
+        return clause
+
     def _apply_rule(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
                     order: str) -> bool:
+        clause = self._rule_clause(rule)
+        if clause is not None:
+            return self._apply_clause(module, rule, clause, bindings, order)
         solutions = self._solutions(module, rule, bindings)
         self._trace("rule", f"{module.name} {rule.pos}: {len(solutions)} instantiation(s)")
         if rule.kind == "listall":
@@ -370,16 +402,43 @@ class Agent:
                     break
         return fired
 
-    def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str) -> bool:
-        """Perform the rule's actions (or nested rules) with ``bindings``; True if it fired."""
+    def _apply_clause(self, module: ast.Module, rule: ast.Rule, clause: CompiledRule,
+                      bindings: Bindings, order: str) -> bool:
+        """Applies a rule through its one-clause form; actions after the clause's leading
+        ones are done here, as :meth:`_fire` does them."""
+        try:
+            fired, warnings = self.ms.fire(clause, bindings)
+        except PrologRuntimeError as err:
+            self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
+                      f"condition: {err.message}; the rule is not applicable")
+            return False
+        for index, message in warnings:
+            action = rule.actions[index]
+            self.warn(f"{action.pos}: {action.name} failed: {message}")
+        report = self._report
+        for solution, done in fired:
+            performed = [self._text_of(action, solution) for action in rule.actions[:done]]
+            report.actions.extend(performed)
+            self.total_actions += done
+            if done == clause.actions < len(rule.actions):
+                self._fire(module, rule, solution, order, start=done, performed=performed)
+            else:
+                self._record(module, rule, solution, tuple(performed))
+        return bool(fired)
+
+    def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str,
+              start: int = 0, performed: list[str] | None = None) -> bool:
+        """Perform the rule's actions from ``start`` (or its nested rules) with ``bindings``,
+        after the ``performed`` ones; True if it fired."""
         if rule.rules is not None:
             fired = self._run_rules(module, rule.rules, bindings, order)
             if fired:
                 self._record(module, rule, bindings, ())
             return fired
-        performed: list[str] = []
+        performed = performed or []
         try:
-            for index, action in enumerate(rule.actions):
+            for index in range(start, len(rule.actions)):
+                action = rule.actions[index]
                 description = self._perform(module, action, bindings)
                 if description is None:
                     if index == 0:

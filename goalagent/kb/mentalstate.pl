@@ -11,7 +11,9 @@
 
 :- set_prolog_flag(generate_debug_info, false).
 
-:- initialization(nb_setval('$ga_g', none)).
+:- initialization(( nb_setval('$ga_g', none),
+                     nb_setval('$ga_recheck', false),
+                     nb_setval('$ga_warnings', []) )).
 
 %   Agent texts are read with SWI's operators except the prefix operator `table` (tabling
 %   directives), so that the everyday atom `table` (blocks worlds: `Y \= table, ...`) reads
@@ -446,6 +448,97 @@ percept_body((A0, B0), (A, B)) :- !,
     percept_body(A0, A),
     percept_body(B0, B).
 percept_body(Q, percept(Q)).
+
+		 /*******************************
+		 *            RULES             *
+		 *******************************/
+
+%!  compile_rule(+B, +Kind, +Name, +CondName, +CondArity, +Text, -Names) is det.
+%   Text is '$rule'(Cond, Actions): a condition already compiled as B:CondName/CondArity
+%   and the list of the rule's leading built-in actions (insert/delete/adopt/drop of a
+%   formula), read together so that they share variables. Asserts
+%   B:Name(Vars..., Recheck, Fired, Warnings) :- fire(...) (see fire/8), Vars being the
+%   named variables of Text in order of first appearance (the condition's come first).
+
+compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
+    read_text(Text, B, '$rule'(_, Actions), Bindings),
+    binding_names(Bindings, Names),
+    maplist(arg(2), Bindings, Vars),
+    length(CondVars, CondArity),
+    append(CondVars, _, Vars),
+    Cond =.. [CondName|CondVars],
+    append(Vars, [Recheck, Fired, Warnings], Args),
+    Head =.. [Name|Args],
+    assertz(B:(Head :- ga_kb:fire(Kind, B, Cond, Vars, Actions, Recheck, Fired, Warnings))).
+
+%!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Fired, -Warnings) is det.
+%   Applies a rule whose actions start with Actions (built in, done here): for the first
+%   instantiation of Cond whose first action is enabled (Kind = if) or for every one
+%   (Kind = forall), performs the actions in order until one is not enabled, with blind
+%   commitment after each (a full check after the first one when Recheck is true: percepts
+%   or messages changed since the last check). Fired lists fired(Values, Done) per firing:
+%   the values of Vars and how many actions were performed. Warnings lists w(Index, Message)
+%   for actions that raised an error (such an action is not enabled). Instantiations are
+%   all computed before any action, so the condition sees the state of the rule's start.
+
+fire(Kind, B, Cond, Vars, Actions, Recheck, Fired, Warnings) :-
+    findall(Vars, B:Cond, Solutions),
+    B:'$ga_gm'(G),
+    nb_setval('$ga_recheck', Recheck),
+    fire_(Kind, Solutions, Vars, Actions, B, G, Fired),
+    take_warnings(Warnings).
+
+fire_(if, Solutions, Vars, Actions, B, G, Fired) :-
+    (   member(Vars, Solutions),
+        perform(Actions, 0, B, G, Done),
+        Done > 0
+    ->  Fired = [fired(Vars, Done)]
+    ;   Fired = []
+    ).
+fire_(forall, Solutions, Vars, Actions, B, G, Fired) :-
+    findall(fired(Vars, Done),
+            ( member(Vars, Solutions),
+              perform(Actions, 0, B, G, Done),
+              Done > 0 ),
+            Fired).
+
+%   perform(+Actions, +Index, +B, +G, -Done): the actions in order up to the first one that
+%   is not enabled; Done is the index of that one (or the length of Actions).
+perform([], Index, _, _, Index).
+perform([Action|Actions], Index, B, G, Done) :-
+    (   catch(action(Action, B, G), E, (warning(Index, E), fail))
+    ->  after_action(B, G),
+        Next is Index + 1,
+        perform(Actions, Next, B, G, Done)
+    ;   Done = Index
+    ).
+
+action(insert(F), B, G) :- update(B, G, insert, F, _, _, _).
+action(delete(F), B, G) :- update(B, G, delete, F, _, _, _).
+action(adopt(F), B, G) :- adopt(B, G, F, adopted).
+action(drop(F), B, G) :- drop(B, G, F, _).
+
+%   Blind commitment after an action: insert/delete checked what they changed (update/7);
+%   the first action after new percepts or messages checks every goal.
+after_action(B, G) :-
+    (   nb_getval('$ga_recheck', true)
+    ->  nb_setval('$ga_recheck', false),
+        blind_commitment(B, G, _)
+    ;   true
+    ).
+
+warning(Index, E) :-
+    error_message(E, Message),
+    nb_getval('$ga_warnings', W0),
+    nb_setval('$ga_warnings', [w(Index, Message)|W0]).
+
+take_warnings(Warnings) :-
+    nb_getval('$ga_warnings', W0),
+    (   W0 == []
+    ->  Warnings = []
+    ;   nb_setval('$ga_warnings', []),
+        reverse(W0, Warnings)
+    ).
 
 		 /*******************************
 		 *           UPDATES            *

@@ -16,7 +16,7 @@ from goalagent import ast
 from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, get_engine
 from goalagent.kb.terms import Atom, Struct, Term, Var
 
-__all__ = ["AgentDirectory", "CompiledCondition", "MentalState"]
+__all__ = ["AgentDirectory", "CompiledCondition", "CompiledRule", "MentalState"]
 
 _WRAPPERS = {
     "bel": "$bel",
@@ -27,6 +27,7 @@ _WRAPPERS = {
 }
 _MOODS = {":": None, "!": "imp", "?": "int"}
 _QUERY_POS = ast.Pos("<query>", 1, 1)
+_TRUE, _FALSE = Atom("true"), Atom("false")
 
 # Condition body text -> clause name, shared by all agents: equal conditions use the same
 # predicate name in every agent module, so 10,000 agents do not create 10,000 functors.
@@ -36,17 +37,41 @@ _condition_names: dict[str, str] = {}
 class CompiledCondition:
     """A mental state condition compiled into one clause of an agent's belief module."""
 
-    __slots__ = ("_state", "_pred", "names", "_index", "text")
+    __slots__ = ("_state", "_pred", "_name", "names", "_index", "text")
 
-    def __init__(self, state: MentalState, pred: int, names: tuple[str, ...], text: str) -> None:
+    def __init__(self, state: MentalState, pred: int, name: str, names: tuple[str, ...],
+                 text: str) -> None:
         self._state = state
         self._pred = pred
+        self._name = name  # the clause's predicate name
         self.names = names  # named variables, in order of first appearance
         self._index = {name: i for i, name in enumerate(names)}
         self.text = text  # the Prolog body the condition was compiled from
 
     def __repr__(self) -> str:
         return f"CompiledCondition({self.text!r}, names={self.names!r})"
+
+
+class CompiledRule:
+    """A rule (its condition and leading built-in actions) compiled into one clause of an
+    agent's belief module: one Prolog call evaluates it and performs those actions."""
+
+    __slots__ = ("_state", "_pred", "names", "_index", "kind", "actions")
+
+    def __init__(self, state: MentalState, pred: int, names: tuple[str, ...], kind: str,
+                 actions: int) -> None:
+        self._state = state
+        self._pred = pred
+        self.names = names  # named variables: the condition's, then the actions' own
+        self._index = {name: i for i, name in enumerate(names)}
+        self.kind = kind  # if or forall
+        self.actions = actions  # how many leading actions the clause performs
+
+    def __repr__(self) -> str:
+        return f"CompiledRule({self.kind}, names={self.names!r}, actions={self.actions})"
+
+
+RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
 
 
 def _literal_text(literal: ast.Literal) -> str:
@@ -163,7 +188,7 @@ class MentalState:
         self._b = Atom(f"ga_b{number}")
         self._g = Atom(f"ga_g{number}")
         self._closed = False
-        self._compiled: dict[str, CompiledCondition] = {}
+        self._compiled: dict[str, CompiledCondition | CompiledRule] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
         self._recheck = True  # beliefs or goals changed in a way updates did not check
         clauses = [("knowledge", text) for text in knowledge]
@@ -217,6 +242,7 @@ class MentalState:
         text = ", ".join(_literal_text(literal) for literal in condition) or "true"
         compiled = self._compiled.get(text)
         if compiled is not None:
+            assert isinstance(compiled, CompiledCondition)
             return compiled
         name = _condition_names.get(text)
         if name is None:
@@ -229,9 +255,72 @@ class MentalState:
         assert isinstance(names, list)
         names_tuple = tuple(str(item) for item in names)
         pred = self._engine.predicate(name, len(names_tuple), str(self._b), cache=False)
-        compiled = CompiledCondition(self, pred, names_tuple, text)
+        compiled = CompiledCondition(self, pred, name, names_tuple, text)
         self._compiled[text] = compiled
         return compiled
+
+    def compile_rule(self, kind: str, condition: CompiledCondition,
+                     actions: Sequence[tuple[str, ast.PrologText | str]]) -> CompiledRule:
+        """Compiles a rule (``kind`` if or forall) whose condition is ``condition`` and whose
+        actions start with ``actions`` (name in RULE_ACTIONS, formula) into one clause."""
+        if kind not in ("if", "forall"):
+            raise KBError(f"only if and forall rules compile into one clause, not {kind}")
+        if condition._state is not self:
+            raise KBError("this condition was compiled for another mental state")
+        for name, _ in actions:
+            if name not in RULE_ACTIONS:
+                raise KBError(f"{name} is not an action a rule clause performs")
+        texts = ", ".join(f"{name}(({_text_of(formula)}\n))" for name, formula in actions)
+        text = f"'$rule'(({condition.text}\n), [{texts}])"
+        key = f"{kind}:{text}"
+        compiled = self._compiled.get(key)
+        if compiled is not None:
+            assert isinstance(compiled, CompiledRule)
+            return compiled
+        name = _condition_names.get(key)
+        if name is None:
+            name = self._engine.unique_name("$ga_r")
+            _condition_names[key] = name
+        names = self._call("compile_rule", self._b, Atom(kind), Atom(name),
+                           Atom(condition._name),
+                           len(condition.names), text, None)[6]
+        assert isinstance(names, list)
+        names_tuple = tuple(str(item) for item in names)
+        pred = self._engine.predicate(name, len(names_tuple) + 3, str(self._b), cache=False)
+        rule = CompiledRule(self, pred, names_tuple, kind, len(actions))
+        self._compiled[key] = rule
+        return rule
+
+    def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None
+             ) -> tuple[list[tuple[dict[str, Term], int]], list[tuple[int, str]]]:
+        """Applies a compiled rule in one Prolog call (see fire/8 in mentalstate.pl): the
+        firings as (bindings, number of actions performed), and (action index, message)
+        for every action that raised an error. A Prolog error in the condition raises
+        PrologRuntimeError before any action."""
+        if rule._state is not self:
+            raise KBError("this rule was compiled for another mental state")
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        index, names = rule._index, rule.names
+        arity = len(names)
+        inputs: list[tuple[int, Term | None]] = [(arity, _TRUE if self._recheck else _FALSE)]
+        extra: dict[str, Term] = {}
+        if bindings:
+            for name, value in bindings.items():
+                if name in index:
+                    inputs.append((index[name], value))
+                else:
+                    extra[name] = value
+        fired, warnings = self._engine.solve(rule._pred, arity + 3, inputs, 1,
+                                             outputs=(arity + 1, arity + 2))[0]
+        result = []
+        for firing in fired:  # type: ignore[union-attr]
+            values, done = firing.args
+            found = dict(zip(names, values, strict=True))
+            result.append(({**extra, **found} if extra else found, done))
+        if result:
+            self._recheck = False
+        return result, [(w.args[0], w.args[1]) for w in warnings]  # type: ignore[union-attr]
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
         """The error of the first literal SWI's reader rejects (with its position)."""
