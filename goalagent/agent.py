@@ -87,6 +87,23 @@ class LocalPostman:
 # ----------------------------------------------------------------------------- reports
 
 
+# An action performed: its description, or the action and its bindings to describe it when
+# asked (formatting every action of every cycle costs more than most cycles' reasoning).
+Performed = str | tuple[ast.ActionCall, Bindings]
+
+
+def _describe(item: Performed) -> str:
+    """The description of a performed action (``insert(cycle(2))``)."""
+    if isinstance(item, str):
+        return item
+    action, bindings = item
+    if not action.args:
+        return action.name
+    values = {name: format_term(value) for name, value in bindings.items()}
+    args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
+    return f"{action.name}({args})"
+
+
 @dataclass(frozen=True)
 class FiredRule:
     """A rule that fired: where it is, with which bindings, and the actions it performed."""
@@ -94,11 +111,16 @@ class FiredRule:
     module: str
     pos: ast.Pos
     bindings: Bindings
-    actions: tuple[str, ...]
+    performed: tuple[Performed, ...] = field(repr=False)
 
     @property
     def line(self) -> int:
         return self.pos.line
+
+    @property
+    def actions(self) -> tuple[str, ...]:
+        """The descriptions of the actions the rule performed, in order."""
+        return tuple(_describe(item) for item in self.performed)
 
 
 @dataclass
@@ -109,12 +131,17 @@ class CycleReport:
     percepts: list[Term] = field(default_factory=list)
     messages: list[tuple[str, str, Term]] = field(default_factory=list)
     fired: list[FiredRule] = field(default_factory=list)
-    actions: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    performed: list[Performed] = field(default_factory=list, repr=False)
+
+    @property
+    def actions(self) -> list[str]:
+        """The descriptions of the actions performed in the cycle, in order."""
+        return [_describe(item) for item in self.performed]
 
     @property
     def acted(self) -> bool:
-        return bool(self.actions)
+        return bool(self.performed)
 
 
 @dataclass(frozen=True)
@@ -301,13 +328,13 @@ class Agent:
 
     def _run_focus(self) -> None:
         focus = self._focus[-1]
-        acted_before = len(self._report.actions)
+        acted_before = len(self._report.performed)
         exited = self._run_module(focus.module, focus.bindings)
         exit_option = focus.module.exit or "always"
         if (
             exited
             or (exit_option == "nogoals" and not self.ms.goals())
-            or (exit_option == "noaction" and len(self._report.actions) == acted_before)
+            or (exit_option == "noaction" and len(self._report.performed) == acted_before)
         ):
             self._leave_focus()
 
@@ -417,8 +444,9 @@ class Agent:
             self.warn(f"{action.pos}: {action.name} failed: {message}")
         report = self._report
         for solution, done in fired:
-            performed = [self._text_of(action, solution) for action in rule.actions[:done]]
-            report.actions.extend(performed)
+            performed: list[Performed] = [(action, solution)
+                                          for action in rule.actions[:done]]
+            report.performed.extend(performed)
             self.total_actions += done
             if done == clause.actions < len(rule.actions):
                 self._fire(module, rule, solution, order, start=done, performed=performed)
@@ -427,7 +455,7 @@ class Agent:
         return bool(fired)
 
     def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str,
-              start: int = 0, performed: list[str] | None = None) -> bool:
+              start: int = 0, performed: list[Performed] | None = None) -> bool:
         """Perform the rule's actions from ``start`` (or its nested rules) with ``bindings``,
         after the ``performed`` ones; True if it fired."""
         if rule.rules is not None:
@@ -451,14 +479,16 @@ class Agent:
         return True
 
     def _record(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
-                actions: tuple[str, ...]) -> None:
-        self._report.fired.append(FiredRule(module.name, rule.pos, dict(bindings), actions))
+                performed: tuple[Performed, ...]) -> None:
+        self._report.fired.append(FiredRule(module.name, rule.pos, dict(bindings), performed))
         if self.tracer is not None:
             shown = ", ".join(f"{k}={format_term(v)}" for k, v in bindings.items())
-            self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {' + '.join(actions)}")
+            described = " + ".join(map(_describe, performed))
+            self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {described}")
 
     # ------------------------------------------------------------------ actions
-    def _perform(self, module: ast.Module, action: ast.Action, bindings: Bindings) -> str | None:
+    def _perform(self, module: ast.Module, action: ast.Action,
+                 bindings: Bindings) -> Performed | None:
         """Perform one action; its description, or None when it is not enabled."""
         if isinstance(action, ast.SendAction):
             return self._send(action, bindings)
@@ -471,17 +501,8 @@ class Agent:
         target = self._modules[key]  # validated at load time
         return self._call_module(target, action, bindings)
 
-    @staticmethod
-    def _text_of(action: ast.ActionCall, bindings: Bindings) -> str:
-        """The action as text with its bindings filled in (no Prolog call: it is hot)."""
-        if not action.args:
-            return action.name
-        values = {name: format_term(value) for name, value in bindings.items()}
-        args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
-        return f"{action.name}({args})"
-
     def _builtin(self, module: ast.Module, action: ast.ActionCall,
-                 bindings: Bindings) -> str | None:
+                 bindings: Bindings) -> Performed | None:
         name = action.name
         if name == "exit-module":
             self._act_done("exit-module")
@@ -510,19 +531,19 @@ class Agent:
         except KBError as err:
             self.warn(f"{action.pos}: {name} failed: {err}")
             return None
-        return self._act_done(self._text_of(action, bindings))
+        return self._act_done((action, bindings))
 
     def _changes(self, changes: Iterable[tuple[str, Term]]) -> None:
         for sign, term in changes:
             self._trace("belief", f"{sign}{format_term(term)}")
 
-    def _act_done(self, description: str) -> str:
-        self._report.actions.append(description)
+    def _act_done(self, description: Performed) -> Performed:
+        self._report.performed.append(description)
         self.total_actions += 1
         self._blind_commitment()
         return description
 
-    def _user_action(self, action: ast.ActionCall, bindings: Bindings) -> str | None:
+    def _user_action(self, action: ast.ActionCall, bindings: Bindings) -> Performed | None:
         call_args = [self.ms.instantiate(arg, bindings) for arg in action.args]
         for spec in self._specs[(action.name, action.arity)]:
             spec_bindings: Bindings | None = {}
@@ -539,7 +560,7 @@ class Agent:
                           f"{err.message}; the action is not enabled")
                 continue
             if not answers:
-                self._trace("precondition", f"{self._text_of(action, bindings)}: pre "
+                self._trace("precondition", f"{_describe((action, bindings))}: pre "
                             f"{{{spec.pre.text}}} does not hold")
                 continue
             enabled = answers[0]
@@ -560,25 +581,25 @@ class Agent:
         return None
 
     def _call_module(self, module: ast.Module, action: ast.ActionCall,
-                     bindings: Bindings) -> str | None:
+                     bindings: Bindings) -> Performed | None:
         module_bindings: Bindings | None = {}
         for param, arg in zip(module.params, action.args, strict=True):
             module_bindings = self.ms.unify(param, self.ms.instantiate(arg, bindings),
                                             module_bindings)
             if module_bindings is None:
                 return None
-        description = self._text_of(action, bindings)
+        description = _describe((action, bindings))
         self._trace("module", f"entering module {description}")
         own_goal_base = self._enter_goal_focus(module, bindings)
         exit_option = (module.exit or "always") if module.kind == "user" else "always"
-        actions_before = len(self._report.actions)
+        actions_before = len(self._report.performed)
         exited = self._run_module(module, module_bindings)
         if exit_option == "always" or exited:
             if own_goal_base:
                 self.ms.pop_goal_base()
         else:
             self._focus.append(_Focus(module, module_bindings, own_goal_base))
-        self._report.actions.insert(actions_before, description)
+        self._report.performed.insert(actions_before, description)
         return description
 
     def _enter_goal_focus(self, module: ast.Module, bindings: Bindings) -> bool:
@@ -594,7 +615,7 @@ class Agent:
             self.ms.push_goal_base(selected)
         return True
 
-    def _send(self, action: ast.SendAction, bindings: Bindings) -> str | None:
+    def _send(self, action: ast.SendAction, bindings: Bindings) -> Performed | None:
         receiver = self.ms.instantiate(action.receiver, bindings)
         content = self.ms.instantiate(action.content, bindings)
         text = f"{format_term(receiver)}.{action.name}({action.mood}{format_term(content)})"

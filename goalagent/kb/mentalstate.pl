@@ -561,36 +561,57 @@ conjuncts(X, [X]).
 %   When beliefs changed and there are goals, blind commitment runs too (Achieved).
 
 update(B, G, Mode, Formula, Deleted, Added, Achieved) :-
-    conjuncts(Formula, Lits),
-    split_literals(Lits, Mode, Adds, Dels),
-    maplist(must_be_inserted, Adds),
-    maplist(delete_fact(B), Dels, Deleted),
-    maplist(add_fact(B, G), Adds, Added),
-    (   (   memberchk(1, Added)
-        ;   member(Result, Deleted), Result \== 0, Result \== []
-        ),
+    split_formula(Formula, Mode, Adds, [], Dels, []),
+    must_be_inserted(Adds),
+    delete_facts(Dels, B, Deleted, false, Changed0),
+    add_facts(Adds, B, G, Added, Changed0, Changed),
+    (   Changed == true,
         G:'$goal'(_, _)
     ->  blind_commitment(B, G, Achieved)
     ;   Achieved = []
     ).
 
-split_literals([], _, [], []).
-split_literals([L|Ls], Mode, Adds, Dels) :-
-    (   nonvar(L), ( L = not(P) ; L = (\+ P) )
-    ->  Sign = negative
-    ;   P = L, Sign = positive
-    ),
-    (   adds(Mode, Sign)
-    ->  Adds = [P|Adds1], Dels = Dels1
-    ;   Adds = Adds1, Dels = [P|Dels1]
-    ),
-    split_literals(Ls, Mode, Adds1, Dels1).
+%   split_formula(+Formula, +Mode, -Adds, ?AddsTail, -Dels, ?DelsTail): the facts to add and
+%   to delete, each in conjunction order (`true` skipped).
+split_formula(Var, _, _, _, _, _) :-
+    var(Var), !,
+    throw(error(instantiation_error, _)).
+split_formula((A, B), Mode, Adds0, Adds, Dels0, Dels) :- !,
+    split_formula(A, Mode, Adds0, Adds1, Dels0, Dels1),
+    split_formula(B, Mode, Adds1, Adds, Dels1, Dels).
+split_formula(true, _, Adds, Adds, Dels, Dels) :- !.
+split_formula(not(P), Mode, Adds0, Adds, Dels0, Dels) :- !,
+    negative(Mode, P, Adds0, Adds, Dels0, Dels).
+split_formula(\+ P, Mode, Adds0, Adds, Dels0, Dels) :- !,
+    negative(Mode, P, Adds0, Adds, Dels0, Dels).
+split_formula(P, insert, [P|Adds], Adds, Dels, Dels) :- !.
+split_formula(P, delete, Adds, Adds, [P|Dels], Dels).
 
-adds(insert, positive).
-adds(delete, negative).
+negative(insert, P, Adds, Adds, [P|Dels], Dels).
+negative(delete, P, [P|Adds], Adds, Dels, Dels).
 
-must_be_inserted(Fact) :-
-    must_be_fact(Fact, "insert").
+delete_facts([], _, [], Changed, Changed).
+delete_facts([Fact|Facts], B, [Deleted|More], Changed0, Changed) :-
+    delete_fact(B, Fact, Deleted),
+    (   Deleted \== 0, Deleted \== []
+    ->  Changed1 = true
+    ;   Changed1 = Changed0
+    ),
+    delete_facts(Facts, B, More, Changed1, Changed).
+
+add_facts([], _, _, [], Changed, Changed).
+add_facts([Fact|Facts], B, G, [Added|More], Changed0, Changed) :-
+    add_fact(B, G, Fact, Added),
+    (   Added == 1
+    ->  Changed1 = true
+    ;   Changed1 = Changed0
+    ),
+    add_facts(Facts, B, G, More, Changed1, Changed).
+
+must_be_inserted([]).
+must_be_inserted([Fact|Facts]) :-
+    must_be_fact(Fact, "insert"),
+    must_be_inserted(Facts).
 
 add_fact(B, G, Fact, Added) :-
     (   current_predicate(_, B:Fact),
@@ -685,10 +706,12 @@ drop(B, G, Formula, Removed) :-
 %   Removes every goal (all goal bases) whose facts are all believed.
 
 blind_commitment(B, G, Removed) :-
-    findall(Id, ( G:'$goal'(_, Id),
-                  goal_facts(G, Id, Facts),
-                  \+ \+ all_believed(B, Facts) ), Ids),
-    maplist(remove_goal(G), Ids, Removed).
+    (   G:'$goal'(_, _)
+    ->  findall(Id, ( G:'$goal'(_, Id),
+                      \+ ( G:'$gf'(Id, Fact), \+ B:Fact ) ), Ids),
+        maplist(remove_goal(G), Ids, Removed)
+    ;   Removed = []
+    ).
 
 %!  goals(+G, -Goals) is det.
 goals(G, Goals) :-
