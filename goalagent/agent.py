@@ -18,7 +18,13 @@ from typing import Protocol, TextIO
 
 from goalagent import ast
 from goalagent.kb.engine import KBError, PrologRuntimeError, get_engine
-from goalagent.kb.mentalstate import RULE_ACTIONS, CompiledRule, MentalState
+from goalagent.kb.mentalstate import (
+    RULE_ACTIONS,
+    CompiledPass,
+    CompiledRule,
+    LazyBindings,
+    MentalState,
+)
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 from goalagent.parser import (
     GoalSyntaxError,
@@ -89,7 +95,12 @@ class LocalPostman:
 
 # An action performed: its description, or the action and its bindings to describe it when
 # asked (formatting every action of every cycle costs more than most cycles' reasoning).
-Performed = str | tuple[ast.ActionCall, Bindings]
+Performed = str | tuple[ast.ActionCall, Bindings | LazyBindings]
+
+
+def _resolve(bindings: Bindings | LazyBindings) -> Bindings:
+    """Bindings as Python values (a compiled rule's are read from Prolog on first use)."""
+    return bindings.resolve() if isinstance(bindings, LazyBindings) else bindings
 
 
 def _describe(item: Performed) -> str:
@@ -99,19 +110,31 @@ def _describe(item: Performed) -> str:
     action, bindings = item
     if not action.args:
         return action.name
-    values = {name: format_term(value) for name, value in bindings.items()}
+    values = {name: format_term(value) for name, value in _resolve(bindings).items()}
     args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
     return f"{action.name}({args})"
 
 
-@dataclass(frozen=True)
 class FiredRule:
     """A rule that fired: where it is, with which bindings, and the actions it performed."""
 
-    module: str
-    pos: ast.Pos
-    bindings: Bindings
-    performed: tuple[Performed, ...] = field(repr=False)
+    __slots__ = ("module", "pos", "_bindings", "performed")
+
+    def __init__(self, module: str, pos: ast.Pos, bindings: Bindings | LazyBindings,
+                 performed: tuple[Performed, ...]) -> None:
+        self.module = module
+        self.pos = pos
+        self._bindings = bindings
+        self.performed = performed
+
+    def __repr__(self) -> str:
+        return (f"FiredRule(module={self.module!r}, pos={self.pos!r}, "
+                f"bindings={self.bindings!r}, actions={self.actions!r})")
+
+    @property
+    def bindings(self) -> Bindings:
+        """The rule's variables (and those it was given) with their values."""
+        return _resolve(self._bindings)
 
     @property
     def line(self) -> int:
@@ -219,6 +242,8 @@ class Agent:
             raise AgentError(f"{pos or program.file}: {err}") from None
         self._compiled: dict[int, object] = {}
         self._rule_clauses: dict[int, CompiledRule | None] = {}
+        self._pass_plans: dict[tuple[int, str, bool], list[ast.Rule | CompiledPass]] = {}
+        self._pass_members: dict[int, tuple[ast.Rule, ...]] = {}
         self._compile_all()
 
     # ------------------------------------------------------------------ construction
@@ -362,15 +387,75 @@ class Agent:
         self, module: ast.Module, rules: tuple[ast.Rule, ...], bindings: Bindings, order: str
     ) -> bool:
         """Evaluate rules in ``order``; True when at least one fired."""
-        sequence = list(rules)
+        sequence: list[ast.Rule | CompiledPass]
         if order in ("random", "randomall"):
+            sequence = list(rules)
             self.random.shuffle(sequence)
+        elif bindings:
+            sequence = list(rules)
+        else:
+            sequence = self._passes(rules, order)
         fired_any = False
-        for rule in sequence:
-            if self._apply_rule(module, rule, bindings, order):
+        for item in sequence:
+            if isinstance(item, CompiledPass):
+                fired = self._apply_pass(module, item, order)
+            else:
+                fired = self._apply_rule(module, item, bindings, order)
+            if fired:
                 fired_any = True
                 if order in ("linear", "random", "adaptive"):
                     break
+        return fired_any
+
+    def _passes(self, rules: tuple[ast.Rule, ...], order: str) -> list[ast.Rule | CompiledPass]:
+        """``rules`` with every run of two or more consecutive rules that compile whole (all
+        actions built in) grouped into one compiled pass: one Prolog call applies the run."""
+        key = (id(rules), order, self.tracer is None)
+        cached = self._pass_plans.get(key)
+        if cached is not None:
+            return cached
+        plan: list[ast.Rule | CompiledPass] = []
+        run: list[ast.Rule] = []
+        for rule in (*rules, None):
+            clause = self._rule_clause(rule) if rule is not None else None
+            if clause is not None and clause.actions == len(rule.actions):  # type: ignore
+                run.append(rule)  # type: ignore[arg-type]
+                continue
+            if len(run) >= 2:
+                clauses = [self._rule_clauses[id(member)] for member in run]
+                compiled = self.ms.compile_pass(clauses, stop=order == "linear")  # type: ignore
+                self._pass_members[id(compiled)] = tuple(run)
+                plan.append(compiled)
+            else:
+                plan.extend(run)
+            run = []
+            if rule is not None:
+                plan.append(rule)
+        self._pass_plans[key] = plan
+        return plan
+
+    def _apply_pass(self, module: ast.Module, compiled: CompiledPass, order: str) -> bool:
+        """Applies a compiled pass; True when one of its rules fired."""
+        members = self._pass_members[id(compiled)]
+        results, problems = self.ms.fire_pass(compiled)
+        for rule_index, action_index, message in problems:
+            rule = members[rule_index]
+            if action_index is None:
+                self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
+                          f"condition: {message}; the rule is not applicable")
+            else:
+                action = rule.actions[action_index]
+                self.warn(f"{action.pos}: {action.name} failed: {message}")
+        report = self._report
+        fired_any = False
+        for rule, fired in zip(members, results, strict=False):
+            for solution, done in fired:
+                performed: tuple[Performed, ...] = tuple(
+                    (action, solution) for action in rule.actions[:done])
+                report.performed.extend(performed)
+                self.total_actions += done
+                report.fired.append(FiredRule(module.name, rule.pos, solution, performed))
+                fired_any = True
         return fired_any
 
     def _solutions(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
@@ -449,9 +534,11 @@ class Agent:
             report.performed.extend(performed)
             self.total_actions += done
             if done == clause.actions < len(rule.actions):
-                self._fire(module, rule, solution, order, start=done, performed=performed)
+                self._fire(module, rule, solution.resolve(), order, start=done,
+                           performed=performed)
             else:
-                self._record(module, rule, solution, tuple(performed))
+                report.fired.append(FiredRule(module.name, rule.pos, solution,
+                                              tuple(performed)))
         return bool(fired)
 
     def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str,

@@ -24,6 +24,7 @@ from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [
     "Engine",
+    "Record",
     "KBError",
     "PrologRuntimeError",
     "PrologSyntaxError",
@@ -146,6 +147,31 @@ def _text(t: int, flags: int) -> str:
     return ctypes.string_at(ptr.value, length.value).decode("utf-8")
 
 
+class Record:
+    """A Prolog term kept in Prolog (``PL_record``) until Python asks for its value: answers
+    that are usually never read cost no conversion."""
+
+    __slots__ = ("_engine", "_handle", "_value")
+
+    def __init__(self, engine: Engine, handle: int) -> None:
+        self._engine = engine
+        self._handle: int | None = handle
+        self._value: Term | None = None
+
+    def value(self) -> Term:
+        """The term as a Python value (converted once, then the record is freed)."""
+        if self._handle is not None:
+            self._value = self._engine._recorded(self._handle)
+            PL_erase(self._handle)
+            self._handle = None
+        return self._value
+
+    def __del__(self) -> None:
+        """Frees the record at the engine's next call (from the thread that runs Prolog)."""
+        if self._handle is not None:
+            self._engine._dead_records.append(self._handle)
+
+
 class Engine:
     """The process's SWI-Prolog: one per process (see :func:`get_engine`), one thread at a time."""
 
@@ -158,6 +184,7 @@ class Engine:
         self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
         self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
+        self._dead_records: list[int] = []  # records of collected Record objects, to erase
         self._counter = 0
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
@@ -256,10 +283,11 @@ class Engine:
 
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
               limit: int | None, marks: bool = False,
-              outputs: Sequence[int] | None = None) -> list[list[Term]]:
+              outputs: Sequence[int] | None = None, keep: int | None = None) -> list[list[Term]]:
         """All (or the first ``limit``) solutions of ``pred`` called with the given
         ``(argument index, value)`` inputs; each solution lists the values of the
-        ``outputs`` arguments (default: all). ``marks``: see :meth:`_get`."""
+        ``outputs`` arguments (default: all); output ``keep`` is not converted but kept as a
+        :class:`Record`. ``marks``: see :meth:`_get`."""
         if threading.get_ident() != self._thread:
             self._attach_thread()
         if outputs is None:
@@ -286,7 +314,11 @@ class Engine:
                             record = PL_record(exception)
                         break
                     seen: list[tuple[int, Var]] = []
-                    answers.append([get(base + i, seen, marks) for i in outputs])
+                    if keep is None:
+                        answers.append([get(base + i, seen, marks) for i in outputs])
+                    else:
+                        answers.append([Record(self, PL_record(base + i)) if i == keep
+                                        else get(base + i, seen, marks) for i in outputs])
             except (RecursionError, ctypes.ArgumentError) as error:
                 if isinstance(error, ctypes.ArgumentError) and "Recursion" not in str(error):
                     raise
@@ -300,6 +332,8 @@ class Engine:
             PL_discard_foreign_frame(fid)
             while self._transient_atoms:
                 PL_unregister_atom(self._transient_atoms.pop())
+            while self._dead_records:
+                PL_erase(self._dead_records.pop())
 
     # ------------------------------------------------------------------ internals
 
@@ -345,6 +379,18 @@ class Engine:
             finally:
                 PL_cut_query(qid)
             return PrologRuntimeError(message, term)
+        finally:
+            PL_discard_foreign_frame(fid)
+
+    def _recorded(self, record: int) -> Term:
+        """The Python value of a recorded term (the record stays)."""
+        if threading.get_ident() != self._thread:
+            self._attach_thread()
+        fid = PL_open_foreign_frame()
+        try:
+            t = PL_new_term_ref()
+            PL_recorded(record, t)
+            return self._get(t, [], False)
         finally:
             PL_discard_foreign_frame(fid)
 

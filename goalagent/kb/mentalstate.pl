@@ -457,7 +457,7 @@ percept_body(Q, percept(Q)).
 %   Text is '$rule'(Cond, Actions): a condition already compiled as B:CondName/CondArity
 %   and the list of the rule's leading built-in actions (insert/delete/adopt/drop of a
 %   formula), read together so that they share variables. Asserts
-%   B:Name(Vars..., Recheck, Fired, Warnings) :- fire(...) (see fire/8), Vars being the
+%   B:Name(Vars..., Recheck, Dones, Values, Warnings) :- fire(...) (see fire/9), Vars the
 %   named variables of Text in order of first appearance (the condition's come first).
 
 compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
@@ -467,40 +467,88 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
     length(CondVars, CondArity),
     append(CondVars, _, Vars),
     Cond =.. [CondName|CondVars],
-    append(Vars, [Recheck, Fired, Warnings], Args),
+    append(Vars, [Recheck, Dones, Values, Warnings], Args),
     Head =.. [Name|Args],
-    assertz(B:(Head :- ga_kb:fire(Kind, B, Cond, Vars, Actions, Recheck, Fired, Warnings))).
+    assertz(B:(Head :- ga_kb:fire(Kind, B, Cond, Vars, Actions, Recheck, Dones, Values,
+                                  Warnings))).
 
-%!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Fired, -Warnings) is det.
+%!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Dones, -Values, -Warnings) is det.
 %   Applies a rule whose actions start with Actions (built in, done here): for the first
 %   instantiation of Cond whose first action is enabled (Kind = if) or for every one
 %   (Kind = forall), performs the actions in order until one is not enabled, with blind
 %   commitment after each (a full check after the first one when Recheck is true: percepts
-%   or messages changed since the last check). Fired lists fired(Values, Done) per firing:
-%   the values of Vars and how many actions were performed. Warnings lists w(Index, Message)
+%   or messages changed since the last check). Per firing, Dones has how many actions were
+%   performed and Values the values of Vars. Warnings lists w(Index, Message)
 %   for actions that raised an error (such an action is not enabled). Instantiations are
 %   all computed before any action, so the condition sees the state of the rule's start.
 
-fire(Kind, B, Cond, Vars, Actions, Recheck, Fired, Warnings) :-
+fire(Kind, B, Cond, Vars, Actions, Recheck, Dones, Values, Warnings) :-
     findall(Vars, B:Cond, Solutions),
     B:'$ga_gm'(G),
     nb_setval('$ga_recheck', Recheck),
-    fire_(Kind, Solutions, Vars, Actions, B, G, Fired),
+    fire_(Kind, Solutions, Vars, Actions, B, G, Dones, Values),
     take_warnings(Warnings).
 
-fire_(if, Solutions, Vars, Actions, B, G, Fired) :-
+fire_(if, Solutions, Vars, Actions, B, G, Dones, Values) :-
     (   member(Vars, Solutions),
         perform(Actions, 0, B, G, Done),
         Done > 0
-    ->  Fired = [fired(Vars, Done)]
-    ;   Fired = []
+    ->  Dones = [Done],
+        Values = [Vars]
+    ;   Dones = [],
+        Values = []
     ).
-fire_(forall, Solutions, Vars, Actions, B, G, Fired) :-
-    findall(fired(Vars, Done),
+fire_(forall, Solutions, Vars, Actions, B, G, Dones, Values) :-
+    findall(Done-Vars,
             ( member(Vars, Solutions),
               perform(Actions, 0, B, G, Done),
               Done > 0 ),
-            Fired).
+            Pairs),
+    pairs_keys_values(Pairs, Dones, Values).
+
+%!  compile_pass(+B, +Name, +Stop, +Rules) is det.
+%   Asserts B:Name(Recheck, Dones, Values, Warnings) :- pass(...) (see pass/7): one call
+%   applies the compiled rules Rules (a list of Name/Arity of compile_rule/7 clauses
+%   without given bindings), in order, stopping after the first that fires if Stop is true.
+
+compile_pass(B, Name, Stop, Rules) :-
+    maplist(rule_call, Rules, Calls),
+    Head =.. [Name, Recheck, Dones, Values, Warnings],
+    assertz(B:(Head :- ga_kb:pass(Calls, 0, Stop, B, Recheck, Dones, Values, Warnings))).
+
+rule_call(Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
+    functor(Goal, Name, Arity),
+    Goal =.. [Name|Args],
+    append(_, [Recheck, Dones, Values, Warnings], Args),
+    !.
+
+%!  pass(+Rules, +Index, +Stop, +B, +Recheck, -Dones, -Values, -Warnings) is det.
+%   Dones and Values have one element per rule tried (as fire/9 gives them); Warnings
+%   lists w(Rule, Action, Message) for actions and c(Rule, Message) for conditions that
+%   raised an error (such a rule is not applicable).
+
+pass([], _, _, _, _, [], [], []).
+pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, B, Recheck, [D|Dones], [V|Values],
+     Warnings) :-
+    (   catch(B:Goal, E, true)
+    ->  (   var(E)
+        ->  rule_warnings(W, I, Warnings, Warnings1)
+        ;   D = [], V = [],
+            error_message(E, Message),
+            Warnings = [c(I, Message)|Warnings1]
+        )
+    ;   D = [], V = [], Warnings = Warnings1
+    ),
+    (   Stop == true, D \== []
+    ->  Dones = [], Values = [], Warnings1 = []
+    ;   nb_getval('$ga_recheck', Recheck1),
+        I1 is I + 1,
+        pass(Rules, I1, Stop, B, Recheck1, Dones, Values, Warnings1)
+    ).
+
+rule_warnings([], _, Warnings, Warnings).
+rule_warnings([w(A, M)|Ws], I, [w(I, A, M)|Warnings], Rest) :-
+    rule_warnings(Ws, I, Warnings, Rest).
 
 %   perform(+Actions, +Index, +B, +G, -Done): the actions in order up to the first one that
 %   is not enabled; Done is the index of that one (or the length of Actions).
@@ -706,12 +754,15 @@ drop(B, G, Formula, Removed) :-
 %   Removes every goal (all goal bases) whose facts are all believed.
 
 blind_commitment(B, G, Removed) :-
-    (   G:'$goal'(_, _)
-    ->  findall(Id, ( G:'$goal'(_, Id),
-                      \+ ( G:'$gf'(Id, Fact), \+ B:Fact ) ), Ids),
+    (   G:'$goal'(_, Id),
+        achieved(B, G, Id)
+    ->  findall(Id1, ( G:'$goal'(_, Id1), achieved(B, G, Id1) ), Ids),
         maplist(remove_goal(G), Ids, Removed)
     ;   Removed = []
     ).
+
+achieved(B, G, Id) :-
+    \+ ( G:'$gf'(Id, Fact), \+ B:Fact ).
 
 %!  goals(+G, -Goals) is det.
 goals(G, Goals) :-

@@ -13,10 +13,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from goalagent import ast
-from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, get_engine
+from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get_engine
 from goalagent.kb.terms import Atom, Struct, Term, Var
 
-__all__ = ["AgentDirectory", "CompiledCondition", "CompiledRule", "MentalState"]
+__all__ = ["AgentDirectory", "CompiledCondition", "CompiledPass", "CompiledRule",
+           "LazyBindings", "MentalState"]
 
 _WRAPPERS = {
     "bel": "$bel",
@@ -56,12 +57,13 @@ class CompiledRule:
     """A rule (its condition and leading built-in actions) compiled into one clause of an
     agent's belief module: one Prolog call evaluates it and performs those actions."""
 
-    __slots__ = ("_state", "_pred", "names", "_index", "kind", "actions")
+    __slots__ = ("_state", "_pred", "_name", "names", "_index", "kind", "actions")
 
-    def __init__(self, state: MentalState, pred: int, names: tuple[str, ...], kind: str,
-                 actions: int) -> None:
+    def __init__(self, state: MentalState, pred: int, name: str, names: tuple[str, ...],
+                 kind: str, actions: int) -> None:
         self._state = state
         self._pred = pred
+        self._name = name  # the clause's predicate name
         self.names = names  # named variables: the condition's, then the actions' own
         self._index = {name: i for i, name in enumerate(names)}
         self.kind = kind  # if or forall
@@ -69,6 +71,63 @@ class CompiledRule:
 
     def __repr__(self) -> str:
         return f"CompiledRule({self.kind}, names={self.names!r}, actions={self.actions})"
+
+
+class CompiledPass:
+    """Consecutive compiled rules (all their actions built in, no given bindings) applied
+    in order by one Prolog call: a module pass without a return to Python per rule."""
+
+    __slots__ = ("_state", "_pred", "rules", "stop")
+
+    def __init__(self, state: MentalState, pred: int, rules: tuple[CompiledRule, ...],
+                 stop: bool) -> None:
+        self._state = state
+        self._pred = pred
+        self.rules = rules
+        self.stop = stop  # stop after the first rule that fires (linear order)
+
+    def __repr__(self) -> str:
+        return f"CompiledPass({len(self.rules)} rules, stop={self.stop})"
+
+
+class _Firings:
+    """The instantiations one compiled rule fired with, kept in Prolog (a :class:`Record`,
+    for a pass the values of all its rules, ``outer`` picks the rule's) until someone reads
+    them: most cycles nobody does."""
+
+    __slots__ = ("_record", "_names", "_extra", "_outer")
+
+    def __init__(self, record: Record, names: tuple[str, ...], extra: dict[str, Term],
+                 outer: int | None = None) -> None:
+        self._record = record
+        self._names = names
+        self._extra = extra
+        self._outer = outer
+
+    def bindings(self, index: int) -> dict[str, Term]:
+        """The bindings of firing ``index``: the rule's variables and the given bindings."""
+        values = self._record.value()
+        if self._outer is not None:
+            values = values[self._outer]  # type: ignore[index]
+        found = dict(zip(self._names, values[index], strict=True))  # type: ignore[index]
+        return {**self._extra, **found} if self._extra else found
+
+
+class LazyBindings:
+    """The bindings of one firing of a compiled rule, read from Prolog on first use."""
+
+    __slots__ = ("_firings", "_index", "_value")
+
+    def __init__(self, firings: _Firings, index: int) -> None:
+        self._firings = firings
+        self._index = index
+        self._value: dict[str, Term] | None = None
+
+    def resolve(self) -> dict[str, Term]:
+        """The bindings as Python values (converted once)."""
+        if self._value is None:
+            self._value = self._firings.bindings(self._index)
+        return self._value
 
 
 RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
@@ -191,6 +250,7 @@ class MentalState:
         self._compiled: dict[str, CompiledCondition | CompiledRule] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
         self._recheck = True  # beliefs or goals changed in a way updates did not check
+        self._has_percepts = False  # the percept base is not empty
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
@@ -286,17 +346,17 @@ class MentalState:
                            len(condition.names), text, None)[6]
         assert isinstance(names, list)
         names_tuple = tuple(str(item) for item in names)
-        pred = self._engine.predicate(name, len(names_tuple) + 3, str(self._b), cache=False)
-        rule = CompiledRule(self, pred, names_tuple, kind, len(actions))
+        pred = self._engine.predicate(name, len(names_tuple) + 4, str(self._b), cache=False)
+        rule = CompiledRule(self, pred, name, names_tuple, kind, len(actions))
         self._compiled[key] = rule
         return rule
 
     def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None
-             ) -> tuple[list[tuple[dict[str, Term], int]], list[tuple[int, str]]]:
-        """Applies a compiled rule in one Prolog call (see fire/8 in mentalstate.pl): the
-        firings as (bindings, number of actions performed), and (action index, message)
-        for every action that raised an error. A Prolog error in the condition raises
-        PrologRuntimeError before any action."""
+             ) -> tuple[list[tuple[LazyBindings, int]], list[tuple[int, str]]]:
+        """Applies a compiled rule in one Prolog call (see fire/9 in mentalstate.pl): the
+        firings as (their bindings, number of actions performed), and (action index,
+        message) for every action that raised an error. A Prolog error in the condition
+        raises PrologRuntimeError before any action."""
         if rule._state is not self:
             raise KBError("this rule was compiled for another mental state")
         if self._closed:
@@ -311,16 +371,66 @@ class MentalState:
                     inputs.append((index[name], value))
                 else:
                     extra[name] = value
-        fired, warnings = self._engine.solve(rule._pred, arity + 3, inputs, 1,
-                                             outputs=(arity + 1, arity + 2))[0]
-        result = []
-        for firing in fired:  # type: ignore[union-attr]
-            values, done = firing.args
-            found = dict(zip(names, values, strict=True))
-            result.append(({**extra, **found} if extra else found, done))
-        if result:
+        dones, values, warnings = self._engine.solve(
+            rule._pred, arity + 4, inputs, 1, outputs=(arity + 1, arity + 2, arity + 3),
+            keep=arity + 2)[0]
+        result: list[tuple[LazyBindings, int]] = []
+        if dones:
             self._recheck = False
+            firings = _Firings(values, names, extra)  # type: ignore[arg-type]
+            result = [(LazyBindings(firings, i), done)
+                      for i, done in enumerate(dones)]  # type: ignore[arg-type]
         return result, [(w.args[0], w.args[1]) for w in warnings]  # type: ignore[union-attr]
+
+    def compile_pass(self, rules: Sequence[CompiledRule], *, stop: bool) -> CompiledPass:
+        """Compiles consecutive rules into one pass (``stop``: after the first that fires)."""
+        for rule in rules:
+            if rule._state is not self:
+                raise KBError("this rule was compiled for another mental state")
+        specs = [Struct("/", (Atom(rule._name), len(rule.names) + 4)) for rule in rules]
+        key = f"pass:{stop}:{[rule._name for rule in rules]}"
+        compiled = self._compiled.get(key)
+        if compiled is not None:
+            assert isinstance(compiled, CompiledPass)
+            return compiled
+        name = _condition_names.get(key)
+        if name is None:
+            name = self._engine.unique_name("$ga_p")
+            _condition_names[key] = name
+        self._call("compile_pass", self._b, Atom(name), _TRUE if stop else _FALSE, specs)
+        pred = self._engine.predicate(name, 4, str(self._b), cache=False)
+        compiled = CompiledPass(self, pred, tuple(rules), stop)
+        self._compiled[key] = compiled
+        return compiled
+
+    def fire_pass(self, compiled: CompiledPass) -> tuple[
+            list[list[tuple[LazyBindings, int]]], list[tuple[int, int | None, str]]]:
+        """Applies a compiled pass in one Prolog call (see pass/8 in mentalstate.pl): per
+        rule tried, its firings as :meth:`fire` gives them; and (rule index, action index or
+        None for the condition, message) for every Prolog error, which made that action
+        not enabled or that rule not applicable."""
+        if compiled._state is not self:
+            raise KBError("this pass was compiled for another mental state")
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        dones, values, warnings = self._engine.solve(
+            compiled._pred, 4, [(0, _TRUE if self._recheck else _FALSE)], 1,
+            outputs=(1, 2, 3), keep=2)[0]
+        result: list[list[tuple[LazyBindings, int]]] = []
+        for index, rule_dones in enumerate(dones):  # type: ignore[arg-type]
+            if rule_dones:
+                self._recheck = False
+                firings = _Firings(values, compiled.rules[index].names, {},  # type: ignore
+                                   index)
+                result.append([(LazyBindings(firings, i), done)
+                               for i, done in enumerate(rule_dones)])
+            else:
+                result.append([])
+        problems: list[tuple[int, int | None, str]] = [
+            (w.args[0], w.args[1], w.args[2]) if w.name == "w"  # type: ignore[union-attr]
+            else (w.args[0], None, w.args[1])  # type: ignore[union-attr]
+            for w in warnings]  # type: ignore[union-attr]
+        return result, problems
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
         """The error of the first literal SWI's reader rejects (with its position)."""
@@ -470,8 +580,13 @@ class MentalState:
     # ------------------------------------------------------------------ percepts, mail
 
     def set_percepts(self, percepts: Iterable[Term]) -> None:
-        """Replaces the percept base (``percept(φ)`` and ``bel(percept(φ))`` see it)."""
-        self._call("set_percepts", self._b, list(percepts))
+        """Replaces the percept base (``percept(φ)`` and ``bel(percept(φ))`` see it); an
+        empty base replaced by an empty one costs no Prolog call."""
+        percepts = list(percepts)
+        if not percepts and not self._has_percepts:
+            return
+        self._call("set_percepts", self._b, percepts)
+        self._has_percepts = bool(percepts)
         self._recheck = True
 
     def percepts(self) -> list[Term]:
