@@ -1,0 +1,278 @@
+"""Rules compiled into one Prolog clause and module passes compiled into one call: the same
+GOAL semantics as the step-by-step path (which runs when a tracer is set), fewer calls."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import pytest
+
+import goalagent.kb.engine as engine_module
+from goalagent.agent import Agent
+from goalagent.kb.engine import KBError
+from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.terms import Atom, Struct, Term
+
+REFERENCE = Path(__file__).resolve().parents[1] / "bench" / "reference_agent.goal"
+
+
+def make(text: str, *, traced: bool = False, **kwargs) -> Agent:
+    """An agent on the fast path, or with a tracer (every rule and action step by step)."""
+    kwargs.setdefault("output", io.StringIO())
+    warnings: list[str] = []
+    kwargs.setdefault("warn", warnings.append)
+    if traced:
+        kwargs["tracer"] = lambda agent, kind, text: None
+    agent = Agent.from_string(text, "test.goal", **kwargs)
+    agent.test_warnings = warnings  # type: ignore[attr-defined]
+    return agent
+
+
+def history(agent: Agent, cycles: int) -> list[tuple]:
+    """Per cycle: each fired rule's line, bindings and actions, then beliefs and goals."""
+    steps = []
+    for _ in range(cycles):
+        report = agent.step()
+        steps.append([(f.module, f.line, f.bindings, f.actions) for f in report.fired])
+        steps.append(report.actions)
+    steps.append((agent.beliefs(), agent.goals()))
+    return steps
+
+
+COMBOS = """
+init module {
+    knowledge { clear(X) :- block(X), \\+ on(_, X). }
+    beliefs { block(a). block(b). block(c). on(a, b). n(1). n(2). n(3). p. }
+    goals { clear(b). }
+}
+event module { program {
+    forall bel(n(X), Y is X * 10) do insert(m(X, Y)) + delete(n(X)).
+    if bel(on(X, Y)) then delete(on(X, Y)) + adopt(clear(Y)) + insert(never).
+} }
+main module { program [order=linearall] {
+    if bel(p) then insert(q) + delete(q) + adopt(q).
+    if bel(m(X, _)) then adopt(m(X, 0)) + insert(chosen(X)).
+    if a-goal(m(X, Y)) then insert(m(X, Y)).
+} }
+"""
+
+
+@pytest.mark.parametrize("text", [COMBOS, REFERENCE.read_text()])
+def test_fast_path_and_traced_path_do_the_same(text: str) -> None:
+    fast, traced = make(text), make(text, traced=True)
+    try:
+        assert history(fast, 25) == history(traced, 25)
+        assert fast.test_warnings == traced.test_warnings == []  # type: ignore[attr-defined]
+    finally:
+        fast.close()
+        traced.close()
+
+
+def line_of(text: str, start: str) -> int:
+    """The line of ``text`` that starts (after blanks) with ``start``."""
+    return next(number for number, line in enumerate(text.splitlines(), 1)
+                if line.strip().startswith(start))
+
+
+def test_a_combo_stops_at_the_first_action_not_enabled() -> None:
+    agent = make(COMBOS)
+    report = agent.step()
+    on, p, m = (line_of(COMBOS, start) for start in ("if bel(on", "if bel(p)", "if bel(m("))
+    fired = {f.line: f for f in report.fired}
+    # delete(on(a, b)) makes clear(b) believed: adopt(clear(b)) is refused, so the combo
+    # stops there and insert(never) is not performed.
+    assert fired[on].actions == ("delete(on(a, b))",)
+    assert agent.query("bel", "never") == []
+    # insert(q) + delete(q) leave q unbelieved, so adopt(q) is enabled.
+    assert fired[p].actions == ("insert(q)", "delete(q)", "adopt(q)")
+    # adopt(m(X, 0)) is refused for no X (m(X, 0) is never believed), so insert follows.
+    assert fired[m].actions == ("adopt(m(1, 0))", "insert(chosen(1))")
+    second = agent.step()
+    # Now adopt(m(1, 0)) is refused (already a goal): the next instantiation X = 2 fires.
+    assert [f.bindings["X"] for f in second.fired if f.line == m] == [2]
+    assert on not in [f.line for f in second.fired]  # no on/2 left
+
+
+def test_blind_commitment_runs_after_each_action_of_a_combo() -> None:
+    agent = make("""
+        init module { beliefs { go. } goals { p. } }
+        main module { program {
+            if bel(go) then insert(p) + delete(p) + adopt(p) + delete(go).
+        } }
+    """)
+    report = agent.step()
+    # insert(p) achieves the goal p, which is dropped before delete(p); so adopt(p) finds
+    # neither the belief nor the goal and is enabled.
+    assert report.fired[0].actions == ("insert(p)", "delete(p)", "adopt(p)", "delete(go)")
+    assert agent.goals() == [[Atom("p")]]
+
+
+class Percepts:
+    """An environment that shows ``seen`` from the second cycle on."""
+
+    def __init__(self) -> None:
+        self.calls = 0
+
+    def percepts(self) -> list[Term]:
+        self.calls += 1
+        return [Atom("seen")] if self.calls > 1 else []
+
+    def act(self, action: Struct | Atom) -> None:
+        """No actions in this test."""
+
+
+def test_goals_achieved_through_percepts_go_after_the_first_action() -> None:
+    agent = make("""
+        init module { knowledge { ok :- percept(seen). } goals { ok. } }
+        event module { program {
+            if true then insert(tick).
+            if goal(ok) then insert(still_a_goal).
+        } }
+    """, io=Percepts())
+    agent.step()
+    assert agent.query("bel", "still_a_goal") == [{}]
+    agent.step()  # insert(tick) changes nothing, but it is the first action after new percepts
+    assert agent.goals() == []
+    assert agent.last_report is not None
+    assert [f.line for f in agent.last_report.fired] == [4]
+
+
+def test_errors_in_a_pass_are_located_warnings_and_the_pass_goes_on() -> None:
+    agent = make("""
+        init module { beliefs { n(1). n(2). } }
+        main module { program [order=linearall] {
+            if bel(X is foo + 1) then insert(x(X)).
+            forall bel(n(X)) do insert(m(X, Y)).
+            if bel(n(X)) then insert(ok(X)).
+        } }
+    """)
+    report = agent.step()
+    warnings = agent.test_warnings  # type: ignore[attr-defined]
+    assert "rule at test.goal:4" in warnings[0] and "not applicable" in warnings[0]
+    assert len(warnings) == 3
+    assert all("test.goal:5:33: insert failed" in w and "not ground" in w for w in warnings[1:])
+    assert [f.line for f in report.fired] == [6]
+    assert report.actions == ["insert(ok(1))"]
+
+
+def test_linear_order_stops_inside_a_pass_at_the_first_rule_that_fires() -> None:
+    agent = make("""
+        main module { program {
+            if bel(missing) then insert(a).
+            if true then insert(b).
+            if true then insert(c).
+        } }
+    """)
+    report = agent.step()
+    assert [f.line for f in report.fired] == [4]
+    assert agent.query("bel", "b") == [{}] and agent.query("bel", "c") == []
+
+
+def test_prolog_part_then_python_part_of_a_combo() -> None:
+    agent = make("""
+        init module { beliefs { n(7). } }
+        main module { program {
+            if bel(n(X)) then insert(m(X)) + print(X) + insert(k(X)) + adopt(m(X)) + print(no).
+        } }
+    """)
+    report = agent.step()
+    assert agent.output.getvalue().splitlines() == ["7"]
+    assert report.actions == ["insert(m(7))", "print(7)", "insert(k(7))"]
+    assert report.fired[0].bindings == {"X": 7}
+
+
+def test_rules_of_a_module_with_parameters_get_their_bindings() -> None:
+    agent = make("""
+        module note(X) { program { if bel(Y is X * 2) then insert(got(X, Y)) + insert(z(X)). } }
+        main module [exit=always] { program { if true then note(21). } }
+    """)
+    agent.step()
+    assert agent.query("bel", "got(X, Y), z(Z)") == [{"X": 21, "Y": 42, "Z": 21}]
+
+
+def test_a_reference_cycle_is_one_prolog_call_per_module(monkeypatch) -> None:
+    """The event module (2 forall rules) and the main module (4 rules, linearall) each take
+    one Prolog call; no other call happens in a cycle of the reference agent."""
+    agent = make(REFERENCE.read_text())
+    agent.run(3)
+    calls = []
+    solve = agent.ms._engine.solve
+
+    def counting(*args, **kwargs):
+        calls.append(args[0])
+        return solve(*args, **kwargs)
+
+    monkeypatch.setattr(agent.ms._engine, "solve", counting)
+    for _ in range(10):
+        agent.step()
+    assert len(calls) == 2 * 10
+    assert agent.query("bel", "cycle(C)") == [{"C": 13}]
+    agent.close()
+
+
+def test_unread_bindings_are_freed_in_prolog() -> None:
+    agent = make(REFERENCE.read_text())
+    agent.run(5)
+    engine = agent.ms._engine
+    agent.run(6)  # the previous report's records are released, then erased at the next call
+    assert len(engine._dead_records) <= 12
+    agent.step()
+    agent.query("bel", "true")
+    assert engine._dead_records == []
+    agent.close()
+
+
+def test_compiled_rules_belong_to_their_mental_state() -> None:
+    with MentalState("one", beliefs=[]) as one, MentalState("two", beliefs=[]) as two:
+        condition = one.compile(())
+        rule = one.compile_rule("if", condition, [("insert", "a")])
+        with pytest.raises(KBError, match="another mental state"):
+            two.fire(rule)
+        with pytest.raises(KBError, match="another mental state"):
+            two.compile_rule("if", condition, [("insert", "a")])
+        with pytest.raises(KBError, match="only if and forall"):
+            one.compile_rule("listall", condition, [("insert", "a")])
+        with pytest.raises(KBError, match="not an action"):
+            one.compile_rule("if", condition, [("print", "a")])
+        fired, warnings = one.fire(rule)
+        assert [(b.resolve(), done) for b, done in fired] == [({}, 1)]
+        assert warnings == []
+        assert one.query("bel", "a") == [{}]
+
+
+def test_a_compiled_pass_reports_each_rule_it_tried() -> None:
+    with MentalState("one", beliefs=["n(1)", "n(2)"]) as state:
+        state.declare_updates(["m(_)", "k"])
+        rules = [
+            state.compile_rule("forall", state.compile(_bel("n(X)")), [("insert", "m(X)")]),
+            state.compile_rule("if", state.compile(_bel("X is a + 1")), [("insert", "k")]),
+            state.compile_rule("if", state.compile(_bel("m(2)")), [("insert", "k")]),
+            state.compile_rule("if", state.compile(()), [("insert", "k")]),
+        ]
+        every = state.compile_pass(rules, stop=False)
+        results, problems = state.fire_pass(every)
+        assert [[(b.resolve(), done) for b, done in fired] for fired in results] == [
+            [({"X": 1}, 1), ({"X": 2}, 1)], [], [({}, 1)], [({}, 1)]]
+        assert [(rule, action) for rule, action, _ in problems] == [(1, None)]
+        first = state.compile_pass(rules, stop=True)
+        results, _ = state.fire_pass(first)
+        assert len(results) == 1  # the forall rule fired again (insert is always enabled)
+
+
+def _bel(text: str) -> tuple:
+    """A condition of one bel literal."""
+    from goalagent import ast
+
+    pos = ast.Pos("<test>", 1, 1)
+    return (ast.MentalLiteral("bel", ast.PrologText(text, pos), pos),)
+
+
+def test_engine_records_convert_once() -> None:
+    engine = engine_module.get_engine()
+    pred = engine.predicate("=", 2, "system")
+    [[record]] = engine.solve(pred, 2, [(0, Struct("f", (1, Atom("a"))))], 1, outputs=(1,),
+                              keep=1)
+    assert isinstance(record, engine_module.Record)
+    assert record.value() == Struct("f", (1, Atom("a")))
+    assert record.value() == Struct("f", (1, Atom("a")))
