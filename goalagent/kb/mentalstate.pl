@@ -662,8 +662,7 @@ must_be_inserted([Fact|Facts]) :-
     must_be_inserted(Facts).
 
 add_fact(B, G, Fact, Added) :-
-    (   current_predicate(_, B:Fact),
-        catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
+    (   catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
     ->  Added = 0
     ;   assertz(B:Fact),
         ensure_dynamic(G, Fact),
@@ -674,12 +673,20 @@ delete_fact(B, Fact, Deleted) :-
     must_be_callable(Fact),
     (   ground(Fact)
     ->  (   current_predicate(_, B:Fact)
-        ->  aggregate_all(count, retract(B:Fact), Deleted)
+        ->  retract_count(B, Fact, 0, Deleted)
         ;   Deleted = 0
         )
     ;   current_predicate(_, B:Fact)
     ->  findall(Fact, retract(B:Fact), Deleted)
     ;   Deleted = []
+    ).
+
+%   retract_count(+B, +Fact, +N0, -N): retracts every copy of the ground Fact.
+retract_count(B, Fact, N0, N) :-
+    (   retract(B:Fact)
+    ->  N1 is N0 + 1,
+        retract_count(B, Fact, N1, N)
+    ;   N = N0
     ).
 
 must_be_callable(Fact) :-
