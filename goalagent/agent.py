@@ -20,10 +20,13 @@ from goalagent import ast
 from goalagent.kb.engine import KBError, PrologRuntimeError, get_engine
 from goalagent.kb.mentalstate import (
     RULE_ACTIONS,
+    CompiledCondition,
     CompiledPass,
     CompiledRule,
     LazyBindings,
     MentalState,
+    Problem,
+    instantiate,
 )
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 from goalagent.parser import (
@@ -110,6 +113,10 @@ def _describe(item: Performed) -> str:
     action, bindings = item
     if not action.args:
         return action.name
+    if action.name not in _BUILTIN_ARITY:  # a user action done by a rule clause
+        values = _resolve(bindings)
+        args = tuple(instantiate(arg, values) for arg in action.args)
+        return format_term(Struct(action.name, args))
     values = {name: format_term(value) for name, value in _resolve(bindings).items()}
     args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
     return f"{action.name}({args})"
@@ -242,6 +249,7 @@ class Agent:
             raise AgentError(f"{pos or program.file}: {err}") from None
         self._compiled: dict[int, object] = {}
         self._rule_clauses: dict[int, CompiledRule | None] = {}
+        self._actions_declared = False  # actionspecs known to rule clauses
         self._pass_plans: dict[tuple[int, str, bool], list[ast.Rule | CompiledPass]] = {}
         self._pass_members: dict[int, tuple[ast.Rule, ...]] = {}
         self._compile_all()
@@ -438,14 +446,8 @@ class Agent:
         """Applies a compiled pass; True when one of its rules fired."""
         members = self._pass_members[id(compiled)]
         results, problems = self.ms.fire_pass(compiled)
-        for rule_index, action_index, message in problems:
-            rule = members[rule_index]
-            if action_index is None:
-                self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
-                          f"condition: {message}; the rule is not applicable")
-            else:
-                action = rule.actions[action_index]
-                self.warn(f"{action.pos}: {action.name} failed: {message}")
+        for rule_index, problem in problems:
+            self._problem(module, members[rule_index], problem)
         report = self._report
         fired_any = False
         for rule, fired in zip(members, results, strict=False):
@@ -467,29 +469,74 @@ class Agent:
                       f"condition: {err.message}; the rule is not applicable")
             return []
 
+    def _problem(self, module: ast.Module, rule: ast.Rule, problem: Problem) -> None:
+        """Warns about a problem a compiled rule met, as the step-by-step path words it."""
+        kind, index, detail = problem
+        if kind == "condition":
+            self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
+                      f"condition: {detail}; the rule is not applicable")
+        elif kind == "pre":
+            spec = self.program.actionspecs[index]  # type: ignore[index]
+            self.warn(f"precondition of {spec.name} at {spec.pos}: Prolog error: "
+                      f"{detail}; the action is not enabled")
+        elif kind == "open":
+            pos = rule.actions[index].pos  # type: ignore[index]
+            self.warn(f"{pos}: action {format_term(detail)} is not closed after its "
+                      "precondition; not performed")
+        else:
+            action = rule.actions[index]  # type: ignore[index]
+            self.warn(f"{action.pos}: {action.name} failed: {detail}")
+
+    def _in_prolog(self, action: ast.Action,
+                   condition: CompiledCondition) -> tuple[str, str] | None:
+        """How a rule clause performs ``action`` itself (see RULE_ACTIONS), or None when
+        Python must: messages, print/log, module calls, exit-module, actions sent to the
+        environment, and user actions with a variable the condition does not bind (their
+        precondition's bindings do not flow into the rest of the rule)."""
+        if not isinstance(action, ast.ActionCall):
+            return None
+        if action.name in RULE_ACTIONS:
+            return (action.name, action.args[0].text)
+        specs = self._specs.get((action.name, action.arity))
+        if not specs or (self.io is not None and not all(spec.internal for spec in specs)):
+            return None
+        bound = set(condition.names)
+        if any(name not in bound for arg in action.args for name in arg.variables):
+            return None
+        if not self._actions_declared:
+            self.ms.declare_actions(self.program.actionspecs)
+            self._actions_declared = True
+        text = format_term(Atom(action.name))
+        if action.args:
+            text += "(" + ", ".join(arg.text for arg in action.args) + ")"
+        return ("do", text)
+
     def _rule_clause(self, rule: ast.Rule) -> CompiledRule | None:
-        """The rule compiled with its leading built-in actions into one Prolog clause
-        (compiled on first use), or None when Python must do everything: a tracer is set
-        (it sees each step), the rule is nested or listall, its first action is not
-        built in, or it is a forall whose actions are not all built in (every instantiation
-        must finish its combo before the next one starts)."""
+        """The rule compiled with its leading actions that Prolog can do (see
+        :meth:`_in_prolog`) into one Prolog clause (compiled on first use), or None when
+        Python must do everything: a tracer is set (it sees each step), the rule is nested
+        or listall, its first action needs Python, or it is a forall whose actions do not
+        all run in Prolog (every instantiation must finish its combo before the next one
+        starts)."""
         if self.tracer is not None:
             return None
         key = id(rule)
         if key in self._rule_clauses:
             return self._rule_clauses[key]
+        condition = self._compiled[id(rule.condition)]
+        assert isinstance(condition, CompiledCondition)
         leading = []
         for action in rule.actions:
-            if not isinstance(action, ast.ActionCall) or action.name not in RULE_ACTIONS:
+            done_here = self._in_prolog(action, condition)
+            if done_here is None:
                 break
-            leading.append((action.name, action.args[0]))
+            leading.append(done_here)
         clause = None
         if rule.rules is None and leading and (
             rule.kind == "if" or (rule.kind == "forall" and len(leading) == len(rule.actions))
         ):
             try:
-                clause = self.ms.compile_rule(rule.kind, self._compiled[id(rule.condition)],
-                                              leading)
+                clause = self.ms.compile_rule(rule.kind, condition, leading)
             except KBError as err:
                 raise AgentError(f"{rule.pos}: {err}") from None
         self._rule_clauses[key] = clause
@@ -524,9 +571,8 @@ class Agent:
             self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
                       f"condition: {err.message}; the rule is not applicable")
             return False
-        for index, message in warnings:
-            action = rule.actions[index]
-            self.warn(f"{action.pos}: {action.name} failed: {message}")
+        for problem in warnings:
+            self._problem(module, rule, problem)
         report = self._report
         for solution, done in fired:
             performed: list[Performed] = [(action, solution)
@@ -663,7 +709,11 @@ class Agent:
                 except ActionFailed as err:
                     self.warn(f"{action.pos}: the environment could not perform {text}: {err}")
                     return self._act_done(text)
-            self._changes(self.ms.insert(spec.post, enabled))
+            try:
+                self._changes(self.ms.insert(spec.post, enabled))
+            except KBError as err:
+                self.warn(f"{action.pos}: {action.name} failed: {err}")
+                return None
             return self._act_done(text)
         return None
 

@@ -33,6 +33,8 @@ def history(agent: Agent, cycles: int) -> list[tuple]:
     """Per cycle: each fired rule's line, bindings and actions, then beliefs and goals."""
     steps = []
     for _ in range(cycles):
+        if agent.terminated:
+            break
         report = agent.step()
         steps.append([(f.module, f.line, f.bindings, f.actions) for f in report.fired])
         steps.append(report.actions)
@@ -254,7 +256,7 @@ def test_a_compiled_pass_reports_each_rule_it_tried() -> None:
         results, problems = state.fire_pass(every)
         assert [[(b.resolve(), done) for b, done in fired] for fired in results] == [
             [({"X": 1}, 1), ({"X": 2}, 1)], [], [({}, 1)], [({}, 1)]]
-        assert [(rule, action) for rule, action, _ in problems] == [(1, None)]
+        assert [(rule, kind) for rule, (kind, _, _) in problems] == [(1, "condition")]
         first = state.compile_pass(rules, stop=True)
         results, _ = state.fire_pass(first)
         assert len(results) == 1  # the forall rule fired again (insert is always enabled)
@@ -276,3 +278,88 @@ def test_engine_records_convert_once() -> None:
     assert isinstance(record, engine_module.Record)
     assert record.value() == Struct("f", (1, Atom("a")))
     assert record.value() == Struct("f", (1, Atom("a")))
+
+
+STACKER = """
+init module {
+    knowledge {
+        clear(table).
+        clear(X) :- block(X), \\+ on(_, X).
+        tower([X]) :- on(X, table).
+        tower([X, Y | T]) :- on(X, Y), tower([Y | T]).
+    }
+    beliefs { block(a). block(b). block(c). on(a, table). on(b, a). on(c, table). }
+    goals { on(a, b), on(b, c), on(c, table). }
+}
+main module [exit=nogoals] { program {
+    if a-goal(tower([X, Y | T])), bel(tower([Y | T])) then move(X, Y) + note(X).
+    if a-goal(tower([X | T])) then move(X, table).
+} actionspec {
+    move(X, Y) { pre { clear(X), clear(Y), on(X, Z), X \\= Y } post { not(on(X, Z)), on(X, Y) } }
+    note(X)@int { pre { true } post { moved(X) } }
+} }
+"""
+
+
+def test_user_actions_without_environment_run_in_the_rule_clause() -> None:
+    fast, traced = make(STACKER), make(STACKER, traced=True)
+    try:
+        assert history(fast, 8) == history(traced, 8)
+        assert fast.terminated and traced.terminated
+        assert fast.query("bel", "tower([a, b, c])") == [{}]
+        assert fast.query("bel", "moved(X)") == [{"X": Atom("b")}, {"X": Atom("a")}]
+    finally:
+        fast.close()
+        traced.close()
+
+
+class Recorder:
+    """An environment that records the actions it is asked to perform."""
+
+    def __init__(self) -> None:
+        self.done: list[str] = []
+
+    def percepts(self) -> list[Term]:
+        return []
+
+    def act(self, action: Struct | Atom) -> None:
+        self.done.append(str(action))
+
+
+def test_with_an_environment_only_internal_actions_stay_in_prolog() -> None:
+    env = Recorder()
+    agent = make(STACKER, io=env)
+    agent.run(8)
+    assert agent.terminated
+    assert env.done == ["move(b,c)", "move(a,b)"]
+    assert agent.query("bel", "moved(X)") == [{"X": Atom("b")}, {"X": Atom("a")}]
+
+
+@pytest.mark.parametrize("traced", [False, True])
+def test_user_action_problems_are_warnings(traced: bool) -> None:
+    agent = make("""
+        init module { beliefs { n(1). } }
+        main module [exit=always] { program [order=linearall] {
+            if bel(n(X)) then crash(X) + insert(never).
+            if bel(n(X)) then free(X, Y) + insert(never).
+            if bel(n(X)) then bad(X) + insert(never).
+            if bel(X = X) then open(X) + insert(never).
+        } actionspec {
+            crash(X) { pre { X > foo } post { true } }
+            crash(X) { pre { true } post { crashed(X) } }
+            free(X, Y) { pre { true } post { true } }
+            bad(X) { pre { true } post { bad(X, _) } }
+            open(X) { pre { true } post { true } }
+        } }
+    """, traced=traced)
+    report = agent.step()
+    warnings = agent.test_warnings  # type: ignore[attr-defined]
+    assert "precondition of crash at test.goal:9:13: Prolog error" in warnings[0]
+    assert "test.goal:5:31: action free(1,_" in warnings[1]
+    assert "not closed after its precondition" in warnings[1]
+    assert "test.goal:6:31: bad failed" in warnings[2] and "not ground" in warnings[2]
+    assert "test.goal:7:32: action open(_" in warnings[3]
+    assert len(warnings) == 4
+    # crash(1) is done through its second spec; the other user actions are not enabled.
+    assert report.actions == ["crash(1)", "insert(never)"]
+    assert agent.query("bel", "crashed(1)") == [{}]

@@ -226,7 +226,7 @@ new_agent(B, G) :-
              forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
                     dynamic(M:PI))
            )),
-    dynamic(B:('$kpred'/1, '$ga_dir'/1)),
+    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/3)),
     assertz(B:'$ga_gm'(G)),
     dynamic(G:('$gf'/2, '$goal'/2, '$top'/1, '$fwd'/1)),
     assertz(G:'$top'(0)).
@@ -455,8 +455,9 @@ percept_body(Q, percept(Q)).
 
 %!  compile_rule(+B, +Kind, +Name, +CondName, +CondArity, +Text, -Names) is det.
 %   Text is '$rule'(Cond, Actions): a condition already compiled as B:CondName/CondArity
-%   and the list of the rule's leading built-in actions (insert/delete/adopt/drop of a
-%   formula), read together so that they share variables. Asserts
+%   and the list of the rule's leading actions done in Prolog (insert/delete/adopt/drop of
+%   a formula, do(Action) for a user action, see declare_actions/2), read together so that
+%   they share variables. Asserts
 %   B:Name(Vars..., Recheck, Dones, Values, Warnings) :- fire(...) (see fire/9), Vars the
 %   named variables of Text in order of first appearance (the condition's come first).
 
@@ -478,8 +479,8 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
 %   (Kind = forall), performs the actions in order until one is not enabled, with blind
 %   commitment after each (a full check after the first one when Recheck is true: percepts
 %   or messages changed since the last check). Per firing, Dones has how many actions were
-%   performed and Values the values of Vars. Warnings lists w(Index, Message)
-%   for actions that raised an error (such an action is not enabled). Instantiations are
+%   performed and Values the values of Vars. Warnings: see warning/2 (an action that
+%   raised an error is not enabled). Instantiations are
 %   all computed before any action, so the condition sees the state of the rule's start.
 
 fire(Kind, B, Cond, Vars, Actions, Recheck, Dones, Values, Warnings) :-
@@ -506,6 +507,20 @@ fire_(forall, Solutions, Vars, Actions, B, G, Dones, Values) :-
             Pairs),
     pairs_keys_values(Pairs, Dones, Values).
 
+%!  declare_actions(+B, +Specs) is det.
+%   Specs: list of spec(Index, Text), Text being '$spec'(Action, Pre, Post) for one
+%   actionspec (Index: its place in the program). Asserts, in order,
+%   B:'$ga_pre'(Action, Post, Index) :- Pre, so that the first clause whose Action unifies
+%   and whose Pre holds gives the action's postcondition (see action/3). A Prolog error in
+%   Pre is a warning p(Index, Message) and that spec does not apply.
+
+declare_actions(B, Specs) :-
+    forall(member(spec(Index, Text), Specs),
+           ( read_text(Text, B, '$spec'(Action, Pre, Post), _),
+             local_cut(Pre, Body),
+             assertz(B:('$ga_pre'(Action, Post, Index) :-
+                           catch(Body, E, ( ga_kb:push_warning(p(Index, E)), fail )))) )).
+
 %!  compile_pass(+B, +Name, +Stop, +Rules) is det.
 %   Asserts B:Name(Recheck, Dones, Values, Warnings) :- pass(...) (see pass/7): one call
 %   applies the compiled rules Rules (a list of Name/Arity of compile_rule/7 clauses
@@ -524,7 +539,7 @@ rule_call(Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
 
 %!  pass(+Rules, +Index, +Stop, +B, +Recheck, -Dones, -Values, -Warnings) is det.
 %   Dones and Values have one element per rule tried (as fire/9 gives them); Warnings
-%   lists w(Rule, Action, Message) for actions and c(Rule, Message) for conditions that
+%   lists r(Rule, Warning): the warnings of fire/9, and c(Message) for a condition that
 %   raised an error (such a rule is not applicable).
 
 pass([], _, _, _, _, [], [], []).
@@ -535,7 +550,7 @@ pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, B, Recheck, [D|Dones], [V|Va
         ->  rule_warnings(W, I, Warnings, Warnings1)
         ;   D = [], V = [],
             error_message(E, Message),
-            Warnings = [c(I, Message)|Warnings1]
+            Warnings = [r(I, c(Message))|Warnings1]
         )
     ;   D = [], V = [], Warnings = Warnings1
     ),
@@ -547,7 +562,7 @@ pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, B, Recheck, [D|Dones], [V|Va
     ).
 
 rule_warnings([], _, Warnings, Warnings).
-rule_warnings([w(A, M)|Ws], I, [w(I, A, M)|Warnings], Rest) :-
+rule_warnings([W|Ws], I, [r(I, W)|Warnings], Rest) :-
     rule_warnings(Ws, I, Warnings, Rest).
 
 %   perform(+Actions, +Index, +B, +G, -Done): the actions in order up to the first one that
@@ -565,6 +580,13 @@ action(insert(F), B, G) :- update(B, G, insert, F, _, _, _).
 action(delete(F), B, G) :- update(B, G, delete, F, _, _, _).
 action(adopt(F), B, G) :- adopt(B, G, F, adopted).
 action(drop(F), B, G) :- drop(B, G, F, _).
+action(do(Action), B, G) :-
+    B:'$ga_pre'(Action, Post, _),
+    !,
+    (   ground(Action)
+    ->  update(B, G, insert, Post, _, _, _)
+    ;   throw(ga_open(Action))
+    ).
 
 %   Blind commitment after an action: insert/delete checked what they changed (update/7);
 %   the first action after new percepts or messages checks every goal.
@@ -575,10 +597,22 @@ after_action(B, G) :-
     ;   true
     ).
 
+%   Warnings: w(Action, Message) for an action that raised an error, o(Action, Term) for a
+%   user action not closed after its precondition, p(Spec, Message) for a precondition that
+%   raised an error.
+warning(Index, ga_open(Action)) :- !,
+    push_warning(o(Index, Action)).
 warning(Index, E) :-
-    error_message(E, Message),
+    push_warning(w(Index, E)).
+
+push_warning(Warning0) :-
+    (   arg(2, Warning0, E), Warning0 \= o(_, _)
+    ->  error_message(E, Message),
+        setarg(2, Warning0, Message)
+    ;   true
+    ),
     nb_getval('$ga_warnings', W0),
-    nb_setval('$ga_warnings', [w(Index, Message)|W0]).
+    nb_setval('$ga_warnings', [Warning0|W0]).
 
 take_warnings(Warnings) :-
     nb_getval('$ga_warnings', W0),

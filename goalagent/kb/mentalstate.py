@@ -14,10 +14,10 @@ from typing import Any
 
 from goalagent import ast
 from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get_engine
-from goalagent.kb.terms import Atom, Struct, Term, Var
+from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
-__all__ = ["AgentDirectory", "CompiledCondition", "CompiledPass", "CompiledRule",
-           "LazyBindings", "MentalState"]
+__all__ = ["RULE_ACTIONS", "AgentDirectory", "CompiledCondition", "CompiledPass",
+           "CompiledRule", "LazyBindings", "MentalState", "Problem", "instantiate"]
 
 _WRAPPERS = {
     "bel": "$bel",
@@ -57,13 +57,15 @@ class CompiledRule:
     """A rule (its condition and leading built-in actions) compiled into one clause of an
     agent's belief module: one Prolog call evaluates it and performs those actions."""
 
-    __slots__ = ("_state", "_pred", "_name", "names", "_index", "kind", "actions")
+    __slots__ = ("_state", "_pred", "_name", "names", "condition_names", "_index", "kind",
+                 "actions")
 
     def __init__(self, state: MentalState, pred: int, name: str, names: tuple[str, ...],
-                 kind: str, actions: int) -> None:
+                 condition_names: tuple[str, ...], kind: str, actions: int) -> None:
         self._state = state
         self._pred = pred
         self._name = name  # the clause's predicate name
+        self.condition_names = condition_names
         self.names = names  # named variables: the condition's, then the actions' own
         self._index = {name: i for i, name in enumerate(names)}
         self.kind = kind  # if or forall
@@ -95,22 +97,23 @@ class _Firings:
     for a pass the values of all its rules, ``outer`` picks the rule's) until someone reads
     them: most cycles nobody does."""
 
-    __slots__ = ("_record", "_names", "_extra", "_outer")
+    __slots__ = ("_record", "_names", "_given", "_outer")
 
-    def __init__(self, record: Record, names: tuple[str, ...], extra: dict[str, Term],
+    def __init__(self, record: Record, names: tuple[str, ...], given: Mapping[str, Term],
                  outer: int | None = None) -> None:
         self._record = record
-        self._names = names
-        self._extra = extra
+        self._names = names  # the condition's variables (the first values)
+        self._given = given
         self._outer = outer
 
     def bindings(self, index: int) -> dict[str, Term]:
-        """The bindings of firing ``index``: the rule's variables and the given bindings."""
+        """The bindings of firing ``index``: the given bindings and the condition's
+        variables (as a condition's answers have them)."""
         values = self._record.value()
         if self._outer is not None:
             values = values[self._outer]  # type: ignore[index]
-        found = dict(zip(self._names, values[index], strict=True))  # type: ignore[index]
-        return {**self._extra, **found} if self._extra else found
+        found = dict(zip(self._names, values[index], strict=False))  # type: ignore[index]
+        return {**self._given, **found} if self._given else found
 
 
 class LazyBindings:
@@ -130,7 +133,24 @@ class LazyBindings:
         return self._value
 
 
-RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
+# What a rule clause performs itself: the built-in updates, and ``do`` (a user action:
+# precondition, then postcondition; see declare_actions).
+RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop", "do"})
+
+# A problem met while applying a compiled rule: (kind, index, detail). Kinds: "action" (an
+# action raised an error: index of the action, message), "open" (a user action not closed
+# after its precondition: index of the action, the action term), "pre" (a precondition
+# raised an error: index of the actionspec, message), "condition" (None, message).
+Problem = tuple[str, int | None, Term]
+_PROBLEM_KINDS = {"w": "action", "o": "open", "p": "pre"}
+
+
+def _problem(warning: Struct) -> Problem:
+    """A warning term of mentalstate.pl (see warning/2) as a :data:`Problem`."""
+    if warning.name == "c":
+        return ("condition", None, warning.args[0])
+    index, detail = warning.args
+    return (_PROBLEM_KINDS[warning.name], int(index), detail)  # type: ignore[arg-type]
 
 
 def _literal_text(literal: ast.Literal) -> str:
@@ -165,6 +185,12 @@ def _substitute(term: Term, bindings: Mapping[str, Term]) -> Term:
     if isinstance(term, list):
         return [_substitute(item, bindings) for item in term]
     return term
+
+
+def instantiate(text: ast.PrologText | str, bindings: Mapping[str, Term],
+                engine: Engine | None = None) -> Term:
+    """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
+    return _substitute((engine or get_engine()).parsed(_text_of(text)), bindings)
 
 
 def _match(pattern: Term, value: Term, out: dict[str, Term]) -> None:
@@ -347,40 +373,48 @@ class MentalState:
         assert isinstance(names, list)
         names_tuple = tuple(str(item) for item in names)
         pred = self._engine.predicate(name, len(names_tuple) + 4, str(self._b), cache=False)
-        rule = CompiledRule(self, pred, name, names_tuple, kind, len(actions))
+        rule = CompiledRule(self, pred, name, names_tuple, condition.names, kind, len(actions))
         self._compiled[key] = rule
         return rule
 
     def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None
-             ) -> tuple[list[tuple[LazyBindings, int]], list[tuple[int, str]]]:
+             ) -> tuple[list[tuple[LazyBindings, int]], list[Problem]]:
         """Applies a compiled rule in one Prolog call (see fire/9 in mentalstate.pl): the
-        firings as (their bindings, number of actions performed), and (action index,
-        message) for every action that raised an error. A Prolog error in the condition
+        firings as (their bindings, number of actions performed), and the problems met
+        (actions that raised an error are not enabled). A Prolog error in the condition
         raises PrologRuntimeError before any action."""
         if rule._state is not self:
             raise KBError("this rule was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
-        index, names = rule._index, rule.names
-        arity = len(names)
+        index = rule._index
+        arity = len(rule.names)
         inputs: list[tuple[int, Term | None]] = [(arity, _TRUE if self._recheck else _FALSE)]
-        extra: dict[str, Term] = {}
         if bindings:
-            for name, value in bindings.items():
-                if name in index:
-                    inputs.append((index[name], value))
-                else:
-                    extra[name] = value
+            inputs.extend((index[name], value) for name, value in bindings.items()
+                          if name in index)
         dones, values, warnings = self._engine.solve(
             rule._pred, arity + 4, inputs, 1, outputs=(arity + 1, arity + 2, arity + 3),
             keep=arity + 2)[0]
         result: list[tuple[LazyBindings, int]] = []
         if dones:
             self._recheck = False
-            firings = _Firings(values, names, extra)  # type: ignore[arg-type]
+            firings = _Firings(values, rule.condition_names, dict(bindings or {}))  # type: ignore
             result = [(LazyBindings(firings, i), done)
                       for i, done in enumerate(dones)]  # type: ignore[arg-type]
-        return result, [(w.args[0], w.args[1]) for w in warnings]  # type: ignore[union-attr]
+        return result, [_problem(w) for w in warnings]  # type: ignore[union-attr, arg-type]
+
+    def declare_actions(self, specs: Sequence[ast.ActionSpec]) -> None:
+        """Makes the actionspecs known to rule clauses (their ``do`` actions): each spec's
+        precondition and postcondition, in program order (the first that applies wins)."""
+        items = []
+        for index, spec in enumerate(specs):
+            head = format_term(Atom(spec.name))
+            if spec.params:
+                head += "(" + ", ".join(param.text for param in spec.params) + ")"
+            text = f"'$spec'({head}, ({spec.pre.text}\n), ({spec.post.text}\n))"
+            items.append(Struct("spec", (index, text)))
+        self._call("declare_actions", self._b, items)
 
     def compile_pass(self, rules: Sequence[CompiledRule], *, stop: bool) -> CompiledPass:
         """Compiles consecutive rules into one pass (``stop``: after the first that fires)."""
@@ -404,11 +438,10 @@ class MentalState:
         return compiled
 
     def fire_pass(self, compiled: CompiledPass) -> tuple[
-            list[list[tuple[LazyBindings, int]]], list[tuple[int, int | None, str]]]:
+            list[list[tuple[LazyBindings, int]]], list[tuple[int, Problem]]]:
         """Applies a compiled pass in one Prolog call (see pass/8 in mentalstate.pl): per
-        rule tried, its firings as :meth:`fire` gives them; and (rule index, action index or
-        None for the condition, message) for every Prolog error, which made that action
-        not enabled or that rule not applicable."""
+        rule tried, its firings as :meth:`fire` gives them; and (rule index, problem) for
+        each problem met (a rule whose condition raised an error is not applicable)."""
         if compiled._state is not self:
             raise KBError("this pass was compiled for another mental state")
         if self._closed:
@@ -420,16 +453,14 @@ class MentalState:
         for index, rule_dones in enumerate(dones):  # type: ignore[arg-type]
             if rule_dones:
                 self._recheck = False
-                firings = _Firings(values, compiled.rules[index].names, {},  # type: ignore
-                                   index)
+                firings = _Firings(values, compiled.rules[index].condition_names,  # type: ignore
+                                   {}, index)
                 result.append([(LazyBindings(firings, i), done)
                                for i, done in enumerate(rule_dones)])
             else:
                 result.append([])
-        problems: list[tuple[int, int | None, str]] = [
-            (w.args[0], w.args[1], w.args[2]) if w.name == "w"  # type: ignore[union-attr]
-            else (w.args[0], None, w.args[1])  # type: ignore[union-attr]
-            for w in warnings]  # type: ignore[union-attr]
+        problems = [(int(w.args[0]), _problem(w.args[1]))  # type: ignore[union-attr]
+                    for w in warnings]  # type: ignore[union-attr]
         return result, problems
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
@@ -476,7 +507,7 @@ class MentalState:
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
-        return _substitute(self._engine.parsed(_text_of(text)), bindings)
+        return instantiate(text, bindings, self._engine)
 
     def unify(self, pattern: ast.PrologText | str, value: Term,
               bindings: Mapping[str, Term] | None = None) -> dict[str, Term] | None:
