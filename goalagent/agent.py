@@ -396,17 +396,22 @@ class Agent:
     ) -> bool:
         """Evaluate rules in ``order``; True when at least one fired."""
         sequence: list[ast.Rule | CompiledPass]
-        if order in ("random", "randomall"):
-            sequence = list(rules)
-            self.random.shuffle(sequence)
-        elif bindings:
+        shuffled: list[int] = []
+        if bindings:
             sequence = list(rules)
         else:
             sequence = self._passes(rules, order)
+        if order in ("random", "randomall"):
+            if len(sequence) == 1 and isinstance(sequence[0], CompiledPass):
+                shuffled = list(range(len(rules)))  # the pass tries the rules in this order
+                self.random.shuffle(shuffled)
+            else:
+                sequence = list(rules)
+                self.random.shuffle(sequence)
         fired_any = False
         for item in sequence:
             if isinstance(item, CompiledPass):
-                fired = self._apply_pass(module, item, order)
+                fired = self._apply_pass(module, item, shuffled)
             else:
                 fired = self._apply_rule(module, item, bindings, order)
             if fired:
@@ -431,7 +436,8 @@ class Agent:
                 continue
             if len(run) >= 2:
                 clauses = [self._rule_clauses[id(member)] for member in run]
-                compiled = self.ms.compile_pass(clauses, stop=order == "linear")  # type: ignore
+                stop = order in ("linear", "random", "adaptive")
+                compiled = self.ms.compile_pass(clauses, stop=stop)  # type: ignore[arg-type]
                 self._pass_members[id(compiled)] = tuple(run)
                 plan.append(compiled)
             else:
@@ -442,10 +448,14 @@ class Agent:
         self._pass_plans[key] = plan
         return plan
 
-    def _apply_pass(self, module: ast.Module, compiled: CompiledPass, order: str) -> bool:
-        """Applies a compiled pass; True when one of its rules fired."""
+    def _apply_pass(self, module: ast.Module, compiled: CompiledPass,
+                    order: list[int]) -> bool:
+        """Applies a compiled pass, its rules in ``order`` (indices; empty: as written);
+        True when one of its rules fired."""
         members = self._pass_members[id(compiled)]
-        results, problems = self.ms.fire_pass(compiled)
+        if order:
+            members = tuple(members[index] for index in order)
+        results, problems = self.ms.fire_pass(compiled, order)
         for rule_index, problem in problems:
             self._problem(module, members[rule_index], problem)
         report = self._report

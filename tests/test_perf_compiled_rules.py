@@ -363,3 +363,24 @@ def test_user_action_problems_are_warnings(traced: bool) -> None:
     # crash(1) is done through its second spec; the other user actions are not enabled.
     assert report.actions == ["crash(1)", "insert(never)"]
     assert agent.query("bel", "crashed(1)") == [{}]
+
+
+@pytest.mark.parametrize("order", ["random", "randomall"])
+def test_random_orders_in_one_pass_follow_the_seed(order: str) -> None:
+    text = f"""
+        init module {{ beliefs {{ n(0). }} }}
+        main module {{ program [order={order}] {{
+            if bel(n(N), M is N + 1) then delete(n(N)) + insert(n(M)) + insert(a(N)).
+            if bel(n(N), N mod 2 =:= 0) then insert(even(N)).
+            if bel(n(N)) then insert(seen(N)).
+            forall bel(a(K), K < 3) do insert(early(K)).
+        }} }}
+    """
+    fast, traced, other = make(text, seed=7), make(text, seed=7, traced=True), make(text, seed=8)
+    try:
+        fast_history = history(fast, 20)
+        assert fast_history == history(traced, 20)
+        assert fast_history != history(other, 20)
+    finally:
+        for agent in (fast, traced, other):
+            agent.close()

@@ -522,14 +522,23 @@ declare_actions(B, Specs) :-
                            catch(Body, E, ( ga_kb:push_warning(p(Index, E)), fail )))) )).
 
 %!  compile_pass(+B, +Name, +Stop, +Rules) is det.
-%   Asserts B:Name(Recheck, Dones, Values, Warnings) :- pass(...) (see pass/7): one call
-%   applies the compiled rules Rules (a list of Name/Arity of compile_rule/7 clauses
-%   without given bindings), in order, stopping after the first that fires if Stop is true.
+%   Asserts B:Name(Order, Recheck, Dones, Values, Warnings) :- pass(...) (see pass/8): one
+%   call applies the compiled rules Rules (a list of Name/Arity of compile_rule/7 clauses
+%   without given bindings) in their order (Order = []) or in the order of the 0-based
+%   indices in Order, stopping after the first that fires if Stop is true.
 
 compile_pass(B, Name, Stop, Rules) :-
     maplist(rule_call, Rules, Calls),
-    Head =.. [Name, Recheck, Dones, Values, Warnings],
-    assertz(B:(Head :- ga_kb:pass(Calls, 0, Stop, B, Recheck, Dones, Values, Warnings))).
+    Head =.. [Name, Order, Recheck, Dones, Values, Warnings],
+    assertz(B:(Head :- ga_kb:ordered(Order, Calls, Ordered),
+                       ga_kb:pass(Ordered, 0, Stop, B, Recheck, Dones, Values, Warnings))).
+
+ordered([], Calls, Calls) :- !.
+ordered(Order, Calls, Ordered) :-
+    maplist(nth_call(Calls), Order, Ordered).
+
+nth_call(Calls, Index, Call) :-
+    nth0(Index, Calls, Call).
 
 rule_call(Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
     functor(Goal, Name, Arity),
@@ -538,7 +547,8 @@ rule_call(Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
     !.
 
 %!  pass(+Rules, +Index, +Stop, +B, +Recheck, -Dones, -Values, -Warnings) is det.
-%   Dones and Values have one element per rule tried (as fire/9 gives them); Warnings
+%   Dones and Values have one element per rule tried, in the order tried (as fire/9 gives
+%   them); Warnings
 %   lists r(Rule, Warning): the warnings of fire/9, and c(Message) for a condition that
 %   raised an error (such a rule is not applicable).
 

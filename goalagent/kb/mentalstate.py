@@ -432,29 +432,31 @@ class MentalState:
             name = self._engine.unique_name("$ga_p")
             _condition_names[key] = name
         self._call("compile_pass", self._b, Atom(name), _TRUE if stop else _FALSE, specs)
-        pred = self._engine.predicate(name, 4, str(self._b), cache=False)
+        pred = self._engine.predicate(name, 5, str(self._b), cache=False)
         compiled = CompiledPass(self, pred, tuple(rules), stop)
         self._compiled[key] = compiled
         return compiled
 
-    def fire_pass(self, compiled: CompiledPass) -> tuple[
+    def fire_pass(self, compiled: CompiledPass, order: Sequence[int] = ()) -> tuple[
             list[list[tuple[LazyBindings, int]]], list[tuple[int, Problem]]]:
-        """Applies a compiled pass in one Prolog call (see pass/8 in mentalstate.pl): per
-        rule tried, its firings as :meth:`fire` gives them; and (rule index, problem) for
-        each problem met (a rule whose condition raised an error is not applicable)."""
+        """Applies a compiled pass in one Prolog call (see pass/8 in mentalstate.pl), its
+        rules in their order or in ``order`` (their indices): per rule tried, in the order
+        tried, its firings as :meth:`fire` gives them; and (place in the order tried,
+        problem) for each problem met (a rule whose condition raised an error is not
+        applicable)."""
         if compiled._state is not self:
             raise KBError("this pass was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
         dones, values, warnings = self._engine.solve(
-            compiled._pred, 4, [(0, _TRUE if self._recheck else _FALSE)], 1,
-            outputs=(1, 2, 3), keep=2)[0]
+            compiled._pred, 5, [(0, list(order)), (1, _TRUE if self._recheck else _FALSE)],
+            1, outputs=(2, 3, 4), keep=3)[0]
         result: list[list[tuple[LazyBindings, int]]] = []
         for index, rule_dones in enumerate(dones):  # type: ignore[arg-type]
             if rule_dones:
                 self._recheck = False
-                firings = _Firings(values, compiled.rules[index].condition_names,  # type: ignore
-                                   {}, index)
+                rule = compiled.rules[order[index] if order else index]
+                firings = _Firings(values, rule.condition_names, {}, index)  # type: ignore
                 result.append([(LazyBindings(firings, i), done)
                                for i, done in enumerate(rule_dones)])
             else:
