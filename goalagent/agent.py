@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import random
 import sys
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol, TextIO
@@ -23,6 +23,7 @@ from goalagent.kb.mentalstate import (
     CompiledCondition,
     CompiledPass,
     CompiledRule,
+    Firings,
     LazyBindings,
     MentalState,
     Problem,
@@ -153,6 +154,29 @@ class FiredRule:
         return tuple(_describe(item) for item in self.performed)
 
 
+class _Batch:
+    """The rules one Prolog call applied (a compiled rule or pass): their FiredRule entries
+    are made when someone reads the report."""
+
+    __slots__ = ("module", "rules", "firings", "_fired")
+
+    def __init__(self, module: str, rules: Sequence[ast.Rule], firings: Firings) -> None:
+        self.module = module
+        self.rules = rules  # in the order tried
+        self.firings = firings
+        self._fired: list[FiredRule] | None = None
+
+    def fired(self) -> list[FiredRule]:
+        """The rules that fired, one entry per firing, in order."""
+        if self._fired is None:
+            self._fired = []
+            for place, bindings, done in self.firings.items():
+                rule = self.rules[place]
+                performed = tuple((action, bindings) for action in rule.actions[:done])
+                self._fired.append(FiredRule(self.module, rule.pos, bindings, performed))
+        return self._fired
+
+
 @dataclass
 class CycleReport:
     """What happened in one cycle (for tests, traces and the CLI)."""
@@ -160,14 +184,33 @@ class CycleReport:
     cycle: int
     percepts: list[Term] = field(default_factory=list)
     messages: list[tuple[str, str, Term]] = field(default_factory=list)
-    fired: list[FiredRule] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
-    performed: list[Performed] = field(default_factory=list, repr=False)
+    # In the order they happened: rules that fired, actions performed; a _Batch stands for
+    # what one Prolog call did (expanded when read, so a report nobody reads costs little).
+    entries: list[FiredRule | _Batch] = field(default_factory=list, repr=False)
+    performed: list[Performed | _Batch] = field(default_factory=list, repr=False)
+
+    @property
+    def fired(self) -> list[FiredRule]:
+        """The rules that fired in the cycle, in order."""
+        result: list[FiredRule] = []
+        for entry in self.entries:
+            if isinstance(entry, _Batch):
+                result.extend(entry.fired())
+            else:
+                result.append(entry)
+        return result
 
     @property
     def actions(self) -> list[str]:
         """The descriptions of the actions performed in the cycle, in order."""
-        return [_describe(item) for item in self.performed]
+        result: list[str] = []
+        for item in self.performed:
+            if isinstance(item, _Batch):
+                result.extend(_describe(done) for fired in item.fired() for done in fired.performed)
+            else:
+                result.append(_describe(item))
+        return result
 
     @property
     def acted(self) -> bool:
@@ -455,20 +498,21 @@ class Agent:
         members = self._pass_members[id(compiled)]
         if order:
             members = tuple(members[index] for index in order)
-        results, problems = self.ms.fire_pass(compiled, order)
-        for rule_index, problem in problems:
-            self._problem(module, members[rule_index], problem)
-        report = self._report
-        fired_any = False
-        for rule, fired in zip(members, results, strict=False):
-            for solution, done in fired:
-                performed: tuple[Performed, ...] = tuple(
-                    (action, solution) for action in rule.actions[:done])
-                report.performed.extend(performed)
-                self.total_actions += done
-                report.fired.append(FiredRule(module.name, rule.pos, solution, performed))
-                fired_any = True
-        return fired_any
+        firings = self.ms.fire_pass(compiled, order)
+        return self._note(module, members, firings)
+
+    def _note(self, module: ast.Module, rules: Sequence[ast.Rule], firings: Firings) -> bool:
+        """Reports what a compiled rule or pass did (``rules`` in the order tried); True
+        when a rule fired."""
+        for place, problem in firings.problems:
+            self._problem(module, rules[place], problem)
+        if not firings:
+            return False
+        batch = _Batch(module.name, rules, firings)
+        self._report.entries.append(batch)
+        self._report.performed.append(batch)
+        self.total_actions += firings.actions
+        return True
 
     def _solutions(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
                    limit: int | None = None) -> list[Bindings]:
@@ -576,26 +620,28 @@ class Agent:
         """Applies a rule through its one-clause form; actions after the clause's leading
         ones are done here, as :meth:`_fire` does them."""
         try:
-            fired, warnings = self.ms.fire(clause, bindings)
+            firings = self.ms.fire(clause, bindings)
         except PrologRuntimeError as err:
             self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
                       f"condition: {err.message}; the rule is not applicable")
             return False
-        for problem in warnings:
+        if clause.actions == len(rule.actions):
+            return self._note(module, (rule,), firings)
+        for _, problem in firings.problems:
             self._problem(module, rule, problem)
         report = self._report
-        for solution, done in fired:
+        for _, solution, done in firings.items():
             performed: list[Performed] = [(action, solution)
                                           for action in rule.actions[:done]]
             report.performed.extend(performed)
             self.total_actions += done
-            if done == clause.actions < len(rule.actions):
+            if done == clause.actions:  # the rest of the combo needs Python
                 self._fire(module, rule, solution.resolve(), order, start=done,
                            performed=performed)
             else:
-                report.fired.append(FiredRule(module.name, rule.pos, solution,
-                                              tuple(performed)))
-        return bool(fired)
+                report.entries.append(FiredRule(module.name, rule.pos, solution,
+                                                tuple(performed)))
+        return bool(firings)
 
     def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str,
               start: int = 0, performed: list[Performed] | None = None) -> bool:
@@ -623,7 +669,7 @@ class Agent:
 
     def _record(self, module: ast.Module, rule: ast.Rule, bindings: Bindings,
                 performed: tuple[Performed, ...]) -> None:
-        self._report.fired.append(FiredRule(module.name, rule.pos, dict(bindings), performed))
+        self._report.entries.append(FiredRule(module.name, rule.pos, dict(bindings), performed))
         if self.tracer is not None:
             shown = ", ".join(f"{k}={format_term(v)}" for k, v in bindings.items())
             described = " + ".join(map(_describe, performed))

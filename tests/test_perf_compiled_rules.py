@@ -237,9 +237,9 @@ def test_compiled_rules_belong_to_their_mental_state() -> None:
             one.compile_rule("listall", condition, [("insert", "a")])
         with pytest.raises(KBError, match="not an action"):
             one.compile_rule("if", condition, [("print", "a")])
-        fired, warnings = one.fire(rule)
-        assert [(b.resolve(), done) for b, done in fired] == [({}, 1)]
-        assert warnings == []
+        firings = one.fire(rule)
+        assert [(place, b.resolve(), done) for place, b, done in firings.items()] == [(0, {}, 1)]
+        assert firings.problems == [] and firings.actions == 1
         assert one.query("bel", "a") == [{}]
 
 
@@ -253,13 +253,14 @@ def test_a_compiled_pass_reports_each_rule_it_tried() -> None:
             state.compile_rule("if", state.compile(()), [("insert", "k")]),
         ]
         every = state.compile_pass(rules, stop=False)
-        results, problems = state.fire_pass(every)
-        assert [[(b.resolve(), done) for b, done in fired] for fired in results] == [
-            [({"X": 1}, 1), ({"X": 2}, 1)], [], [({}, 1)], [({}, 1)]]
-        assert [(rule, kind) for rule, (kind, _, _) in problems] == [(1, "condition")]
+        firings = state.fire_pass(every)
+        assert [(place, b.resolve(), done) for place, b, done in firings.items()] == [
+            (0, {"X": 1}, 1), (0, {"X": 2}, 1), (2, {}, 1), (3, {}, 1)]
+        assert [(rule, kind) for rule, (kind, _, _) in firings.problems] == [(1, "condition")]
         first = state.compile_pass(rules, stop=True)
-        results, _ = state.fire_pass(first)
-        assert len(results) == 1  # the forall rule fired again (insert is always enabled)
+        firings = state.fire_pass(first, [3, 2, 1, 0])
+        assert [(place, done) for place, _, done in firings.items()] == [(0, 1)]
+        assert firings.actions == 1  # the rule tried first (index 3) fired: the pass stops
 
 
 def _bel(text: str) -> tuple:

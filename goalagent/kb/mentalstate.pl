@@ -454,12 +454,14 @@ percept_body(Q, percept(Q)).
 		 *******************************/
 
 %!  compile_rule(+B, +Kind, +Name, +CondName, +CondArity, +Text, -Names) is det.
-%   Text is '$rule'(Cond, Actions): a condition already compiled as B:CondName/CondArity
-%   and the list of the rule's leading actions done in Prolog (insert/delete/adopt/drop of
-%   a formula, do(Action) for a user action, see declare_actions/2), read together so that
-%   they share variables. Asserts
-%   B:Name(Vars..., Recheck, Dones, Values, Warnings) :- fire(...) (see fire/9), Vars the
-%   named variables of Text in order of first appearance (the condition's come first).
+%   Text is '$rule'(Cond, Actions): a condition compiled in every agent that uses the rule
+%   as CondName/CondArity and the list of the rule's leading actions done in Prolog
+%   (insert/delete/adopt/drop of a formula, do(Action) for a user action, see
+%   declare_actions/2), read with B's operators so that they share variables. Asserts
+%   ga_rules:Name(Agent, Vars..., Recheck, Dones, Values, Warnings) :- fire(...) (see
+%   fire/9), Vars being the named variables of Text in order of first appearance (the
+%   condition's first). The clause serves every agent (Agent is its belief module): agents
+%   share their rules' code, as they share their conditions' names.
 
 compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
     read_text(Text, B, '$rule'(_, Actions), Bindings),
@@ -468,10 +470,10 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
     length(CondVars, CondArity),
     append(CondVars, _, Vars),
     Cond =.. [CondName|CondVars],
-    append(Vars, [Recheck, Dones, Values, Warnings], Args),
+    append([Agent|Vars], [Recheck, Dones, Values, Warnings], Args),
     Head =.. [Name|Args],
-    assertz(B:(Head :- ga_kb:fire(Kind, B, Cond, Vars, Actions, Recheck, Dones, Values,
-                                  Warnings))).
+    assertz(ga_rules:(Head :- ga_kb:fire(Kind, Agent, Cond, Vars, Actions, Recheck, Dones,
+                                         Values, Warnings))).
 
 %!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Dones, -Values, -Warnings) is det.
 %   Applies a rule whose actions start with Actions (built in, done here): for the first
@@ -521,17 +523,19 @@ declare_actions(B, Specs) :-
              assertz(B:('$ga_pre'(Action, Post, Index) :-
                            catch(Body, E, ( ga_kb:push_warning(p(Index, E)), fail )))) )).
 
-%!  compile_pass(+B, +Name, +Stop, +Rules) is det.
-%   Asserts B:Name(Order, Recheck, Dones, Values, Warnings) :- pass(...) (see pass/8): one
-%   call applies the compiled rules Rules (a list of Name/Arity of compile_rule/7 clauses
-%   without given bindings) in their order (Order = []) or in the order of the 0-based
-%   indices in Order, stopping after the first that fires if Stop is true.
+%!  compile_pass(+Name, +Stop, +Rules) is det.
+%   Asserts ga_rules:Name(Agent, Order, Recheck, Dones, Values, Warnings) :- pass(...)
+%   (see pass/8): one call applies the compiled rules Rules (a list of Name/Arity of
+%   compile_rule/7 clauses, called without given bindings) in their order (Order = []) or
+%   in the order of the 0-based indices in Order, stopping after the first that fires if
+%   Stop is true. Shared by every agent, as the rules are.
 
-compile_pass(B, Name, Stop, Rules) :-
-    maplist(rule_call, Rules, Calls),
-    Head =.. [Name, Order, Recheck, Dones, Values, Warnings],
-    assertz(B:(Head :- ga_kb:ordered(Order, Calls, Ordered),
-                       ga_kb:pass(Ordered, 0, Stop, B, Recheck, Dones, Values, Warnings))).
+compile_pass(Name, Stop, Rules) :-
+    maplist(rule_call(Agent), Rules, Calls),
+    Head =.. [Name, Agent, Order, Recheck, Dones, Values, Warnings],
+    assertz(ga_rules:(Head :- ga_kb:ordered(Order, Calls, Ordered),
+                              ga_kb:pass(Ordered, 0, Stop, Recheck, Dones, Values,
+                                         Warnings))).
 
 ordered([], Calls, Calls) :- !.
 ordered(Order, Calls, Ordered) :-
@@ -540,22 +544,22 @@ ordered(Order, Calls, Ordered) :-
 nth_call(Calls, Index, Call) :-
     nth0(Index, Calls, Call).
 
-rule_call(Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
+rule_call(Agent, Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
     functor(Goal, Name, Arity),
-    Goal =.. [Name|Args],
+    Goal =.. [Name, Agent|Args],
     append(_, [Recheck, Dones, Values, Warnings], Args),
     !.
 
-%!  pass(+Rules, +Index, +Stop, +B, +Recheck, -Dones, -Values, -Warnings) is det.
-%   Dones and Values have one element per rule tried, in the order tried (as fire/9 gives
-%   them); Warnings
+%!  pass(+Rules, +Index, +Stop, +Recheck, -Dones, -Values, -Warnings) is det.
+%   Dones lists, per rule tried in the order tried, its firings' numbers of actions (as
+%   fire/9 gives them) followed by 0; Values has the firings' values per rule; Warnings
 %   lists r(Rule, Warning): the warnings of fire/9, and c(Message) for a condition that
 %   raised an error (such a rule is not applicable).
 
-pass([], _, _, _, _, [], [], []).
-pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, B, Recheck, [D|Dones], [V|Values],
+pass([], _, _, _, [], [], []).
+pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, Recheck, Dones0, [V|Values],
      Warnings) :-
-    (   catch(B:Goal, E, true)
+    (   catch(ga_rules:Goal, E, true)
     ->  (   var(E)
         ->  rule_warnings(W, I, Warnings, Warnings1)
         ;   D = [], V = [],
@@ -564,11 +568,12 @@ pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, B, Recheck, [D|Dones], [V|Va
         )
     ;   D = [], V = [], Warnings = Warnings1
     ),
+    append(D, [0|Dones], Dones0),
     (   Stop == true, D \== []
     ->  Dones = [], Values = [], Warnings1 = []
     ;   nb_getval('$ga_recheck', Recheck1),
         I1 is I + 1,
-        pass(Rules, I1, Stop, B, Recheck1, Dones, Values, Warnings1)
+        pass(Rules, I1, Stop, Recheck1, Dones, Values, Warnings1)
     ).
 
 rule_warnings([], _, Warnings, Warnings).

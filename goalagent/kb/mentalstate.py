@@ -17,7 +17,7 @@ from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = ["RULE_ACTIONS", "AgentDirectory", "CompiledCondition", "CompiledPass",
-           "CompiledRule", "LazyBindings", "MentalState", "Problem", "instantiate"]
+           "CompiledRule", "Firings", "LazyBindings", "MentalState", "Problem", "instantiate"]
 
 _WRAPPERS = {
     "bel": "$bel",
@@ -33,6 +33,11 @@ _TRUE, _FALSE = Atom("true"), Atom("false")
 # Condition body text -> clause name, shared by all agents: equal conditions use the same
 # predicate name in every agent module, so 10,000 agents do not create 10,000 functors.
 _condition_names: dict[str, str] = {}
+
+# Rule and pass clauses live in one module for all agents (they take the agent's belief
+# module as their first argument): key -> (clause name, the rule's variable names).
+_RULES = "ga_rules"
+_shared_rules: dict[str, tuple[str, tuple[str, ...]]] = {}
 
 
 class CompiledCondition:
@@ -92,44 +97,66 @@ class CompiledPass:
         return f"CompiledPass({len(self.rules)} rules, stop={self.stop})"
 
 
-class _Firings:
-    """The instantiations one compiled rule fired with, kept in Prolog (a :class:`Record`,
-    for a pass the values of all its rules, ``outer`` picks the rule's) until someone reads
-    them: most cycles nobody does."""
+class Firings:
+    """What one call of a compiled rule or pass did: how many actions it performed, which
+    rules fired with which bindings (kept in Prolog, a :class:`Record`, until someone asks:
+    most cycles nobody does), and the problems it met. Rules are numbered by their place
+    in the order tried."""
 
-    __slots__ = ("_record", "_names", "_given", "_outer")
+    __slots__ = ("_dones", "_record", "_names", "_given", "_nested", "actions", "problems")
 
-    def __init__(self, record: Record, names: tuple[str, ...], given: Mapping[str, Term],
-                 outer: int | None = None) -> None:
-        self._record = record
-        self._names = names  # the condition's variables (the first values)
+    def __init__(self, dones: list[int], record: Record, names: Sequence[tuple[str, ...]],
+                 given: Mapping[str, Term], nested: bool, problems: list[tuple[int, Problem]]
+                 ) -> None:
+        self._dones = dones  # per firing its number of actions; 0 ends a rule's firings
+        self._record = record  # the values: per rule (nested) or of the one rule
+        self._names = names  # per rule: its condition's variables (the first values)
         self._given = given
-        self._outer = outer
+        self._nested = nested
+        self.actions = sum(dones)
+        self.problems = problems
 
-    def bindings(self, index: int) -> dict[str, Term]:
-        """The bindings of firing ``index``: the given bindings and the condition's
-        variables (as a condition's answers have them)."""
+    def __bool__(self) -> bool:
+        """True when a rule fired."""
+        return self.actions > 0
+
+    def items(self) -> list[tuple[int, LazyBindings, int]]:
+        """Per firing, in order: the rule's place, its bindings, its number of actions."""
+        result = []
+        place = index = 0
+        for done in self._dones:
+            if done == 0:
+                place, index = place + 1, 0
+            else:
+                result.append((place, LazyBindings(self, place, index), done))
+                index += 1
+        return result
+
+    def bindings(self, place: int, index: int) -> dict[str, Term]:
+        """The bindings of firing ``index`` of the rule at ``place``: the given bindings and
+        the condition's variables (as a condition's answers have them)."""
         values = self._record.value()
-        if self._outer is not None:
-            values = values[self._outer]  # type: ignore[index]
-        found = dict(zip(self._names, values[index], strict=False))  # type: ignore[index]
+        if self._nested:
+            values = values[place]  # type: ignore[index]
+        found = dict(zip(self._names[place], values[index], strict=False))  # type: ignore
         return {**self._given, **found} if self._given else found
 
 
 class LazyBindings:
     """The bindings of one firing of a compiled rule, read from Prolog on first use."""
 
-    __slots__ = ("_firings", "_index", "_value")
+    __slots__ = ("_firings", "_place", "_index", "_value")
 
-    def __init__(self, firings: _Firings, index: int) -> None:
+    def __init__(self, firings: Firings, place: int, index: int) -> None:
         self._firings = firings
+        self._place = place
         self._index = index
         self._value: dict[str, Term] | None = None
 
     def resolve(self) -> dict[str, Term]:
         """The bindings as Python values (converted once)."""
         if self._value is None:
-            self._value = self._firings.bindings(self._index)
+            self._value = self._firings.bindings(self._place, self._index)
         return self._value
 
 
@@ -279,6 +306,9 @@ class MentalState:
         self._has_percepts = False  # the percept base is not empty
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
+        # Directives (op/3, use_module/1, ...) change how this agent reads text.
+        self._directives = "\n".join(_text_of(text) for _, text in clauses
+                                     if _text_of(text).lstrip().startswith(":-"))
         items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
         self._engine.call("new_agent", self._b, self._g)
         result = self._call("load", self._b, self._g, items, None)[3]
@@ -363,46 +393,45 @@ class MentalState:
         if compiled is not None:
             assert isinstance(compiled, CompiledRule)
             return compiled
-        name = _condition_names.get(key)
-        if name is None:
+        # One clause for every agent that reads the text alike (same directives: operators).
+        shared_key = f"{key}\0{self._directives}"
+        shared = _shared_rules.get(shared_key)
+        if shared is None:
             name = self._engine.unique_name("$ga_r")
-            _condition_names[key] = name
-        names = self._call("compile_rule", self._b, Atom(kind), Atom(name),
-                           Atom(condition._name),
-                           len(condition.names), text, None)[6]
-        assert isinstance(names, list)
-        names_tuple = tuple(str(item) for item in names)
-        pred = self._engine.predicate(name, len(names_tuple) + 4, str(self._b), cache=False)
+            names = self._call("compile_rule", self._b, Atom(kind), Atom(name),
+                               Atom(condition._name), len(condition.names), text, None)[6]
+            assert isinstance(names, list)
+            shared = (name, tuple(str(item) for item in names))
+            _shared_rules[shared_key] = shared
+        name, names_tuple = shared
+        pred = self._engine.predicate(name, len(names_tuple) + 5, _RULES)
         rule = CompiledRule(self, pred, name, names_tuple, condition.names, kind, len(actions))
         self._compiled[key] = rule
         return rule
 
-    def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None
-             ) -> tuple[list[tuple[LazyBindings, int]], list[Problem]]:
-        """Applies a compiled rule in one Prolog call (see fire/9 in mentalstate.pl): the
-        firings as (their bindings, number of actions performed), and the problems met
-        (actions that raised an error are not enabled). A Prolog error in the condition
-        raises PrologRuntimeError before any action."""
+    def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None) -> Firings:
+        """Applies a compiled rule in one Prolog call (see fire/9 in mentalstate.pl); what
+        it did (actions that raised an error are not enabled). A Prolog error in the
+        condition raises PrologRuntimeError before any action."""
         if rule._state is not self:
             raise KBError("this rule was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
         index = rule._index
-        arity = len(rule.names)
-        inputs: list[tuple[int, Term | None]] = [(arity, _TRUE if self._recheck else _FALSE)]
+        arity = len(rule.names) + 1  # the belief module, then the rule's variables
+        inputs: list[tuple[int, Term | None]] = [(0, self._b),
+                                                 (arity, _TRUE if self._recheck else _FALSE)]
         if bindings:
-            inputs.extend((index[name], value) for name, value in bindings.items()
+            inputs.extend((index[name] + 1, value) for name, value in bindings.items()
                           if name in index)
         dones, values, warnings = self._engine.solve(
             rule._pred, arity + 4, inputs, 1, outputs=(arity + 1, arity + 2, arity + 3),
             keep=arity + 2)[0]
-        result: list[tuple[LazyBindings, int]] = []
         if dones:
             self._recheck = False
-            firings = _Firings(values, rule.condition_names, dict(bindings or {}))  # type: ignore
-            result = [(LazyBindings(firings, i), done)
-                      for i, done in enumerate(dones)]  # type: ignore[arg-type]
-        return result, [_problem(w) for w in warnings]  # type: ignore[union-attr, arg-type]
+        problems = [(0, _problem(w)) for w in warnings]  # type: ignore[union-attr, arg-type]
+        return Firings(dones, values, (rule.condition_names,), dict(bindings or {}),  # type: ignore
+                       False, problems)
 
     def declare_actions(self, specs: Sequence[ast.ActionSpec]) -> None:
         """Makes the actionspecs known to rule clauses (their ``do`` actions): each spec's
@@ -421,49 +450,42 @@ class MentalState:
         for rule in rules:
             if rule._state is not self:
                 raise KBError("this rule was compiled for another mental state")
-        specs = [Struct("/", (Atom(rule._name), len(rule.names) + 4)) for rule in rules]
         key = f"pass:{stop}:{[rule._name for rule in rules]}"
         compiled = self._compiled.get(key)
         if compiled is not None:
             assert isinstance(compiled, CompiledPass)
             return compiled
-        name = _condition_names.get(key)
-        if name is None:
+        name = _shared_rules.get(key, ("", ()))[0]
+        if not name:  # one clause for every agent (its rules are shared too)
             name = self._engine.unique_name("$ga_p")
-            _condition_names[key] = name
-        self._call("compile_pass", self._b, Atom(name), _TRUE if stop else _FALSE, specs)
-        pred = self._engine.predicate(name, 5, str(self._b), cache=False)
+            specs = [Struct("/", (Atom(rule._name), len(rule.names) + 5)) for rule in rules]
+            self._call("compile_pass", Atom(name), _TRUE if stop else _FALSE, specs)
+            _shared_rules[key] = (name, ())
+        pred = self._engine.predicate(name, 6, _RULES)
         compiled = CompiledPass(self, pred, tuple(rules), stop)
         self._compiled[key] = compiled
         return compiled
 
-    def fire_pass(self, compiled: CompiledPass, order: Sequence[int] = ()) -> tuple[
-            list[list[tuple[LazyBindings, int]]], list[tuple[int, Problem]]]:
-        """Applies a compiled pass in one Prolog call (see pass/8 in mentalstate.pl), its
-        rules in their order or in ``order`` (their indices): per rule tried, in the order
-        tried, its firings as :meth:`fire` gives them; and (place in the order tried,
-        problem) for each problem met (a rule whose condition raised an error is not
-        applicable)."""
+    def fire_pass(self, compiled: CompiledPass, order: Sequence[int] = ()) -> Firings:
+        """Applies a compiled pass in one Prolog call (see pass/7 in mentalstate.pl), its
+        rules in their order or in ``order`` (their indices); what it did (a rule whose
+        condition raised an error is not applicable)."""
         if compiled._state is not self:
             raise KBError("this pass was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
         dones, values, warnings = self._engine.solve(
-            compiled._pred, 5, [(0, list(order)), (1, _TRUE if self._recheck else _FALSE)],
-            1, outputs=(2, 3, 4), keep=3)[0]
-        result: list[list[tuple[LazyBindings, int]]] = []
-        for index, rule_dones in enumerate(dones):  # type: ignore[arg-type]
-            if rule_dones:
-                self._recheck = False
-                rule = compiled.rules[order[index] if order else index]
-                firings = _Firings(values, rule.condition_names, {}, index)  # type: ignore
-                result.append([(LazyBindings(firings, i), done)
-                               for i, done in enumerate(rule_dones)])
-            else:
-                result.append([])
+            compiled._pred, 6,
+            [(0, self._b), (1, list(order)), (2, _TRUE if self._recheck else _FALSE)],
+            1, outputs=(3, 4, 5), keep=4)[0]
+        rules = [compiled.rules[index] for index in order] if order else compiled.rules
         problems = [(int(w.args[0]), _problem(w.args[1]))  # type: ignore[union-attr]
                     for w in warnings]  # type: ignore[union-attr]
-        return result, problems
+        firings = Firings(dones, values, [rule.condition_names for rule in rules],  # type: ignore
+                          {}, True, problems)
+        if firings:
+            self._recheck = False
+        return firings
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
         """The error of the first literal SWI's reader rejects (with its position)."""
