@@ -385,3 +385,20 @@ def test_random_orders_in_one_pass_follow_the_seed(order: str) -> None:
     finally:
         for agent in (fast, traced, other):
             agent.close()
+
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "agents" / "examples"
+
+
+@pytest.mark.parametrize("name", ["hello_world", "listall_macros", "nested_rules",
+                                  "stack_builder", "user_modules", "script_printer"])
+def test_example_agents_run_alike_on_both_paths(name: str) -> None:
+    text = (EXAMPLES / f"{name}.goal").read_text()
+    fast, traced = make(text), make(text, traced=True)
+    try:
+        assert history(fast, 30) == history(traced, 30)
+        assert fast.output.getvalue() == traced.output.getvalue()
+        assert fast.test_warnings == traced.test_warnings  # type: ignore[attr-defined]
+    finally:
+        fast.close()
+        traced.close()
