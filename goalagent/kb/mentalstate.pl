@@ -458,7 +458,7 @@ percept_body(Q, percept(Q)).
 %   as CondName/CondArity and the list of the rule's leading actions done in Prolog
 %   (insert/delete/adopt/drop of a formula, do(Action) for a user action, see
 %   declare_actions/2), read with B's operators so that they share variables. Asserts
-%   ga_rules:Name(Agent, Vars..., Recheck, Dones, Values, Warnings) :- fire(...) (see
+%   ga_rules:Name(Agent, Vars..., Recheck, Total, Kept, Warnings) :- fire(...) (see
 %   fire/9), Vars being the named variables of Text in order of first appearance (the
 %   condition's first). The clause serves every agent (Agent is its belief module): agents
 %   share their rules' code, as they share their conditions' names.
@@ -470,26 +470,29 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
     length(CondVars, CondArity),
     append(CondVars, _, Vars),
     Cond =.. [CondName|CondVars],
-    append([Agent|Vars], [Recheck, Dones, Values, Warnings], Args),
+    append([Agent|Vars], [Recheck, Total, Kept, Warnings], Args),
     Head =.. [Name|Args],
-    assertz(ga_rules:(Head :- ga_kb:fire(Kind, Agent, Cond, Vars, Actions, Recheck, Dones,
-                                         Values, Warnings))).
+    assertz(ga_rules:(Head :- ga_kb:fire(Kind, Agent, Cond, Vars, Actions, Recheck, Total,
+                                         Kept, Warnings))).
 
-%!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Dones, -Values, -Warnings) is det.
+%!  fire(+Kind, +B, +Cond, +Vars, +Actions, +Recheck, -Total, -Kept, -Warnings) is det.
 %   Applies a rule whose actions start with Actions (built in, done here): for the first
 %   instantiation of Cond whose first action is enabled (Kind = if) or for every one
 %   (Kind = forall), performs the actions in order until one is not enabled, with blind
 %   commitment after each (a full check after the first one when Recheck is true: percepts
-%   or messages changed since the last check). Per firing, Dones has how many actions were
-%   performed and Values the values of Vars. Warnings: see warning/2 (an action that
+%   or messages changed since the last check). Kept is k(Dones, Values): per firing, how
+%   many actions were performed and the values of Vars; Total is the number of actions
+%   performed (what Python reads at once; Kept is read only when asked for). Warnings:
+%   see warning/2 (an action that
 %   raised an error is not enabled). Instantiations are
 %   all computed before any action, so the condition sees the state of the rule's start.
 
-fire(Kind, B, Cond, Vars, Actions, Recheck, Dones, Values, Warnings) :-
+fire(Kind, B, Cond, Vars, Actions, Recheck, Total, k(Dones, Values), Warnings) :-
     findall(Vars, B:Cond, Solutions),
     B:'$ga_gm'(G),
     nb_setval('$ga_recheck', Recheck),
     fire_(Kind, Solutions, Vars, Actions, B, G, Dones, Values),
+    sum_list(Dones, Total),
     take_warnings(Warnings).
 
 fire_(if, Solutions, Vars, Actions, B, G, Dones, Values) :-
@@ -524,17 +527,17 @@ declare_actions(B, Specs) :-
                            catch(Body, E, ( ga_kb:push_warning(p(Index, E)), fail )))) )).
 
 %!  compile_pass(+Name, +Stop, +Rules) is det.
-%   Asserts ga_rules:Name(Agent, Order, Recheck, Dones, Values, Warnings) :- pass(...)
-%   (see pass/8): one call applies the compiled rules Rules (a list of Name/Arity of
+%   Asserts ga_rules:Name(Agent, Order, Recheck, Total, Kept, Warnings) :- pass(...)
+%   (see pass/7): one call applies the compiled rules Rules (a list of Name/Arity of
 %   compile_rule/7 clauses, called without given bindings) in their order (Order = []) or
 %   in the order of the 0-based indices in Order, stopping after the first that fires if
 %   Stop is true. Shared by every agent, as the rules are.
 
 compile_pass(Name, Stop, Rules) :-
     maplist(rule_call(Agent), Rules, Calls),
-    Head =.. [Name, Agent, Order, Recheck, Dones, Values, Warnings],
+    Head =.. [Name, Agent, Order, Recheck, Total, k(Dones, Values), Warnings],
     assertz(ga_rules:(Head :- ga_kb:ordered(Order, Calls, Ordered),
-                              ga_kb:pass(Ordered, 0, Stop, Recheck, Dones, Values,
+                              ga_kb:pass(Ordered, 0, Stop, Recheck, Total, Dones, Values,
                                          Warnings))).
 
 ordered([], Calls, Calls) :- !.
@@ -544,36 +547,38 @@ ordered(Order, Calls, Ordered) :-
 nth_call(Calls, Index, Call) :-
     nth0(Index, Calls, Call).
 
-rule_call(Agent, Name/Arity, rule(Goal, Recheck, Dones, Values, Warnings)) :-
+rule_call(Agent, Name/Arity, rule(Goal, Recheck, Total, Kept, Warnings)) :-
     functor(Goal, Name, Arity),
     Goal =.. [Name, Agent|Args],
-    append(_, [Recheck, Dones, Values, Warnings], Args),
+    append(_, [Recheck, Total, Kept, Warnings], Args),
     !.
 
-%!  pass(+Rules, +Index, +Stop, +Recheck, -Dones, -Values, -Warnings) is det.
-%   Dones lists, per rule tried in the order tried, its firings' numbers of actions (as
-%   fire/9 gives them) followed by 0; Values has the firings' values per rule; Warnings
-%   lists r(Rule, Warning): the warnings of fire/9, and c(Message) for a condition that
-%   raised an error (such a rule is not applicable).
+%!  pass(+Rules, +Index, +Stop, +Recheck, -Total, -Dones, -Values, -Warnings) is det.
+%   Total: the number of actions performed. Dones lists, per rule tried in the order
+%   tried, its firings' numbers of actions (as fire/9 gives them) followed by 0; Values
+%   has the firings' values per rule; Warnings lists r(Rule, Warning): the warnings of
+%   fire/9, and c(Message) for a condition that raised an error (such a rule is not
+%   applicable).
 
-pass([], _, _, _, [], [], []).
-pass([rule(Goal, Recheck, D, V, W)|Rules], I, Stop, Recheck, Dones0, [V|Values],
-     Warnings) :-
+pass([], _, _, _, 0, [], [], []).
+pass([rule(Goal, Recheck, T, k(D, V), W)|Rules], I, Stop, Recheck, Total, Dones0,
+     [V|Values], Warnings) :-
     (   catch(ga_rules:Goal, E, true)
     ->  (   var(E)
         ->  rule_warnings(W, I, Warnings, Warnings1)
-        ;   D = [], V = [],
+        ;   T = 0, D = [], V = [],
             error_message(E, Message),
             Warnings = [r(I, c(Message))|Warnings1]
         )
-    ;   D = [], V = [], Warnings = Warnings1
+    ;   T = 0, D = [], V = [], Warnings = Warnings1
     ),
     append(D, [0|Dones], Dones0),
-    (   Stop == true, D \== []
-    ->  Dones = [], Values = [], Warnings1 = []
+    (   Stop == true, T > 0
+    ->  Total = T, Dones = [], Values = [], Warnings1 = []
     ;   nb_getval('$ga_recheck', Recheck1),
         I1 is I + 1,
-        pass(Rules, I1, Stop, Recheck1, Dones, Values, Warnings1)
+        pass(Rules, I1, Stop, Recheck1, Total1, Dones, Values, Warnings1),
+        Total is T + Total1
     ).
 
 rule_warnings([], _, Warnings, Warnings).

@@ -103,17 +103,18 @@ class Firings:
     most cycles nobody does), and the problems it met. Rules are numbered by their place
     in the order tried."""
 
-    __slots__ = ("_dones", "_record", "_names", "_given", "_nested", "actions", "problems")
+    __slots__ = ("_record", "_names", "_given", "_nested", "actions", "problems")
 
-    def __init__(self, dones: list[int], record: Record, names: Sequence[tuple[str, ...]],
+    def __init__(self, actions: int, record: Record, names: Sequence[tuple[str, ...]],
                  given: Mapping[str, Term], nested: bool, problems: list[tuple[int, Problem]]
                  ) -> None:
-        self._dones = dones  # per firing its number of actions; 0 ends a rule's firings
-        self._record = record  # the values: per rule (nested) or of the one rule
+        # record: k(Dones, Values); Dones has per firing its number of actions (for a pass,
+        # 0 ends a rule's firings), Values the values per rule (nested) or of the one rule.
+        self._record = record
         self._names = names  # per rule: its condition's variables (the first values)
         self._given = given
         self._nested = nested
-        self.actions = sum(dones)
+        self.actions = actions
         self.problems = problems
 
     def __bool__(self) -> bool:
@@ -124,7 +125,9 @@ class Firings:
         """Per firing, in order: the rule's place, its bindings, its number of actions."""
         result = []
         place = index = 0
-        for done in self._dones:
+        kept = self._record.value()
+        assert isinstance(kept, Struct)
+        for done in kept.args[0]:  # type: ignore[union-attr]
             if done == 0:
                 place, index = place + 1, 0
             else:
@@ -135,7 +138,7 @@ class Firings:
     def bindings(self, place: int, index: int) -> dict[str, Term]:
         """The bindings of firing ``index`` of the rule at ``place``: the given bindings and
         the condition's variables (as a condition's answers have them)."""
-        values = self._record.value()
+        values = self._record.value().args[1]  # type: ignore[union-attr]
         if self._nested:
             values = values[place]  # type: ignore[index]
         found = dict(zip(self._names[place], values[index], strict=False))  # type: ignore
@@ -424,13 +427,13 @@ class MentalState:
         if bindings:
             inputs.extend((index[name] + 1, value) for name, value in bindings.items()
                           if name in index)
-        dones, values, warnings = self._engine.solve(
+        total, kept, warnings = self._engine.solve(
             rule._pred, arity + 4, inputs, 1, outputs=(arity + 1, arity + 2, arity + 3),
             keep=arity + 2)[0]
-        if dones:
+        if total:
             self._recheck = False
         problems = [(0, _problem(w)) for w in warnings]  # type: ignore[union-attr, arg-type]
-        return Firings(dones, values, (rule.condition_names,), dict(bindings or {}),  # type: ignore
+        return Firings(total, kept, (rule.condition_names,), dict(bindings or {}),  # type: ignore
                        False, problems)
 
     def declare_actions(self, specs: Sequence[ast.ActionSpec]) -> None:
@@ -474,14 +477,14 @@ class MentalState:
             raise KBError("this pass was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
-        dones, values, warnings = self._engine.solve(
+        total, kept, warnings = self._engine.solve(
             compiled._pred, 6,
             [(0, self._b), (1, list(order)), (2, _TRUE if self._recheck else _FALSE)],
             1, outputs=(3, 4, 5), keep=4)[0]
         rules = [compiled.rules[index] for index in order] if order else compiled.rules
         problems = [(int(w.args[0]), _problem(w.args[1]))  # type: ignore[union-attr]
                     for w in warnings]  # type: ignore[union-attr]
-        firings = Firings(dones, values, [rule.condition_names for rule in rules],  # type: ignore
+        firings = Firings(total, kept, [rule.condition_names for rule in rules],  # type: ignore
                           {}, True, problems)
         if firings:
             self._recheck = False
