@@ -5,6 +5,13 @@ focus) -> blind commitment. Rules are tried in the module's order; a rule fires 
 instantiation of its condition for which its action is enabled (GOAL's semantics; see
 docs in ../shared/docs/goal-language.md). Environments and other agents are reached through
 ``AgentIO`` and ``Postman`` so that this file knows nothing of EIS or scheduling.
+
+Without a tracer, rules run compiled: each rule's condition and the leading actions Prolog
+can do are one Prolog clause, runs of such rules one call per module pass (see
+``MentalState.compile_rule``/``compile_pass``); Python does the actions that need it (the
+environment, print/log, messages, module calls) and builds the cycle report's entries only
+when read. With a tracer every rule and action is done step by step here, so that the trace
+shows each one; both paths give the same results.
 """
 
 from __future__ import annotations

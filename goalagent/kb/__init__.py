@@ -15,6 +15,9 @@ Typical use::
     for answer in state.solutions(rule, {"X": Atom("a")}, limit=1):
         state.insert("not(on(X, Y)), on(X, table)", answer)
     state.blind_commitment()
+    # or, the condition and the leading actions in one call (see MentalState.compile_rule):
+    compiled = state.compile_rule("if", rule, [("insert", "done(X)")])
+    firings = state.fire(compiled)                # firings.actions, firings.items()
     state.close()
 
 Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).

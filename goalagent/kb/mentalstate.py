@@ -5,6 +5,12 @@ or another agent leaks in): a belief module (knowledge + beliefs + percepts + me
 goal module (knowledge again + the goal bases). ``goal(φ)`` is evaluated against knowledge and
 ONE goal at a time (see mentalstate.pl). A rule's whole condition is compiled once into a
 clause of the belief module and evaluated in one Prolog call with the bindings passed in.
+
+A rule can also be compiled with its leading actions (:meth:`MentalState.compile_rule`:
+insert/delete/adopt/drop and user actions' pre/postconditions, blind commitment after each)
+into one clause shared by every agent, and consecutive such rules into one pass
+(:meth:`MentalState.compile_pass`); :meth:`MentalState.fire` / ``fire_pass`` apply them in
+one call and return :class:`Firings` (the action count at once, the bindings when read).
 """
 
 from __future__ import annotations
