@@ -26,7 +26,6 @@ from typing import Protocol, TextIO
 from goalagent import ast
 from goalagent.kb.engine import KBError, PrologRuntimeError, get_engine
 from goalagent.kb.mentalstate import (
-    RULE_ACTIONS,
     CompiledCondition,
     CompiledPass,
     CompiledRule,
@@ -48,6 +47,7 @@ from goalagent.parser import (
 Bindings = dict[str, Term]
 
 _DEFAULT_ORDER = {"init": "linearall", "event": "linearall", "main": "linear", "user": "linear"}
+_UPDATES = frozenset({"insert", "delete", "adopt", "drop"})  # built-ins a rule clause does
 _BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
                   "log": 1, "exit-module": 0}
 
@@ -121,7 +121,7 @@ def _describe(item: Performed) -> str:
     action, bindings = item
     if not action.args:
         return action.name
-    if action.name not in _BUILTIN_ARITY:  # a user action done by a rule clause
+    if not action.builtin:  # a user action done by a rule clause
         values = _resolve(bindings)
         args = tuple(instantiate(arg, values) for arg in action.args)
         return format_term(Struct(action.name, args))
@@ -550,13 +550,14 @@ class Agent:
 
     def _in_prolog(self, action: ast.Action,
                    condition: CompiledCondition) -> tuple[str, str] | None:
-        """How a rule clause performs ``action`` itself (see RULE_ACTIONS), or None when
+        """How a rule clause performs ``action`` itself (see ``RULE_ACTIONS`` in
+        goalagent.kb.mentalstate), or None when
         Python must: messages, print/log, module calls, exit-module, actions sent to the
         environment, and user actions with a variable the condition does not bind (their
         precondition's bindings do not flow into the rest of the rule)."""
         if not isinstance(action, ast.ActionCall):
             return None
-        if action.name in RULE_ACTIONS:
+        if action.builtin and action.name in _UPDATES:
             return (action.name, action.args[0].text)
         specs = self._specs.get((action.name, action.arity))
         if not specs or (self.io is not None and not all(spec.internal for spec in specs)):
@@ -689,7 +690,7 @@ class Agent:
         if isinstance(action, ast.SendAction):
             return self._send(action, bindings)
         name = action.name
-        if name in _BUILTIN_ARITY:
+        if action.builtin:
             return self._builtin(module, action, bindings)
         key = (name, action.arity)
         if key in self._specs:
@@ -863,7 +864,7 @@ def validate_program(program: ast.AgentProgram) -> None:
                 if isinstance(action, ast.SendAction):
                     continue
                 key = (action.name, action.arity)
-                if action.name in _BUILTIN_ARITY:
+                if action.builtin:
                     expected = _BUILTIN_ARITY[action.name]
                     if (expected is None and action.arity == 0) or (
                         expected is not None and action.arity != expected
@@ -892,8 +893,8 @@ def _update_formulas(program: ast.AgentProgram) -> list[ast.PrologText]:
     for module in program.modules:
         for rule in iter_rules(module.rules):
             for action in rule.actions:
-                if isinstance(action, ast.ActionCall) and action.name in (
-                    "insert", "delete", "adopt", "drop"
+                if isinstance(action, ast.ActionCall) and action.builtin and (
+                    action.name in _UPDATES
                 ):
                     formulas.extend(action.args)
     return formulas

@@ -79,15 +79,22 @@ Mood = TypingLiteral[":", "!", "?"]
 
 @dataclass(frozen=True)
 class ActionCall:
-    """One action in a rule: a built-in, a user action (actionspec) or a user module call."""
+    """One action in a rule: a built-in, a user action (actionspec) or a user module call.
+    ``overrides_builtin`` is set when an ``@env`` actionspec takes a built-in's name (the
+    garbage environment's ``drop(ball)``), so the call goes to that actionspec."""
 
     name: str
     args: tuple[PrologText, ...]
     pos: Pos
+    overrides_builtin: bool = False
 
     @property
     def arity(self) -> int:
         return len(self.args)
+
+    @property
+    def builtin(self) -> bool:
+        return self.name in BUILTIN_ACTIONS and not self.overrides_builtin
 
 
 @dataclass(frozen=True)
@@ -132,6 +139,7 @@ class ActionSpec:
     post: PrologText
     pos: Pos
     internal: bool = False
+    environment: bool = False  # marked @env (the default, but needed to reuse a built-in name)
 
     @property
     def arity(self) -> int:

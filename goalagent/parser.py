@@ -12,6 +12,7 @@ import itertools
 import re
 from collections import Counter
 from collections.abc import Iterable, Iterator
+from dataclasses import replace
 from functools import cache
 from pathlib import Path
 
@@ -388,8 +389,14 @@ class _Builder(Transformer):
         name = children[0]
         params = next((c for c in children if isinstance(c, tuple)), ())
         internal = any(isinstance(c, Token) and c.type == "AT_INT" for c in children)
+        environment = any(isinstance(c, Token) and c.type == "AT_ENV" for c in children)
+        if str(name) in ast.BUILTIN_ACTIONS and not environment:
+            raise GoalSyntaxError.at(
+                self._tpos(name), f"{name} is a built-in action; write {name}(...)@env {{ ... }}"
+                " to declare an environment action with that name")
         pre, post = children[-2], children[-1]
-        return ast.ActionSpec(str(name), params, pre, post, self._tpos(name), internal)
+        return ast.ActionSpec(str(name), params, pre, post, self._tpos(name), internal,
+                              environment)
 
     def import_(self, meta, children):
         """``#import "file.pl".``: the file's clauses become knowledge (GOAL 5)."""
@@ -711,6 +718,10 @@ def _assemble(name: str | None, items: list, file: str, builder: _Builder) -> as
                           "goals": list(m.goals), "actionspecs": list(m.actionspecs)}
                          for m in modules)]
     gathered = {key: tuple(x for part in everything for x in part[key]) for key in top}
+    overriding = {(spec.name, spec.arity) for spec in gathered["actionspecs"]
+                  if spec.name in ast.BUILTIN_ACTIONS}
+    if overriding:
+        modules = [replace(m, rules=_mark_overrides(m.rules, overriding)) for m in modules]
     return ast.AgentProgram(
         name=name or Path(file).stem,
         file=file,
@@ -721,6 +732,21 @@ def _assemble(name: str | None, items: list, file: str, builder: _Builder) -> as
         goals=gathered["goals"],
         actionspecs=gathered["actionspecs"],
     )
+
+
+def _mark_overrides(rules: tuple[ast.Rule, ...],
+                    overriding: set[tuple[str, int]]) -> tuple[ast.Rule, ...]:
+    """Calls of built-in names that an ``@env`` actionspec declares go to that actionspec."""
+    marked = []
+    for rule in rules:
+        actions = tuple(
+            replace(a, overrides_builtin=True)
+            if isinstance(a, ast.ActionCall) and (a.name, a.arity) in overriding else a
+            for a in rule.actions
+        )
+        inner = _mark_overrides(rule.rules, overriding) if rule.rules else rule.rules
+        marked.append(replace(rule, actions=actions, rules=inner))
+    return tuple(marked)
 
 
 def _parse(text: str, file: str, start: str):
@@ -861,8 +887,6 @@ def _with_warnings(program: ast.AgentProgram) -> ast.AgentProgram:
                     warnings.append(f"{rule.pos}: warning: singleton variable {var} in rule")
     if not warnings:
         return program
-    from dataclasses import replace
-
     return replace(program, warnings=tuple(warnings))
 
 
