@@ -1,1 +1,1 @@
-"""goalagent package."""
+"""Sub-symbolic behaviours: camera perception, motor skills and affordance learners."""

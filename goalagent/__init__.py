@@ -1,1 +1,1 @@
-"""goalagent package."""
+"""goalagent: GOAL agents on SWI-Prolog, with environments reached through EIS."""

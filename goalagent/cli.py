@@ -162,3 +162,27 @@ def check(
         err_console.print(f"{path}: ok", markup=False)
     if failed:
         raise typer.Exit(code=USER_ERROR)
+
+
+@app.command()
+def snapshot(
+    can: Annotated[str, typer.Option(help="Which garbage can: o1 .. o5.")] = "o1",
+    out: Annotated[Path, typer.Option(help="Where to write the PNG.")] = Path("frame.png"),
+    seed: Annotated[int, typer.Option(help="Scene seed.")] = 0,
+    opening: Annotated[
+        float | None, typer.Option(help="Open the can this far (metres) first.")] = None,
+) -> None:
+    """Render the head camera with each perceived part boxed and labelled and the measured
+    opening written on the image."""
+    from sim.scene import CANS
+    from sim.snapshot import render_snapshot
+
+    if can not in CANS:
+        raise _fail(f"unknown can {can!r}; known cans: {', '.join(sorted(CANS))}")
+    try:
+        observation = render_snapshot(can, out, seed=seed, opening=opening)
+    except ValueError as err:
+        raise _fail(str(err)) from None
+    parts = ", ".join(sorted(observation.parts))
+    err_console.print(f"{out}: can {can}, parts {parts}, opening {observation.opening:.3f} m",
+                      markup=False)

@@ -1,1 +1,1 @@
-"""goalagent package."""
+"""EIS environments built on the simulated world (the `garbage` environment)."""
