@@ -402,3 +402,14 @@ def test_example_agents_run_alike_on_both_paths(name: str) -> None:
     finally:
         fast.close()
         traced.close()
+
+
+def test_a_user_action_may_be_called_do() -> None:
+    agent = make("""
+        init module { beliefs { n(3). } }
+        main module [exit=always] { program { if bel(n(X)) then do(X) + insert(after(X)). }
+            actionspec { do(X) { pre { Y is X + 1 } post { did(X, Y) } } } }
+    """)
+    report = agent.step()
+    assert report.actions == ["do(3)", "insert(after(3))"]
+    assert agent.query("bel", "did(3, Y), after(3)") == [{"Y": 4}]
