@@ -293,6 +293,26 @@ def test_identity(empty: MentalState) -> None:
     assert values(empty.query("bel", "agent(A)"), "A") == [a("alice")]
 
 
+def test_agents_of_a_directory_share_one_agent_list(empty: MentalState) -> None:
+    from goalagent.kb.mentalstate import AgentDirectory
+
+    directory = AgentDirectory()
+    with MentalState("other") as other:
+        directory.add("alice")
+        empty.join("alice", directory)
+        other.join("bob", directory)
+        directory.add("bob")  # added after bob joined: both see it
+        for state, me in ((empty, "alice"), (other, "bob")):
+            assert state.query("bel", "me(Me)") == [{"Me": a(me)}]
+            assert values(state.query("bel", "agent(A)"), "A") == [a("alice"), a("bob")]
+        assert empty.beliefs() == [Struct("me", (a("alice"),))]  # the list is not copied
+    directory.close()
+    with pytest.raises(KBError, match="closed"):
+        directory.add("carol")
+    with pytest.raises(KBError, match="closed"):
+        empty.join("alice", directory)
+
+
 def test_vocabulary_is_always_queryable(empty: MentalState) -> None:
     for query in ["percept(X)", "received(S, M)", "sent(R, M)", "me(X)", "agent(X)"]:
         assert empty.query("bel", query) == []
