@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from goalagent.eis.exceptions import TranslationException
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
@@ -134,9 +135,13 @@ Parameter = Identifier | Numeral | Function | ParameterList | TruthValue
 _PARAMETER_TYPES = (Identifier, Numeral, Function, ParameterList, TruthValue)
 
 
+_N = TypeVar("_N", bound="_Named")
+
+
 @dataclass(frozen=True)
-class Percept:
-    """What an entity perceives: ``name(params...)``, an atom when there are no parameters."""
+class _Named:
+    """``name(params...)``: what percepts and actions have in common (an atom without
+    parameters). They stay two types, as in EIS, so one is never taken for the other."""
 
     name: str
     params: tuple[Parameter, ...] = field(default=())
@@ -145,31 +150,22 @@ class Percept:
         _params_tuple(self, self.params)
 
     @classmethod
-    def of(cls, name: str, *values: object) -> Percept:
-        """A percept from Python shorthand values (see ``to_parameter``)."""
+    def of(cls: type[_N], name: str, *values: object) -> _N:
+        """One from Python shorthand values (see ``to_parameter``)."""
         return cls(name, tuple(to_parameter(value) for value in values))
 
     def __str__(self) -> str:
-        return format_term(percept_to_term(self))
+        return format_term(_named_to_term(self.name, self.params))
 
 
 @dataclass(frozen=True)
-class Action:
-    """What an agent asks an entity to do: ``name(params...)``."""
+class Percept(_Named):
+    """What an entity perceives."""
 
-    name: str
-    params: tuple[Parameter, ...] = field(default=())
 
-    def __post_init__(self) -> None:
-        _params_tuple(self, self.params)
-
-    @classmethod
-    def of(cls, name: str, *values: object) -> Action:
-        """An action from Python shorthand values (see ``to_parameter``)."""
-        return cls(name, tuple(to_parameter(value) for value in values))
-
-    def __str__(self) -> str:
-        return format_term(action_to_term(self))
+@dataclass(frozen=True)
+class Action(_Named):
+    """What an agent asks an entity to do."""
 
 
 def to_term(param: Parameter) -> Term:

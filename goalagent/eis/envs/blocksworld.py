@@ -94,6 +94,21 @@ def parse_state(state: list[object]) -> dict[str, str]:
     return on
 
 
+def initial_towers(env: str, params: dict[str, object]) -> dict[str, str]:
+    """The towers given by init parameter ``state``, else ``blocks`` random ones from ``seed``
+    (block -> what it is on); shared by the blocks and tower worlds."""
+    if "state" in params:
+        state = params["state"]
+        assert isinstance(state, list)
+        return parse_state(state)
+    count = params.get("blocks", 5)
+    if not isinstance(count, int) or not 0 <= count <= MAX_BLOCKS:
+        raise ManagementException(f"{env}: blocks must be 0 to {MAX_BLOCKS}, got {count}")
+    seed = params.get("seed", 0)
+    assert isinstance(seed, int)
+    return random_towers(block_names(count), random.Random(seed))
+
+
 class BlocksWorld(PythonEnvironment):
     """Blocks on a table, moved one at a time with ``move(X, Y)``."""
 
@@ -107,19 +122,7 @@ class BlocksWorld(PythonEnvironment):
         if not isinstance(robots, int) or robots < 1:
             raise ManagementException(f"{self.name}: robots must be at least 1, got {robots}")
         self.robots = robots
-        if "state" in params:
-            state = params["state"]
-            assert isinstance(state, list)
-            self.on = parse_state(state)
-        else:
-            count = params.get("blocks", 5)
-            if not isinstance(count, int) or not 0 <= count <= MAX_BLOCKS:
-                raise ManagementException(
-                    f"{self.name}: blocks must be 0 to {MAX_BLOCKS}, got {count}"
-                )
-            seed = params.get("seed", 0)
-            assert isinstance(seed, int)
-            self.on = random_towers(block_names(count), random.Random(seed))
+        self.on = initial_towers(self.name, params)
 
     def initial_entities(self) -> dict[str, str]:
         """One ``robot``, or ``robot1`` ... ``robotN``."""

@@ -12,17 +12,10 @@ for random towers. The one entity is ``gripper`` of type ``gripper``.
 
 from __future__ import annotations
 
-import random
 from collections.abc import Iterable
 
-from goalagent.eis.envs.blocksworld import (
-    MAX_BLOCKS,
-    TABLE,
-    block_names,
-    parse_state,
-    random_towers,
-)
-from goalagent.eis.exceptions import ActionRefused, ManagementException
+from goalagent.eis.envs.blocksworld import TABLE, initial_towers
+from goalagent.eis.exceptions import ActionRefused
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 
 
@@ -36,19 +29,7 @@ class TowerWorld(PythonEnvironment):
 
     def on_init(self, params: dict[str, object]) -> None:
         """Build the towers from ``state`` or a seeded random set; the gripper starts empty."""
-        if "state" in params:
-            state = params["state"]
-            assert isinstance(state, list)
-            self.on = parse_state(state)
-        else:
-            count = params.get("blocks", 5)
-            if not isinstance(count, int) or not 0 <= count <= MAX_BLOCKS:
-                raise ManagementException(
-                    f"{self.name}: blocks must be 0 to {MAX_BLOCKS}, got {count}"
-                )
-            seed = params.get("seed", 0)
-            assert isinstance(seed, int)
-            self.on = random_towers(block_names(count), random.Random(seed))
+        self.on = initial_towers(self.name, params)
         self.holding: str | None = None
 
     def blocks(self) -> list[str]:
