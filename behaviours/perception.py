@@ -150,3 +150,65 @@ def observe_image(image: np.ndarray, marker_length: float) -> Observation:
     if reference is not None and height > 0:
         opening = height * marker_scale(reference, marker_length)
     return Observation(parts=parts, above=above_relations(parts), opening=opening)
+
+
+BODY_MARKER_LENGTH = 0.08
+"""Long side (m) of the body marker, the scale of eq. 5.14 (sim.scene.MARKER_SIZE["body"])."""
+
+
+class CameraPerception:
+    """Perceive through the head camera: render a frame and run the OpenCV pipeline."""
+
+    def observe(self, world: GarbageWorld) -> Observation:
+        return observe_image(world.render("head"), BODY_MARKER_LENGTH)
+
+
+class TruthPerception:
+    """The same ``Observation`` from the simulator: every part's marker projected through the
+    head camera's model (so descriptors compare with the camera's), the true opening."""
+
+    def observe(self, world: GarbageWorld) -> Observation:
+        camera = world.camera_intrinsics("head")
+        state = world.state()
+        image_area = float(camera.width * camera.height)
+        parts: dict[str, PartObservation] = {}
+        for name, part in state.parts.items():
+            corners = camera.project(_marker_corners(part.pos, part.quat, part.size))
+            (cx, cy), (rw, rh), _ = cv2.minAreaRect(corners.astype(np.float32))
+            polygon = float(cv2.contourArea(corners.astype(np.float32)))
+            x, y, w, h = cv2.boundingRect(corners.round().astype(np.int32))
+            parts[name] = PartObservation(
+                name=name,
+                area=polygon / image_area,
+                rectangleness=min(rw, rh) / max(rw, rh),
+                squareness=min(1.0, polygon / (rw * rh)),
+                centre=(float(cx), float(cy)),
+                bbox=(int(x), int(y), int(w), int(h)),
+                corners=tuple((float(u), float(v)) for u, v in corners),
+            )
+        return Observation(parts=parts, above=above_relations(parts), opening=state.opening)
+
+
+def _marker_corners(pos: tuple[float, ...], quat: tuple[float, ...],
+                    size: tuple[float, ...]) -> np.ndarray:
+    """World coordinates of a flat marker's four corners (its thin axis is local x)."""
+    w, x, y, z = quat
+    rotation = np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+    ])
+    half_w, half_h = size[1] / 2, size[2] / 2
+    local = np.array([[0, -half_w, -half_h], [0, half_w, -half_h],
+                      [0, half_w, half_h], [0, -half_w, half_h]])
+    return np.asarray(pos) + local @ rotation.T
+
+
+PERCEPTION_MODES = {"camera": CameraPerception, "truth": TruthPerception}
+
+
+def make_perception(mode: str) -> Perception:
+    """The perception for a mode name: ``camera`` or ``truth``."""
+    if mode not in PERCEPTION_MODES:
+        raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
+    return PERCEPTION_MODES[mode]()

@@ -1,0 +1,237 @@
+"""The ``garbage`` EIS environment: a robot arm, a ball and one simulated garbage can.
+
+Percepts describe what the robot perceives each cycle (camera or ground truth, see
+``behaviours.perception``); actions run the motor skills of ``behaviours.skills`` and the
+affordance behaviours of ``behaviours.learning`` (thesis ch. 6). The vocabulary is documented
+in ``sim/envs/README.md``. A refused action (a part not on this can, θ out of bounds, a mode
+not available) raises ``ActionRefused`` before the world is touched.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Iterable
+from pathlib import Path
+
+from behaviours.learning import AffordanceBehaviours, LearningModeUnavailable
+from behaviours.models import ModelStore
+from behaviours.perception import Observation, make_perception
+from behaviours.skills import SkillError, check_skill, drop_ball, grasp_ball, perform_skill
+from goalagent.eis.exceptions import ActionRefused, ManagementException
+from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
+from goalagent.kb.terms import Atom, Struct
+from sim.scene import CANS
+from sim.world import THETA_BOUNDS, GarbageWorld
+
+CLOSED = 0.01
+"""An opening (m) below this counts as closed."""
+CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm", "handle"))
+"""What the robot tries, in order, to close a can: press the lid down, press a lifted handle
+down, push a pulled handle back in (the first whose part the can has and that closes it)."""
+
+
+def default_model_path() -> Path:
+    """Where learned effect models are kept between runs unless ``models`` says otherwise."""
+    cache = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
+    return cache / "goalagent" / "affordance-models.json"
+
+
+class GarbageEnvironment(PythonEnvironment):
+    """One robot (entity ``robot``) in front of one garbage can."""
+
+    name = "garbage"
+    entity_names = ("robot",)
+    default_entity_type = "robot"
+    parameters = {
+        "can": str,
+        "perception": str,
+        "seed": int,
+        "record": bool | str,
+        "delta": float,
+        "trials": int,
+        "models": str,
+        "n_max": int,
+    }
+
+    # ------------------------------------------------------------------ life cycle
+    def on_init(self, params: dict[str, object]) -> None:
+        """Build the world: the can, the perception mode, the learners and the recorder."""
+        can = str(params.get("can", "o1"))
+        if can not in CANS:
+            raise ManagementException(
+                f"environment 'garbage': unknown can {can!r}; known cans: "
+                f"{', '.join(sorted(CANS))}")
+        self.seed = int(params.get("seed", 0))
+        self.delta = float(params.get("delta", 0.1))
+        self.trials = int(params.get("trials", 5))
+        try:
+            self.perception = make_perception(str(params.get("perception", "truth")))
+        except ValueError as error:
+            raise ManagementException(f"environment 'garbage': {error}") from None
+        self.world = GarbageWorld(can, seed=self.seed)
+        self._recording = contextlib.ExitStack()
+        record = params.get("record", False)
+        if record:
+            self._recording.enter_context(self.world.record(Path(str(record))))
+        store = ModelStore(Path(str(params.get("models") or default_model_path())))
+        self.behaviours = AffordanceBehaviours(
+            self.world, delta=self.delta, n_max=int(params.get("n_max", 10)), seed=self.seed,
+            store=store, perception=self.perception,
+        )
+        self.disposed = 0
+        self._events: list[PerceptLike] = []
+        self._observation: Observation | None = None
+
+    def on_kill(self) -> None:
+        """Finish the recording and free the renderer."""
+        self._recording.close()
+        self.world.close()
+
+    # ------------------------------------------------------------------ percepts
+    def observe(self) -> Observation:
+        """What the robot perceives now (cached until the world changes)."""
+        if self._observation is None:
+            self._observation = self.perception.observe(self.world)
+        return self._observation
+
+    def percepts(self, entity: str) -> Iterable[PerceptLike]:
+        """The scene as perceived this cycle, plus what the last action reported once."""
+        seen = self.observe()
+        state = self.world.state()
+        result: list[PerceptLike] = [("trials", self.trials), ("disposed", self.disposed)]
+        for name, part in sorted(seen.parts.items()):
+            result.append(("obs", Atom(name)))
+            result.append(("part", Atom(name), round(part.area, 6),
+                           round(part.rectangleness, 4), round(part.squareness, 4)))
+        result.extend(("above", Atom(upper), Atom(lower)) for upper, lower in seen.above)
+        result.append(("openness", round(seen.opening, 4)))
+        if seen.opening >= self.delta:
+            result.append("opened")
+        if state.holding_ball:
+            result.append(("holding", Atom("ball")))
+        if state.ball_in_can:
+            result.append(("in_can", Atom("ball")))
+        result.extend(self._events)
+        self._events = []
+        return result
+
+    def _changed(self) -> None:
+        self._observation = None
+
+    # ------------------------------------------------------------------ ball
+    @action("grasp")
+    def grasp(self, entity: str, obj: str) -> None:
+        """Grasp the ball on the table."""
+        self._ball(obj)
+        state = self.world.state()
+        if state.holding_ball:
+            raise ActionRefused("grasp(ball): the robot already holds the ball")
+        if state.ball_in_can:
+            raise ActionRefused("grasp(ball): the ball is in the can; close the lid first")
+        grasp_ball(self.world)
+        self._changed()
+
+    @action("drop")
+    def drop(self, entity: str, obj: str) -> None:
+        """Drop the held ball into the can's opening (it falls outside if that is closed)."""
+        self._ball(obj)
+        if not self.world.state().holding_ball:
+            raise ActionRefused("drop(ball): the robot does not hold the ball")
+        drop_ball(self.world)
+        self._changed()
+
+    @staticmethod
+    def _ball(obj: str) -> None:
+        if obj != "ball":
+            raise ActionRefused(f"there is no {obj!r} to handle here, only the ball")
+
+    @action("close_lid")
+    def close_lid(self, entity: str) -> None:
+        """Close the can; with the ball inside, that completes a trial and a new ball is
+        put on the table (the scene is reset for the next trial)."""
+        for skill, part in CLOSING_SKILLS:
+            if self.world.opening() < CLOSED:
+                break
+            if part in self.world.parts:
+                perform_skill(self.world, skill, part, THETA_BOUNDS[skill][1])
+        if self.world.state().ball_in_can and self.world.opening() < CLOSED:
+            self.disposed += 1
+            self.world.reset(seed=self.seed + self.disposed)
+        self._changed()
+
+    # ------------------------------------------------------------------ arm skills
+    def _skill(self, action_type: str, part: str, theta: float) -> None:
+        try:
+            check_skill(self.world, action_type, part, theta)
+        except SkillError as error:
+            raise ActionRefused(f"{action_type}({part}, {theta}): {error}") from None
+        result = perform_skill(self.world, action_type, part, theta)
+        self._changed()
+        self._events.append(("effect", Atom(part), Atom(action_type), result.theta,
+                             round(result.part_displacement, 4), round(result.effect, 4)))
+
+    @action("extend_arm")
+    def extend_arm(self, entity: str, part: str, theta: float) -> None:
+        """Push forward: approach the part and move the hand θ m away from the robot."""
+        self._skill("extend_arm", part, theta)
+
+    @action("contract_arm")
+    def contract_arm(self, entity: str, part: str, theta: float) -> None:
+        """Pull back: move the hand θ m towards the robot."""
+        self._skill("contract_arm", part, theta)
+
+    @action("sweep_left")
+    def sweep_left(self, entity: str, part: str, theta: float) -> None:
+        """Sweep the hand θ m to the left."""
+        self._skill("sweep_left", part, theta)
+
+    @action("sweep_right")
+    def sweep_right(self, entity: str, part: str, theta: float) -> None:
+        """Sweep the hand θ m to the right."""
+        self._skill("sweep_right", part, theta)
+
+    @action("lift_up")
+    def lift_up(self, entity: str, part: str, theta: float) -> None:
+        """Lift the hand θ m."""
+        self._skill("lift_up", part, theta)
+
+    @action("sweep_down")
+    def sweep_down(self, entity: str, part: str, theta: float) -> None:
+        """Move the hand θ m down."""
+        self._skill("sweep_down", part, theta)
+
+    # ------------------------------------------------------------------ affordances
+    def _affordance_request(self, part: str, action_type: str) -> None:
+        if part not in self.world.parts:
+            raise ActionRefused(f"can {self.world.can} has no {part}; it has "
+                                f"{', '.join(self.world.parts)}")
+        if action_type not in THETA_BOUNDS:
+            raise ActionRefused(f"unknown action type {action_type!r}; known: "
+                                f"{', '.join(THETA_BOUNDS)}")
+
+    @action("learn")
+    def learn(self, entity: str, part: str, action_type: str, effect: str, mode: str) -> None:
+        """Learn what ``action_type`` on ``part`` does to ``effect`` (§6.3.4); the verdict comes
+        back as ``afford(Part, Act, Eff, 0, 0, r1|r2)`` and ``model(Part, Act, ThetaMax, EMax)``."""
+        self._affordance_request(part, action_type)
+        if effect != "opened":
+            raise ActionRefused(f"learn: only the effect 'opened' can be measured, not {effect!r}")
+        try:
+            result = self.behaviours.learn(part, action_type, effect, mode)
+        except LearningModeUnavailable as error:
+            raise ActionRefused(str(error)) from None
+        self._changed()
+        self._events.append(result.afford_term)
+        self._events.append(Struct("model", (Atom(part), Atom(action_type),
+                                             round(result.theta_max, 4),
+                                             round(result.e_max, 4))))
+
+    @action("apply")
+    def apply(self, entity: str, part: str, action_type: str) -> None:
+        """Use an affordance: act with the best known θ (eq. 6.13) and report the verified
+        effect as ``afford(Part, Act, opened, 1, 1, 1)`` or ``afford(..., 1, 0, 0)``."""
+        self._affordance_request(part, action_type)
+        result = self.behaviours.apply(part, action_type)
+        self._changed()
+        self._events.append(result.afford_term)
