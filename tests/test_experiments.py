@@ -1,0 +1,128 @@
+"""Thesis §6.4.2 on the simulated cans: Experiments 1 and 2 of the garbage disposal agent."""
+
+from __future__ import annotations
+
+import io
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+from goalagent.affordance import affordances, load_affordances, save_affordances
+from goalagent.agent import Agent
+from goalagent.kb.terms import Atom
+from goalagent.mas import MultiAgentSystem
+
+ROOT = Path(__file__).resolve().parents[1]
+MAS = ROOT / "agents" / "garbage_disposal.mas2g"
+TAU = 0.6
+R2 = 0.05
+SEEDS = [0, 1, 2, 3, 4]
+
+
+@dataclass
+class Trail:
+    """The actions of a run, each with the number of balls disposed of before it."""
+
+    actions: list[tuple[int, str]] = field(default_factory=list)
+
+    def record(self, agent: Agent) -> None:
+        done = agent.query("bel", "disposed(K)")
+        trial = int(done[0]["K"]) + 1 if done else 1
+        report = agent.last_report
+        if report is not None:
+            self.actions.extend((trial, text) for text in report.actions)
+
+    def trials_with(self, prefix: str) -> set[int]:
+        return {trial for trial, text in self.actions if text.startswith(prefix)}
+
+    def parts_learned(self) -> list[str]:
+        return [text.split("(")[1].split(",")[0] for _, text in self.actions
+                if text.startswith("learn(")]
+
+
+def run(can: str, seed: int, models: Path, beliefs: Path | None = None,
+        trials: int = 5) -> tuple[MultiAgentSystem, Trail]:
+    params = {"can": Atom(can), "seed": seed, "models": str(models), "trials": trials}
+    system = MultiAgentSystem.from_mas_file(MAS, env_params=params, seed=seed,
+                                            output=io.StringIO(), warn=lambda message: None)
+    (agent,) = system.agents
+    if beliefs is not None:
+        load_affordances(agent, beliefs)
+    trail = Trail()
+    system.run(max_cycles=400, after_cycle=trail.record)
+    return system, trail
+
+
+def table(agent: Agent) -> dict[tuple[str, str], tuple[int, int, float]]:
+    return {(a.obj, a.act): (a.tot, a.suc, a.rel) for a in affordances(agent)}
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_experiment_1_learns_in_trial_one_and_then_uses_the_lid(tmp_path: Path, seed: int):
+    system, trail = run("o1", seed, tmp_path / "models.json")
+    try:
+        (agent,) = system.agents
+        assert agent.terminated, "the agent did not finish its five trials"
+        assert agent.query("bel", "disposed(5)")
+        assert trail.trials_with("learn(") == {1}
+        assert trail.trials_with("apply(lid,extend_arm)") == {1, 2, 3, 4, 5}
+        rows = table(agent)
+        assert rows[("lid", "extend_arm")] == (5, 5, 1.0)
+        for (obj, act), (_, _, rel) in rows.items():
+            if (obj, act) != ("lid", "extend_arm"):
+                assert rel < TAU, (obj, act, rel)
+        tried = {text.split(",")[1] for _, text in trail.actions if text.startswith("learn(")}
+        assert all(rows[("lid", act)][2] < TAU for act in tried - {"extend_arm"})
+    finally:
+        system.close()
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_experiment_2_relearns_on_the_handle_after_the_lid_fails(tmp_path: Path, seed: int):
+    models = tmp_path / "models.json"
+    first, _ = run("o1", seed, models)
+    saved = tmp_path / "exp1.pl"
+    save_affordances(first.agents, saved)
+    first.close()
+
+    system, trail = run("o2", seed, models, beliefs=saved)
+    try:
+        (agent,) = system.agents
+        assert agent.terminated and agent.query("bel", "disposed(5)")
+        rows = table(agent)
+        # the lid affordance decays through failures (eq. 6.3) until it is not reliable ...
+        tot, suc, rel = rows[("lid", "extend_arm")]
+        assert suc == 5 and tot >= 9 and rel < TAU
+        failures = [t for t, text in trail.actions if text.startswith("apply(lid,extend_arm)")]
+        assert len(failures) == 4 and set(failures) == {1}
+        # ... learning restarts on the lid, is abandoned, and moves to the handle
+        learned = trail.parts_learned()
+        assert "lid" in learned and "handle" in learned
+        assert learned.index("handle") > max(i for i, p in enumerate(learned) if p == "lid")
+        assert all(rel < TAU for (obj, _), (_, _, rel) in rows.items() if obj == "lid")
+        assert rows[("handle", "lift_up")][2] == 1.0
+        assert trail.trials_with("learn(") == {1}
+    finally:
+        system.close()
+
+
+def test_experiments_from_the_command_line(tmp_path: Path):
+    """The README's commands: Experiment 1 saves its beliefs, Experiment 2 starts from them."""
+    saved = tmp_path / "exp1.pl"
+    models = f"models={tmp_path / 'models.json'}"
+    common = [sys.executable, "-m", "goalagent", "run", str(MAS), "--env-param", models]
+    first = subprocess.run([*common, "--save-beliefs", str(saved), "--plot",
+                            str(tmp_path / "exp1.png")],
+                           capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert first.returncode == 0, first.stderr
+    assert "afford(lid,extend_arm,opened,5,5,1.0)." in saved.read_text()
+    assert (tmp_path / "exp1.png").stat().st_size > 10_000
+    second = subprocess.run([*common, "--env-param", "can=o2", "--load-beliefs", str(saved),
+                             "--plot", str(tmp_path / "exp2.png")],
+                            capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert second.returncode == 0, second.stderr
+    assert "robot: terminated" in second.stderr
+    assert "handle" in second.stderr and "lift_up" in second.stderr
