@@ -7,7 +7,10 @@ setup:
 	bash scripts/setup.sh
 
 demo: setup
-	.venv/bin/goalagent run agents/examples/hello_world.goal --max-cycles 50
+	.venv/bin/goalagent run agents/garbage_disposal.mas2g \
+		--save-beliefs out/exp1.pl --plot out/exp1-reliability.png
+	.venv/bin/goalagent run agents/garbage_disposal.mas2g --env-param can=o2 \
+		--load-beliefs out/exp1.pl --save-beliefs out/exp2.pl --plot out/exp2-reliability.png
 
 test: setup
 	$(PY) -m pytest -q -p no:cacheprovider

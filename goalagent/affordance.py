@@ -57,11 +57,14 @@ class ReliabilityHistory:
     """Reliability of each affordance after every cycle, against the actions taken so far."""
 
     points: dict[tuple[str, str, str], list[tuple[int, float]]] = field(default_factory=dict)
+    last_action: int = 0
 
     def record(self, agent: Agent) -> None:
+        """Note every reliability that changed (or appeared) since the last record."""
+        self.last_action = agent.total_actions
         for affordance in affordances(agent):
             series = self.points.setdefault(affordance.key, [])
-            if not series or series[-1] != (agent.total_actions, affordance.rel):
+            if not series or series[-1][1] != affordance.rel:
                 series.append((agent.total_actions, affordance.rel))
 
     def plot(self, path: Path, title: str, tau: float = 0.6) -> None:
@@ -72,11 +75,14 @@ class ReliabilityHistory:
         import matplotlib.pyplot as plt
 
         figure, axes = plt.subplots(figsize=(9, 5))
-        for (obj, act, eff), series in sorted(self.points.items()):
-            xs = [x for x, _ in series]
-            ys = [y for _, y in series]
-            axes.step(xs, ys, where="post", marker="o", markersize=3,
+        colours = plt.get_cmap("tab20").colors
+        for index, ((obj, act, eff), series) in enumerate(sorted(self.points.items())):
+            xs = [x for x, _ in series] + [self.last_action]
+            ys = [y for _, y in series] + [series[-1][1]]
+            axes.step(xs, ys, where="post", color=colours[index % len(colours)],
                       label=f"{obj} {act} ({eff})")
+            axes.plot(xs[:-1], ys[:-1], "o", markersize=3,
+                      color=colours[index % len(colours)])
         axes.axhline(tau, color="grey", linestyle="--", linewidth=1, label=f"tau = {tau}")
         axes.set_xlabel("actions taken")
         axes.set_ylabel("reliability Rel")
