@@ -18,7 +18,13 @@ from goalagent.agent import ActionFailed, Agent, AgentError, LocalPostman, Trace
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.eis.interface import Environment, EnvironmentState
 from goalagent.eis.registry import load_environment
-from goalagent.eis.terms import Parameter, action_from_term, from_term, percept_to_term
+from goalagent.eis.terms import (
+    Parameter,
+    Percept,
+    action_from_term,
+    from_term,
+    percept_to_term,
+)
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.mentalstate import AgentDirectory
 from goalagent.kb.terms import Atom, Struct, Term
@@ -26,20 +32,29 @@ from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
 
 
 class EntityIO:
-    """Connects one agent to its entities in an EIS environment (``agent.AgentIO``)."""
+    """Connects one agent to its entities in an EIS environment (``agent.AgentIO``): the
+    percepts of a cycle are those of its entities plus any the environment pushed since."""
 
     def __init__(self, environment: Environment, agent: str) -> None:
         self.environment = environment
         self.agent = agent
+        self._pushed: list[Percept] = []
+        environment.attach_agent_listener(agent, self)
+
+    def handle_percept(self, agent: str, percept: Percept) -> None:
+        """EIS agent listener: keep a pushed percept for the agent's next cycle."""
+        self._pushed.append(percept)
 
     def percepts(self) -> list[Term]:
+        pushed, self._pushed = self._pushed, []
         if not self.environment.associated_entities(self.agent):
-            return []
+            return [percept_to_term(p) for p in pushed]
         try:
             per_entity = self.environment.get_all_percepts(self.agent)
         except EnvironmentInterfaceException as err:
             raise ActionFailed(str(err)) from None
-        return [percept_to_term(p) for percepts in per_entity.values() for p in percepts]
+        current = [p for percepts in per_entity.values() for p in percepts]
+        return [percept_to_term(p) for p in current + pushed]
 
     def act(self, action: Struct | Atom) -> None:
         try:
