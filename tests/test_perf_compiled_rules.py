@@ -4,15 +4,19 @@ GOAL semantics as the step-by-step path (which runs when a tracer is set), fewer
 from __future__ import annotations
 
 import io
+import re
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from test_fuzz_programs import mutated
 
 import goalagent.kb.engine as engine_module
-from goalagent.agent import Agent
+from goalagent.agent import Agent, AgentError
 from goalagent.kb.engine import KBError
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term
+from goalagent.parser import GoalSyntaxError
 
 REFERENCE = Path(__file__).resolve().parents[1] / "bench" / "reference_agent.goal"
 
@@ -413,3 +417,36 @@ def test_a_user_action_may_be_called_do() -> None:
     report = agent.step()
     assert report.actions == ["do(3)", "insert(after(3))"]
     assert agent.query("bel", "did(3, Y), after(3)") == [{"Y": 4}]
+
+
+def _outcome(text: str, traced: bool) -> str:
+    """Everything a run of a (possibly broken) program shows: load error, or per cycle the
+    fired rules and actions, then beliefs, goals, output and warnings (variable names left
+    out: they count differently on the two paths)."""
+    try:
+        agent = make(text, traced=traced)
+    except (GoalSyntaxError, AgentError) as err:
+        return f"load: {err}"
+    steps: list = []
+    try:
+        for _ in range(6):
+            if agent.terminated:
+                break
+            try:
+                report = agent.step()
+            except (AgentError, KBError) as err:
+                steps.append(("error", str(err)))
+                break
+            steps.append(([(f.module, f.line, f.bindings, f.actions) for f in report.fired],
+                          report.actions))
+        steps.append((agent.beliefs(), agent.goals(), agent.output.getvalue(),
+                      agent.test_warnings))  # type: ignore[attr-defined]
+    finally:
+        agent.close()
+    return re.sub(r"_G\d+", "_G", repr(steps))
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(mutated())
+def test_mutated_programs_run_alike_on_both_paths(text: str) -> None:
+    assert _outcome(text, traced=False) == _outcome(text, traced=True)

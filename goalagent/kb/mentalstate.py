@@ -148,7 +148,12 @@ class Firings:
         if self._nested:
             values = values[place]  # type: ignore[index]
         found = dict(zip(self._names[place], values[index], strict=False))  # type: ignore
-        return {**self._given, **found} if self._given else found
+        if not self._given:
+            return found
+        # As a condition's answers: the given bindings it does not name, then its variables.
+        result = {name: value for name, value in self._given.items() if name not in found}
+        result.update(found)
+        return result
 
 
 class LazyBindings:
