@@ -5,17 +5,22 @@ HSV, each marker colour (body red, lid blue, handle green) is segmented, the lar
 component of a colour is that part's blob, bounded by a minimum-area (rotated) rectangle, and
 described by Table 5.1 (area, rectangleness, squareness). The opening is the height of the
 dark interior's bounding box scaled to metres by the known marker size (eq. 5.14).
-``TruthPerception`` builds the same ``Observation`` from the simulator's ground truth, so tests
-and fast experiments can swap one for the other.
+``CameraPerception`` runs that pipeline on the world's rendered head-camera frame;
+``TruthPerception`` builds the same ``Observation`` from the simulator's ground truth (marker
+boxes projected through the camera model, so descriptors are comparable), so tests and fast
+experiments can swap one for the other (``make_perception("camera" | "truth")``).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 import cv2
 import numpy as np
+
+from sim.scene import MARKER_SIZE
 
 if TYPE_CHECKING:
     from sim.world import GarbageWorld
@@ -32,6 +37,16 @@ _HSV_RANGES: dict[str, tuple[tuple[tuple[int, int, int], tuple[int, int, int]], 
 }
 MIN_BLOB_PIXELS = 12
 """Components smaller than this are noise (anti-aliased edges, specks), not parts."""
+SCALE_MARKERS: dict[str, float] = {"body": MARKER_SIZE["body"][0], "lid": MARKER_SIZE["lid"][0]}
+"""Markers whose long side (m) scales pixels to metres, in order of preference (eq. 5.14).
+
+The body marker comes first: its horizontal width is not foreshortened by the camera's pitch
+and lies at the rim's depth, so it measures the opening within ~5 mm; the lid is a fallback.
+"""
+ABOVE_MARGIN_M = 0.005
+"""Height difference (m) over which one part counts as above another in ground truth."""
+PERCEPTION_MODES = ("camera", "truth")
+"""Names accepted by ``make_perception``."""
 
 
 @dataclass(frozen=True)
@@ -128,87 +143,125 @@ def marker_scale(marker: PartObservation, marker_length: float) -> float:
     return marker_length / float(long_side)
 
 
-def opening_height(image_hsv: np.ndarray) -> int:
-    """Height in pixels of the bounding box of the dark interior (0 when none is visible)."""
+def dark_region(image_hsv: np.ndarray) -> tuple[int, int, int, int] | None:
+    """Bounding box (x, y, w, h) of the largest dark (interior) blob, or None if none is seen."""
     blob = largest_blob(colour_mask(image_hsv, "dark"))
     if blob is None:
-        return 0
-    return int(cv2.boundingRect(cv2.findNonZero(blob))[3])
+        return None
+    x, y, w, h = cv2.boundingRect(cv2.findNonZero(blob))
+    return int(x), int(y), int(w), int(h)
 
 
-def observe_image(image: np.ndarray, marker_length: float) -> Observation:
-    """Perceive an RGB frame: parts by marker colour, relations, and opening (eq. 5.14)."""
+def opening_height(image_hsv: np.ndarray) -> int:
+    """Height in pixels of the bounding box of the dark interior (0 when none is visible)."""
+    box = dark_region(image_hsv)
+    return 0 if box is None else box[3]
+
+
+def observe_image(
+    image: np.ndarray, scale_markers: Mapping[str, float] = SCALE_MARKERS
+) -> Observation:
+    """Perceive an RGB frame: parts by marker colour, relations, and opening (eq. 5.14).
+
+    ``scale_markers`` maps part names to their marker's long side in metres; the first one
+    seen scales the dark region's pixel height to metres (no marker seen: opening 0).
+    """
+    if image.ndim != 3 or image.shape[2] != 3 or image.dtype != np.uint8:
+        raise ValueError(f"expected an RGB uint8 image (H, W, 3), got {image.dtype} "
+                         f"{image.shape}")
     hsv = cv2.cvtColor(image, cv2.COLOR_RGB2HSV)
     parts: dict[str, PartObservation] = {}
     for part, colour in PART_COLOURS.items():
         blob = largest_blob(colour_mask(hsv, colour))
         if blob is not None:
             parts[part] = describe_blob(part, blob)
-    reference = parts.get("body") or parts.get("lid")
-    height = opening_height(hsv)
     opening = 0.0
+    reference = next((p for p in scale_markers if p in parts), None)
+    height = opening_height(hsv) if reference is not None else 0
     if reference is not None and height > 0:
-        opening = height * marker_scale(reference, marker_length)
+        opening = height * marker_scale(parts[reference], scale_markers[reference])
     return Observation(parts=parts, above=above_relations(parts), opening=opening)
 
 
-BODY_MARKER_LENGTH = 0.08
-"""Long side (m) of the body marker, the scale of eq. 5.14 (sim.scene.MARKER_SIZE["body"])."""
-
-
 class CameraPerception:
-    """Perceive through the head camera: render a frame and run the OpenCV pipeline."""
+    """Perceive by rendering a camera of the world and running the OpenCV pipeline on it."""
+
+    def __init__(self, camera: str = "head"):
+        """Use ``camera`` (the head camera by default)."""
+        self.camera = camera
 
     def observe(self, world: GarbageWorld) -> Observation:
-        return observe_image(world.render("head"), BODY_MARKER_LENGTH)
+        """Render the camera now and perceive the frame (opening scaled by the body marker)."""
+        return observe_image(world.render(self.camera))
 
 
 class TruthPerception:
-    """The same ``Observation`` from the simulator: every part's marker projected through the
-    head camera's model (so descriptors compare with the camera's), the true opening."""
+    """Perceive from ground truth: the can's parts, its real opening, projected marker shapes.
+
+    Each marker box of the model is projected through the camera's pinhole model and filled
+    as a polygon, then described exactly like a camera blob, so descriptors are comparable
+    with ``CameraPerception``'s; ``above`` compares true marker heights; the opening is
+    ``world.state().opening``. No rendering, so it is fast and needs no GL context.
+    """
+
+    def __init__(self, camera: str = "head"):
+        """Project into ``camera`` (the head camera by default)."""
+        self.camera = camera
 
     def observe(self, world: GarbageWorld) -> Observation:
-        camera = world.camera_intrinsics("head")
+        """The ideal observation of the world as it is now."""
         state = world.state()
-        image_area = float(camera.width * camera.height)
+        model = world.camera_intrinsics(self.camera)
         parts: dict[str, PartObservation] = {}
-        for name, part in state.parts.items():
-            corners = camera.project(_marker_corners(part.pos, part.quat, part.size))
-            (cx, cy), (rw, rh), _ = cv2.minAreaRect(corners.astype(np.float32))
-            polygon = float(cv2.contourArea(corners.astype(np.float32)))
-            x, y, w, h = cv2.boundingRect(corners.round().astype(np.int32))
-            parts[name] = PartObservation(
-                name=name,
-                area=polygon / image_area,
-                rectangleness=min(rw, rh) / max(rw, rh),
-                squareness=min(1.0, polygon / (rw * rh)),
-                centre=(float(cx), float(cy)),
-                bbox=(int(x), int(y), int(w), int(h)),
-                corners=tuple((float(u), float(v)) for u, v in corners),
-            )
-        return Observation(parts=parts, above=above_relations(parts), opening=state.opening)
+        for name in world.parts:
+            geom = world.model.geom(f"marker_{name}").id
+            centre = world.data.geom_xpos[geom]
+            axes = world.data.geom_xmat[geom].reshape(3, 3)
+            half = world.model.geom_size[geom]
+            signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+            corners = centre + (signs * half) @ axes.T
+            blob = _filled_hull(model.project(corners), model.width, model.height)
+            if blob is not None:
+                parts[name] = describe_blob(name, blob)
+        heights = {name: state.parts[name].pos[2] for name in parts}
+        above = tuple(
+            (p1, p2)
+            for p1 in sorted(parts)
+            for p2 in sorted(parts)
+            if p1 != p2 and heights[p1] > heights[p2] + ABOVE_MARGIN_M
+        )
+        return Observation(parts=parts, above=above, opening=float(state.opening))
 
 
-def _marker_corners(pos: tuple[float, ...], quat: tuple[float, ...],
-                    size: tuple[float, ...]) -> np.ndarray:
-    """World coordinates of a flat marker's four corners (its thin axis is local x)."""
-    w, x, y, z = quat
-    rotation = np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-    ])
-    half_w, half_h = size[1] / 2, size[2] / 2
-    local = np.array([[0, -half_w, -half_h], [0, half_w, -half_h],
-                      [0, half_w, half_h], [0, -half_w, half_h]])
-    return np.asarray(pos) + local @ rotation.T
+def _filled_hull(pixels: np.ndarray, width: int, height: int) -> np.ndarray | None:
+    """Mask of the pixels whose centres lie in the projected points' convex hull (or None).
 
-
-PERCEPTION_MODES = {"camera": CameraPerception, "truth": TruthPerception}
+    That is how the renderer covers a polygon (pixel (i, j) has its centre at j + 0.5,
+    i + 0.5), so the mask has the pixels the camera would segment.
+    """
+    hull = cv2.convexHull(pixels.astype(np.float32)).reshape(-1, 2).astype(float)
+    mask = np.zeros((height, width), dtype=np.uint8)
+    x0, y0 = np.clip(np.floor(hull.min(axis=0)).astype(int), 0, [width, height])
+    x1, y1 = np.clip(np.ceil(hull.max(axis=0)).astype(int) + 1, 0, [width, height])
+    if x1 <= x0 or y1 <= y0 or len(hull) < 3:
+        return None
+    ys, xs = np.mgrid[y0:y1, x0:x1] + 0.5
+    a, b = hull, np.roll(hull, -1, axis=0)
+    orientation = np.sign(np.sum(a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]))
+    inside = np.ones(xs.shape, dtype=bool)
+    for (ax, ay), (bx, by) in zip(a, b, strict=True):
+        inside &= orientation * ((bx - ax) * (ys - ay) - (by - ay) * (xs - ax)) >= 0
+    mask[y0:y1, x0:x1][inside] = 255
+    if cv2.countNonZero(mask) < MIN_BLOB_PIXELS:
+        return None
+    return mask
 
 
 def make_perception(mode: str) -> Perception:
-    """The perception for a mode name: ``camera`` or ``truth``."""
-    if mode not in PERCEPTION_MODES:
-        raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
-    return PERCEPTION_MODES[mode]()
+    """The perception of a mode name: "camera" (rendered frames) or "truth" (ground truth)."""
+    if mode == "camera":
+        return CameraPerception()
+    if mode == "truth":
+        return TruthPerception()
+    raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
+

@@ -24,7 +24,7 @@ sys.path[0] = str(Path(__file__).resolve().parents[1])
 from rich.console import Console  # noqa: E402
 from rich.table import Table  # noqa: E402
 
-from behaviours.perception import BODY_MARKER_LENGTH, make_perception, observe_image  # noqa: E402
+from behaviours.perception import make_perception, observe_image  # noqa: E402
 from behaviours.skills import perform_skill  # noqa: E402
 from sim.world import GarbageWorld  # noqa: E402
 
@@ -91,8 +91,8 @@ def main() -> None:
     world.set_opening(0.08)
     frame = world.render("head")
     render = best_ms(lambda: world.render("head"), args.repeats)
-    segment = best_ms(lambda: observe_image(frame, BODY_MARKER_LENGTH), args.repeats)
-    both = best_ms(lambda: observe_image(world.render("head"), BODY_MARKER_LENGTH),
+    segment = best_ms(lambda: observe_image(frame), args.repeats)
+    both = best_ms(lambda: observe_image(world.render("head")),
                    args.repeats)
     frames = Table(title="Head camera, 320x240 (target: render + segment <= 60 ms)")
     for column in ("measure", "ms", "share of render + segment"):

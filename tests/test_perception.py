@@ -29,7 +29,7 @@ def _rotated(image: np.ndarray, centre, size, angle: float, colour) -> None:
 def test_descriptors_of_an_upright_rectangle_are_table_5_1():
     image = _frame()
     cv2.rectangle(image, (100, 150), (149, 169), RED, -1)  # 50 x 20 px
-    obs = observe_image(image, marker_length=0.05)
+    obs = observe_image(image, {"body": 0.05})
     body = obs.parts["body"]
     assert body.area == pytest.approx(1000 / (W * H))
     assert body.rectangleness == pytest.approx(0.4)
@@ -42,7 +42,7 @@ def test_descriptors_of_an_upright_rectangle_are_table_5_1():
 def test_rotated_rectangle_keeps_its_shape_through_the_min_area_rectangle():
     image = _frame()
     _rotated(image, (160, 100), (80, 20), 30.0, BLUE)
-    lid = observe_image(image, 0.05).parts["lid"]
+    lid = observe_image(image, {"body": 0.05}).parts["lid"]
     assert lid.rectangleness == pytest.approx(0.25, abs=0.03)
     assert lid.squareness > 0.9
     # the axis-aligned box of a tilted bar is much squarer than the bar itself
@@ -73,21 +73,21 @@ def test_opening_is_dark_height_scaled_by_the_marker():
     image = _frame()
     cv2.rectangle(image, (100, 150), (149, 169), RED, -1)  # 50 px long -> 1 mm per pixel
     cv2.rectangle(image, (90, 100), (159, 139), DARK, -1)  # 40 px high dark region
-    obs = observe_image(image, marker_length=0.05)
+    obs = observe_image(image, {"body": 0.05})
     assert obs.opening == pytest.approx(0.040, abs=1e-9)
     image2 = _frame()
     cv2.rectangle(image2, (100, 150), (124, 159), RED, -1)  # 25 px long -> 2 mm per pixel
     cv2.rectangle(image2, (90, 100), (159, 139), DARK, -1)
-    assert observe_image(image2, 0.05).opening == pytest.approx(0.080, abs=1e-9)
+    assert observe_image(image2, {"body": 0.05}).opening == pytest.approx(0.080, abs=1e-9)
 
 
 def test_no_dark_region_or_no_marker_means_no_opening():
     image = _frame()
     cv2.rectangle(image, (100, 150), (149, 169), RED, -1)
-    assert observe_image(image, 0.05).opening == 0.0
+    assert observe_image(image, {"body": 0.05}).opening == 0.0
     lone_dark = _frame()
     cv2.rectangle(lone_dark, (90, 100), (159, 139), DARK, -1)
-    assert observe_image(lone_dark, 0.05).opening == 0.0
+    assert observe_image(lone_dark, {"body": 0.05}).opening == 0.0
 
 
 def test_all_three_colours_are_told_apart_and_grey_white_yellow_are_ignored():
@@ -97,7 +97,7 @@ def test_all_three_colours_are_told_apart_and_grey_white_yellow_are_ignored():
     cv2.rectangle(image, (100, 150), (149, 169), RED, -1)
     cv2.rectangle(image, (100, 90), (149, 109), BLUE, -1)
     cv2.rectangle(image, (200, 60), (299, 69), GREEN, -1)
-    obs = observe_image(image, 0.05)
+    obs = observe_image(image, {"body": 0.05})
     assert set(obs.parts) == {"body", "lid", "handle"}
     assert obs.parts["handle"].rectangleness == pytest.approx(0.1)
     assert set(obs.above) == {("lid", "body"), ("handle", "body"), ("handle", "lid")}
@@ -107,5 +107,5 @@ def test_above_needs_a_margin():
     image = _frame()
     cv2.rectangle(image, (10, 100), (59, 119), RED, -1)
     cv2.rectangle(image, (100, 101), (149, 120), BLUE, -1)  # one pixel lower: not "above"
-    obs = observe_image(image, 0.05)
+    obs = observe_image(image, {"body": 0.05})
     assert above_relations(obs.parts) == ()
