@@ -65,8 +65,9 @@ class CompiledCondition:
 
 
 class CompiledRule:
-    """A rule (its condition and leading built-in actions) compiled into one clause of an
-    agent's belief module: one Prolog call evaluates it and performs those actions."""
+    """A rule (its condition and the leading actions Prolog can do) compiled into one clause
+    (shared by every agent that reads the rule alike, see ``compile_rule/7``): one Prolog
+    call evaluates the condition and performs those actions."""
 
     __slots__ = ("_state", "_pred", "_name", "names", "condition_names", "_index", "kind",
                  "actions")
@@ -87,8 +88,9 @@ class CompiledRule:
 
 
 class CompiledPass:
-    """Consecutive compiled rules (all their actions built in, no given bindings) applied
-    in order by one Prolog call: a module pass without a return to Python per rule."""
+    """Consecutive compiled rules (all their actions done in Prolog, no given bindings)
+    applied in order by one Prolog call: a module pass without a return to Python per
+    rule."""
 
     __slots__ = ("_state", "_pred", "rules", "stop")
 
@@ -314,7 +316,7 @@ class MentalState:
         self._b = Atom(f"ga_b{number}")
         self._g = Atom(f"ga_g{number}")
         self._closed = False
-        self._compiled: dict[str, CompiledCondition | CompiledRule] = {}
+        self._compiled: dict[str, CompiledCondition | CompiledRule | CompiledPass] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
         self._recheck = True  # beliefs or goals changed in a way updates did not check
         self._has_percepts = False  # the percept base is not empty
