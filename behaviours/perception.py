@@ -45,6 +45,13 @@ and lies at the rim's depth, so it measures the opening within ~5 mm; the lid is
 """
 ABOVE_MARGIN_M = 0.005
 """Height difference (m) over which one part counts as above another in ground truth."""
+DESCRIPTOR_WEIGHTS = np.array([1000.0, 1.0, 1.0])
+"""Weights putting (area, rectangleness, squareness) on like ranges for distances between parts.
+
+Area is a fraction of the image (~0.001..0.01 for a marker), the ratios lie in 0..1: area in
+per-mille weighs as much as the ratios. (Standardising by the spread instead over-weights
+squareness, which is ~1 for every marker, so a one-pixel jag would decide the nearest part.)
+"""
 PERCEPTION_MODES = ("camera", "truth")
 """Names accepted by ``make_perception``."""
 
@@ -64,6 +71,10 @@ class PartObservation:
     def descriptor(self) -> np.ndarray:
         """The (area, rectangleness, squareness) feature vector used to compare parts."""
         return np.array([self.area, self.rectangleness, self.squareness], dtype=float)
+
+    def features(self) -> np.ndarray:
+        """The descriptor weighted by ``DESCRIPTOR_WEIGHTS``, for nearest-part comparisons."""
+        return self.descriptor() * DESCRIPTOR_WEIGHTS
 
 
 @dataclass(frozen=True)

@@ -2,16 +2,27 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import cv2
 import numpy as np
 import pytest
+from sklearn.neighbors import KNeighborsClassifier
 
 from behaviours.perception import (
+    CameraPerception,
+    Observation,
+    TruthPerception,
     above_relations,
     describe_blob,
     largest_blob,
+    make_perception,
     observe_image,
 )
+from behaviours.skills import perform_skill
+from sim.scene import CANS
+from sim.snapshot import render_snapshot
+from sim.world import GarbageWorld
 
 W, H = 320, 240
 RED, BLUE, GREEN, DARK, GREY = (220, 30, 30), (30, 30, 220), (30, 200, 30), (5, 5, 5), (190,) * 3
@@ -109,3 +120,153 @@ def test_above_needs_a_margin():
     cv2.rectangle(image, (100, 101), (149, 120), BLUE, -1)  # one pixel lower: not "above"
     obs = observe_image(image, {"body": 0.05})
     assert above_relations(obs.parts) == ()
+
+
+def test_the_first_scale_marker_seen_scales_the_opening():
+    image = _frame()
+    cv2.rectangle(image, (100, 90), (124, 99), BLUE, -1)  # lid only: 25 px long
+    cv2.rectangle(image, (90, 100), (159, 139), DARK, -1)  # 40 px high
+    markers = {"body": 0.08, "lid": 0.05}
+    assert observe_image(image, markers).opening == pytest.approx(0.080, abs=1e-9)
+    cv2.rectangle(image, (100, 150), (139, 169), RED, -1)  # body seen: 40 px long = 0.08 m
+    assert observe_image(image, markers).opening == pytest.approx(0.080 * 40 / 40 * 1.0)
+    assert observe_image(image, {"handle": 0.1}).opening == 0.0
+
+
+def test_a_frame_that_is_not_an_rgb_image_is_refused():
+    with pytest.raises(ValueError, match="RGB uint8 image"):
+        observe_image(np.zeros((H, W), np.uint8))
+    with pytest.raises(ValueError, match="RGB uint8 image"):
+        observe_image(np.zeros((H, W, 3), np.float32))
+
+
+# ------------------------------------------------------------- rendered frames (MuJoCo, EGL)
+OPENINGS = (0.0, 0.02, 0.05, 0.08, 0.11, 0.14)
+
+
+@pytest.fixture(scope="module")
+def worlds() -> Iterator[dict[str, GarbageWorld]]:
+    made = {can: GarbageWorld(can) for can in sorted(CANS)}
+    yield made
+    for world in made.values():
+        world.close()
+
+
+@pytest.fixture(scope="module")
+def sweep(worlds) -> dict[str, list[tuple[float, Observation, Observation]]]:
+    """(true opening, camera observation, truth observation) over OPENINGS on every can."""
+    camera, truth = make_perception("camera"), make_perception("truth")
+    seen: dict[str, list[tuple[float, Observation, Observation]]] = {}
+    for can, world in worlds.items():
+        seen[can] = []
+        for opening in OPENINGS:
+            world.set_opening(opening)
+            seen[can].append((world.opening(), camera.observe(world), truth.observe(world)))
+        world.set_opening(0.0)
+    return seen
+
+
+def test_modes_are_made_by_name_and_others_are_refused():
+    assert isinstance(make_perception("camera"), CameraPerception)
+    assert isinstance(make_perception("truth"), TruthPerception)
+    with pytest.raises(ValueError, match="'sonar'.*camera or truth"):
+        make_perception("sonar")
+
+
+@pytest.mark.parametrize("can", sorted(CANS))
+def test_camera_and_truth_agree_on_the_opening_parts_and_relations(sweep, worlds, can):
+    for opening, seen, true in sweep[can]:
+        assert true.opening == pytest.approx(opening)
+        assert abs(seen.opening - true.opening) <= 0.01, (opening, seen.opening)
+        assert set(seen.parts) == set(true.parts) == set(worlds[can].parts)
+        assert seen.above == true.above
+        assert ("lid", "body") in seen.above
+        if "handle" in seen.parts:
+            assert {("handle", "body"), ("lid", "handle")} <= set(seen.above)
+
+
+def test_a_closed_can_reads_no_opening(sweep):
+    for can, observations in sweep.items():
+        opening, seen, _ = observations[0]
+        assert opening <= 1e-9 and seen.opening <= 0.003, can
+
+
+def test_the_camera_opening_grows_with_the_true_opening(sweep):
+    for can, observations in sweep.items():
+        measured = [seen.opening for _, seen, _ in observations]
+        assert measured == sorted(measured), can
+        assert measured[-1] - measured[1] > 0.1, can
+
+
+def test_truth_descriptors_are_nearest_to_the_camera_descriptors_of_the_same_part(sweep):
+    for can, observations in sweep.items():
+        for _, seen, true in observations:
+            for name, part in true.parts.items():
+                assert abs(part.centre[0] - seen.parts[name].centre[0]) <= 1.5, (can, name)
+                assert abs(part.centre[1] - seen.parts[name].centre[1]) <= 1.5, (can, name)
+                gaps = {other: float(np.linalg.norm(part.features() - cam.features()))
+                        for other, cam in seen.parts.items()}
+                assert min(gaps, key=gaps.get) == name, (can, name, gaps)
+
+
+@pytest.mark.parametrize("mode", ["camera", "truth"])
+def test_a_nearest_neighbour_trained_on_four_cans_labels_the_fifth(sweep, mode):
+    index = 1 if mode == "camera" else 2
+    samples = {can: [(p.features(), n) for obs in observations
+                     for n, p in obs[index].parts.items()]
+               for can, observations in sweep.items()}
+    for held_out in sorted(CANS):
+        train = [s for can, rows in samples.items() if can != held_out for s in rows]
+        features, labels = np.array([d for d, _ in train]), [n for _, n in train]
+        model = KNeighborsClassifier(n_neighbors=1).fit(features, labels)
+        test = samples[held_out]
+        predicted = model.predict(np.array([d for d, _ in test]))
+        assert list(predicted) == [n for _, n in test], held_out
+
+
+def test_camera_sees_the_effect_of_a_real_push(worlds):
+    world = worlds["o1"]
+    world.set_opening(0.0)
+    camera = make_perception("camera")
+    before = camera.observe(world).opening
+    perform_skill(world, "extend_arm", "lid", 0.1)
+    after, truth = camera.observe(world).opening, world.opening()
+    world.set_opening(0.0)
+    world.home()
+    assert truth > 0.1
+    assert before <= 0.003 and abs(after - truth) <= 0.01
+
+
+def test_observations_are_deterministic(worlds):
+    world = worlds["o4"]
+    world.set_opening(0.07)
+    first, second = CameraPerception().observe(world), CameraPerception().observe(world)
+    world.set_opening(0.0)
+    assert first == second
+
+
+# ------------------------------------------------------------------------------- snapshot
+def test_snapshot_writes_an_enlarged_annotated_png(tmp_path):
+    out = tmp_path / "sub" / "o2.png"
+    obs = render_snapshot("o2", out, opening=0.08)
+    assert set(obs.parts) == {"body", "lid", "handle"}
+    assert obs.opening == pytest.approx(0.08, abs=0.01)
+    picture = cv2.imread(str(out))
+    assert picture.shape == (480, 640, 3)
+    plain = cv2.resize(cv2.cvtColor(GarbageWorld("o2").render(), cv2.COLOR_RGB2BGR), None,
+                       fx=2, fy=2, interpolation=cv2.INTER_NEAREST)
+    assert np.count_nonzero(np.any(picture != plain, axis=2)) > 2000  # boxes and text drawn
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [({"can": "o9"}, "unknown can 'o9'"),
+     ({"out": "frame.jpg"}, r"must be a \.png"),
+     ({"opening": 0.9}, "opening 0.9 m outside"),
+     ({"out": "blocker/frame.png"}, "cannot create the folder")],
+)
+def test_snapshot_mistakes_are_clear_errors(tmp_path, kwargs, message):
+    (tmp_path / "blocker").write_text("a file, not a folder")
+    args = {"can": "o1", "out": "frame.png"} | kwargs
+    with pytest.raises(ValueError, match=message):
+        render_snapshot(args.pop("can"), tmp_path / args.pop("out"), **args)
