@@ -37,6 +37,9 @@ _HSV_RANGES: dict[str, tuple[tuple[tuple[int, int, int], tuple[int, int, int]], 
 }
 MIN_BLOB_PIXELS = 12
 """Components smaller than this are noise (anti-aliased edges, specks), not parts."""
+DARK_BRIDGE = 5
+"""Dark bands up to DARK_BRIDGE - 2 px apart vertically count as one dark region."""
+_BRIDGE_KERNEL = np.ones((DARK_BRIDGE, 1), dtype=np.uint8)
 SCALE_MARKERS: dict[str, float] = {"body": MARKER_SIZE["body"][0], "lid": MARKER_SIZE["lid"][0]}
 """Markers whose long side (m) scales pixels to metres, in order of preference (eq. 5.14).
 
@@ -155,8 +158,14 @@ def marker_scale(marker: PartObservation, marker_length: float) -> float:
 
 
 def dark_region(image_hsv: np.ndarray) -> tuple[int, int, int, int] | None:
-    """Bounding box (x, y, w, h) of the largest dark (interior) blob, or None if none is seen."""
-    blob = largest_blob(colour_mask(image_hsv, "dark"))
+    """Bounding box (x, y, w, h) of the largest dark (interior) blob, or None if none is seen.
+
+    A closing with a vertical ``DARK_BRIDGE``-pixel kernel first joins dark bands split by a
+    thin lighter line (a steep lid's underside above the interior, with the back rim's edge
+    between them), so the gap is measured whole.
+    """
+    mask = cv2.morphologyEx(colour_mask(image_hsv, "dark"), cv2.MORPH_CLOSE, _BRIDGE_KERNEL)
+    blob = largest_blob(mask)
     if blob is None:
         return None
     x, y, w, h = cv2.boundingRect(cv2.findNonZero(blob))
@@ -195,7 +204,12 @@ def observe_image(
 
 
 class CameraPerception:
-    """Perceive by rendering a camera of the world and running the OpenCV pipeline on it."""
+    """Perceive by rendering a camera of the world and running the OpenCV pipeline on it.
+
+    The opening agrees with ground truth within 0.01 m from 0 to 0.20 m on every can (tested).
+    Wider, a tall lid's front edge lies well behind the rim, where the body marker's scale
+    no longer holds: o3 reads 0.024 m short at 0.25 m.
+    """
 
     def __init__(self, camera: str = "head"):
         """Use ``camera`` (the head camera by default)."""

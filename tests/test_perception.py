@@ -133,6 +133,16 @@ def test_the_first_scale_marker_seen_scales_the_opening():
     assert observe_image(image, {"handle": 0.1}).opening == 0.0
 
 
+def test_dark_bands_split_by_a_thin_line_are_one_gap_but_distant_ones_are_not():
+    image = _frame()
+    cv2.rectangle(image, (100, 150), (149, 169), RED, -1)  # 1 mm per pixel
+    cv2.rectangle(image, (90, 60), (159, 89), DARK, -1)  # 30 px
+    cv2.rectangle(image, (90, 91), (159, 130), DARK, -1)  # 40 px, one grey row between
+    assert observe_image(image, {"body": 0.05}).opening == pytest.approx(0.071)
+    cv2.rectangle(image, (90, 90), (159, 99), GREY, -1)  # now 10 px apart: the larger counts
+    assert observe_image(image, {"body": 0.05}).opening == pytest.approx(0.031)
+
+
 def test_a_frame_that_is_not_an_rgb_image_is_refused():
     with pytest.raises(ValueError, match="RGB uint8 image"):
         observe_image(np.zeros((H, W), np.uint8))
@@ -141,7 +151,7 @@ def test_a_frame_that_is_not_an_rgb_image_is_refused():
 
 
 # ------------------------------------------------------------- rendered frames (MuJoCo, EGL)
-OPENINGS = (0.0, 0.02, 0.05, 0.08, 0.11, 0.14)
+OPENINGS = (0.0, 0.02, 0.05, 0.08, 0.11, 0.14, 0.17, 0.20)
 
 
 @pytest.fixture(scope="module")
