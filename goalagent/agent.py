@@ -481,7 +481,8 @@ class Agent:
         run: list[ast.Rule] = []
         for rule in (*rules, None):
             clause = self._rule_clause(rule) if rule is not None else None
-            if clause is not None and clause.actions == len(rule.actions):  # type: ignore
+            if (clause is not None and not clause.pending
+                    and clause.actions == len(rule.actions)):  # type: ignore[union-attr]
                 run.append(rule)  # type: ignore[arg-type]
                 continue
             if len(run) >= 2:
@@ -551,17 +552,19 @@ class Agent:
     def _in_prolog(self, action: ast.Action,
                    condition: CompiledCondition) -> tuple[str, str] | None:
         """How a rule clause performs ``action`` itself (see ``RULE_ACTIONS`` in
-        goalagent.kb.mentalstate), or None when
-        Python must: messages, print/log, module calls, exit-module, actions sent to the
-        environment, and user actions with a variable the condition does not bind (their
-        precondition's bindings do not flow into the rest of the rule)."""
+        goalagent.kb.mentalstate): "env" for an action that may go to the environment (the
+        clause checks its precondition, Python does the rest). None when Python must do it
+        all: messages, print/log, module calls, exit-module, and user actions with a
+        variable the condition does not bind (their precondition's bindings do not flow
+        into the rest of the rule)."""
         if not isinstance(action, ast.ActionCall):
             return None
         if action.builtin and action.name in _UPDATES:
             return (action.name, action.args[0].text)
         specs = self._specs.get((action.name, action.arity))
-        if not specs or (self.io is not None and not all(spec.internal for spec in specs)):
+        if not specs:
             return None
+        kind = "do" if self.io is None or all(spec.internal for spec in specs) else "env"
         bound = set(condition.names)
         if any(name not in bound for arg in action.args for name in arg.variables):
             return None
@@ -571,7 +574,7 @@ class Agent:
         text = format_term(Atom(action.name))
         if action.args:
             text += "(" + ", ".join(arg.text for arg in action.args) + ")"
-        return ("do", text)
+        return (kind, text)
 
     def _rule_clause(self, rule: ast.Rule) -> CompiledRule | None:
         """The rule compiled with its leading actions that Prolog can do (see
@@ -579,7 +582,7 @@ class Agent:
         Python must do everything: a tracer is set (it sees each step), the rule is nested
         or listall, its first action needs Python, or it is a forall whose actions do not
         all run in Prolog (every instantiation must finish its combo before the next one
-        starts)."""
+        starts). An action for the environment ends the clause's actions."""
         if self.tracer is not None:
             return None
         key = id(rule)
@@ -593,9 +596,12 @@ class Agent:
             if done_here is None:
                 break
             leading.append(done_here)
+            if done_here[0] == "env":
+                break
+        whole = len(leading) == len(rule.actions) and all(kind != "env" for kind, _ in leading)
         clause = None
         if rule.rules is None and leading and (
-            rule.kind == "if" or (rule.kind == "forall" and len(leading) == len(rule.actions))
+            rule.kind == "if" or (rule.kind == "forall" and whole)
         ):
             try:
                 clause = self.ms.compile_rule(rule.kind, condition, leading)
@@ -633,23 +639,40 @@ class Agent:
             self.warn(f"module {module.name}, rule at {rule.pos}: Prolog error in the "
                       f"condition: {err.message}; the rule is not applicable")
             return False
-        if clause.actions == len(rule.actions):
+        if clause.actions == len(rule.actions) and not clause.pending:
             return self._note(module, (rule,), firings)
         for _, problem in firings.problems:
             self._problem(module, rule, problem)
         report = self._report
+        fired = False
         for _, solution, done in firings.items():
+            go_on = done == clause.actions  # the rest of the combo is Python's
+            pending = clause.pending and go_on  # the last action was left to Python
+            in_prolog = done - 1 if pending else done
             performed: list[Performed] = [(action, solution)
-                                          for action in rule.actions[:done]]
+                                          for action in rule.actions[:in_prolog]]
             report.performed.extend(performed)
-            self.total_actions += done
-            if done == clause.actions:  # the rest of the combo needs Python
-                self._fire(module, rule, solution.resolve(), order, start=done,
-                           performed=performed)
-            else:
+            self.total_actions += in_prolog
+            if pending:  # an environment action, enabled and closed: Python performs it
+                left = firings.pending()
+                assert left is not None
+                term, post, spec = left
+                action = rule.actions[in_prolog]
+                assert isinstance(action, ast.ActionCall)
+                description = self._act_on(action, self.program.actionspecs[spec], term,
+                                           lambda post=post: self.ms.insert_term(post))
+                if description is None:
+                    go_on = False  # its postcondition failed: the combo stops there
+                else:
+                    performed.append(description)
+            if go_on:
+                fired = self._fire(module, rule, solution.resolve(), order, start=done,
+                                   performed=performed) or fired
+            elif performed:
                 report.entries.append(FiredRule(module.name, rule.pos, solution,
                                                 tuple(performed)))
-        return bool(firings)
+                fired = True
+        return fired
 
     def _fire(self, module: ast.Module, rule: ast.Rule, bindings: Bindings, order: str,
               start: int = 0, performed: list[Performed] | None = None) -> bool:
@@ -762,24 +785,32 @@ class Agent:
                 continue
             enabled = answers[0]
             term = _action_term(spec, self.ms, enabled)
-            text = format_term(term)
             if _has_variables(term):
-                self.warn(f"{action.pos}: action {text} is not closed after its precondition; "
-                          "not performed")
+                self.warn(f"{action.pos}: action {format_term(term)} is not closed after its "
+                          "precondition; not performed")
                 return None
-            if not spec.internal and self.io is not None:
-                try:
-                    self.io.act(term)
-                except ActionFailed as err:
-                    self.warn(f"{action.pos}: the environment could not perform {text}: {err}")
-                    return self._act_done(text)
-            try:
-                self._changes(self.ms.insert(spec.post, enabled))
-            except KBError as err:
-                self.warn(f"{action.pos}: {action.name} failed: {err}")
-                return None
-            return self._act_done(text)
+            return self._act_on(action, spec, term,
+                                lambda post=spec.post, at=enabled: self.ms.insert(post, at))
         return None
+
+    def _act_on(self, action: ast.ActionCall, spec: ast.ActionSpec, term: Term,
+                post: Callable[[], list[tuple[str, Term]]]) -> Performed | None:
+        """Performs an enabled user action: sends ``term`` to the environment (unless the
+        spec is internal or there is none), then applies the postcondition (``post``);
+        its description, or None when the postcondition failed."""
+        text = format_term(term)
+        if not spec.internal and self.io is not None:
+            try:
+                self.io.act(term)  # type: ignore[arg-type]
+            except ActionFailed as err:
+                self.warn(f"{action.pos}: the environment could not perform {text}: {err}")
+                return self._act_done(text)
+        try:
+            self._changes(post())
+        except KBError as err:
+            self.warn(f"{action.pos}: {action.name} failed: {err}")
+            return None
+        return self._act_done(text)
 
     def _call_module(self, module: ast.Module, action: ast.ActionCall,
                      bindings: Bindings) -> Performed | None:

@@ -450,3 +450,45 @@ def _outcome(text: str, traced: bool) -> str:
 @given(mutated())
 def test_mutated_programs_run_alike_on_both_paths(text: str) -> None:
     assert _outcome(text, traced=False) == _outcome(text, traced=True)
+
+
+def test_environment_actions_checked_in_prolog_and_performed_by_python() -> None:
+    """move/2 goes to the environment: the rule clause checks its precondition, Python
+    sends it and applies the postcondition, then the rest of the combo (note@int) runs."""
+    fast_env, traced_env = Recorder(), Recorder()
+    fast, traced = make(STACKER, io=fast_env), make(STACKER, io=traced_env, traced=True)
+    try:
+        assert fast._rule_clauses == {}  # compiled on first use
+        assert history(fast, 8) == history(traced, 8)
+        assert fast_env.done == traced_env.done == ["move(b,c)", "move(a,b)"]
+        clause = next(c for c in fast._rule_clauses.values() if c is not None)
+        assert clause.pending and clause.actions == 1
+    finally:
+        fast.close()
+        traced.close()
+
+
+@pytest.mark.parametrize(("name", "env", "params"), [
+    ("tower_builder", "towerworld", {"seed": 2}),
+    ("blocks_builder", "blocksworld", {"seed": 3}),
+    ("table_agent", "blocksworld", {"seed": 5}),
+    ("script_printer", "printer", {}),
+])
+def test_example_agents_with_environments_run_alike_on_both_paths(
+        name: str, env: str, params: dict) -> None:
+    from goalagent.mas import MultiAgentSystem
+
+    outcomes = []
+    for tracer in (None, lambda agent, kind, text: None):
+        output = io.StringIO()
+        system = MultiAgentSystem.for_agent_file(
+            EXAMPLES / f"{name}.goal", environment=env, env_params=params, output=output,
+            tracer=tracer, warn=lambda message: None)
+        try:
+            summaries = system.run(max_cycles=40)
+            agent = system.agents[0]
+            outcomes.append((summaries, agent.beliefs(), agent.goals(), output.getvalue()))
+        finally:
+            system.close()
+    assert outcomes[0] == outcomes[1]
+    assert outcomes[0][0][0].actions > 0

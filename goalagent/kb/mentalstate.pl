@@ -12,6 +12,7 @@
 :- set_prolog_flag(generate_debug_info, false).
 
 :- initialization(( nb_setval('$ga_g', none),
+                     nb_setval('$ga_pending', none),
                      nb_setval('$ga_recheck', false),
                      nb_setval('$ga_warnings', []) )).
 
@@ -457,7 +458,8 @@ percept_body(Q, percept(Q)).
 %   Text is '$rule'(Cond, Actions): a condition compiled in every agent that uses the rule
 %   as CondName/CondArity and the list of the rule's leading actions done in Prolog
 %   (insert/delete/adopt/drop of a formula, do(Action) for a user action, see
-%   declare_actions/2), read with B's operators so that they share variables. Asserts
+%   declare_actions/2, and last env(Action) for one whose precondition only is checked
+%   here, see perform/5), read with B's operators so that they share variables. Asserts
 %   ga_rules:Name(Agent, Vars..., Recheck, Total, Kept, Warnings) :- fire(...) (see
 %   fire/9), Vars being the named variables of Text in order of first appearance (the
 %   condition's first). The clause serves every agent (Agent is its belief module): agents
@@ -480,19 +482,22 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
 %   instantiation of Cond whose first action is enabled (Kind = if) or for every one
 %   (Kind = forall), performs the actions in order until one is not enabled, with blind
 %   commitment after each (a full check after the first one when Recheck is true: percepts
-%   or messages changed since the last check). Kept is k(Dones, Values): per firing, how
-%   many actions were performed and the values of Vars; Total is the number of actions
-%   performed (what Python reads at once; Kept is read only when asked for). Warnings:
+%   or messages changed since the last check). Kept is k(Dones, Values, Pending): per
+%   firing, how many actions were performed and the values of Vars, and the environment
+%   action left for Python (see perform/5) or none; Total is the number of actions
+%   performed, the pending one included (what Python reads at once). Warnings:
 %   see warning/2 (an action that
 %   raised an error is not enabled). Instantiations are
 %   all computed before any action, so the condition sees the state of the rule's start.
 
-fire(Kind, B, Cond, Vars, Actions, Recheck, Total, k(Dones, Values), Warnings) :-
+fire(Kind, B, Cond, Vars, Actions, Recheck, Total, k(Dones, Values, Pending), Warnings) :-
     findall(Vars, B:Cond, Solutions),
     B:'$ga_gm'(G),
     nb_setval('$ga_recheck', Recheck),
+    nb_setval('$ga_pending', none),
     fire_(Kind, Solutions, Vars, Actions, B, G, Dones, Values),
     sum_list(Dones, Total),
+    nb_getval('$ga_pending', Pending),
     take_warnings(Warnings).
 
 fire_(if, Solutions, Vars, Actions, B, G, Dones, Values) :-
@@ -561,7 +566,7 @@ rule_call(Agent, Name/Arity, rule(Goal, Recheck, Total, Kept, Warnings)) :-
 %   applicable).
 
 pass([], _, _, _, 0, [], [], []).
-pass([rule(Goal, Recheck, T, k(D, V), W)|Rules], I, Stop, Recheck, Total, Dones0,
+pass([rule(Goal, Recheck, T, k(D, V, _), W)|Rules], I, Stop, Recheck, Total, Dones0,
      [V|Values], Warnings) :-
     (   catch(ga_rules:Goal, E, true)
     ->  (   var(E)
@@ -586,14 +591,29 @@ rule_warnings([W|Ws], I, [r(I, W)|Warnings], Rest) :-
     rule_warnings(Ws, I, Warnings, Rest).
 
 %   perform(+Actions, +Index, +B, +G, -Done): the actions in order up to the first one that
-%   is not enabled; Done is the index of that one (or the length of Actions).
+%   is not enabled; Done is the index of that one (or the length of Actions). A last action
+%   env(Action) is one for the environment: only its precondition is checked here, and
+%   '$ga_pending' gets p(Action, Post, Spec) for Python to perform it and apply Post.
 perform([], Index, _, _, Index).
+perform([env(Action)], Index, B, _, Done) :- !,
+    (   catch(env_action(Action, B), E, (warning(Index, E), fail))
+    ->  Done is Index + 1
+    ;   Done = Index
+    ).
 perform([Action|Actions], Index, B, G, Done) :-
     (   catch(action(Action, B, G), E, (warning(Index, E), fail))
     ->  after_action(B, G),
         Next is Index + 1,
         perform(Actions, Next, B, G, Done)
     ;   Done = Index
+    ).
+
+env_action(Action, B) :-
+    B:'$ga_pre'(Action, Post, Spec),
+    !,
+    (   ground(Action)
+    ->  nb_setval('$ga_pending', p(Action, Post, Spec))
+    ;   throw(ga_open(Action))
     ).
 
 action(insert(F), B, G) :- update(B, G, insert, F, _, _, _).

@@ -70,10 +70,11 @@ class CompiledRule:
     call evaluates the condition and performs those actions."""
 
     __slots__ = ("_state", "_pred", "_name", "names", "condition_names", "_index", "kind",
-                 "actions")
+                 "actions", "pending")
 
     def __init__(self, state: MentalState, pred: int, name: str, names: tuple[str, ...],
-                 condition_names: tuple[str, ...], kind: str, actions: int) -> None:
+                 condition_names: tuple[str, ...], kind: str, actions: int,
+                 pending: bool = False) -> None:
         self._state = state
         self._pred = pred
         self._name = name  # the clause's predicate name
@@ -82,9 +83,11 @@ class CompiledRule:
         self._index = {name: i for i, name in enumerate(names)}
         self.kind = kind  # if or forall
         self.actions = actions  # how many leading actions the clause performs
+        self.pending = pending  # the last of them is left to Python (an environment action)
 
     def __repr__(self) -> str:
-        return f"CompiledRule({self.kind}, names={self.names!r}, actions={self.actions})"
+        return (f"CompiledRule({self.kind}, names={self.names!r}, actions={self.actions}, "
+                f"pending={self.pending})")
 
 
 class CompiledPass:
@@ -116,8 +119,9 @@ class Firings:
     def __init__(self, actions: int, record: Record, names: Sequence[tuple[str, ...]],
                  given: Mapping[str, Term], nested: bool, problems: list[tuple[int, Problem]]
                  ) -> None:
-        # record: k(Dones, Values); Dones has per firing its number of actions (for a pass,
-        # 0 ends a rule's firings), Values the values per rule (nested) or of the one rule.
+        # record: k(Dones, Values[, Pending]); Dones has per firing its number of actions
+        # (for a pass, 0 ends a rule's firings), Values the values per rule (nested) or of
+        # the one rule, Pending the action left for Python (see pending).
         self._record = record
         self._names = names  # per rule: its condition's variables (the first values)
         self._given = given
@@ -128,6 +132,18 @@ class Firings:
     def __bool__(self) -> bool:
         """True when a rule fired."""
         return self.actions > 0
+
+    def pending(self) -> tuple[Term, Term, int] | None:
+        """The environment action a compiled rule left for Python, enabled and closed: (the
+        action, its postcondition instantiated by the precondition, the actionspec's index
+        in the program), or None."""
+        kept = self._record.value()
+        assert isinstance(kept, Struct)
+        found = kept.args[2]
+        if not isinstance(found, Struct):
+            return None
+        action, post, spec = found.args
+        return action, post, int(spec)  # type: ignore[arg-type]
 
     def items(self) -> list[tuple[int, LazyBindings, int]]:
         """Per firing, in order: the rule's place, its bindings, its number of actions."""
@@ -176,9 +192,11 @@ class LazyBindings:
         return self._value
 
 
-# What a rule clause performs itself: the built-in updates, and ``do`` (a user action:
-# precondition, then postcondition; see declare_actions).
-RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop", "do"})
+# What a rule clause performs itself: the built-in updates, ``do`` (a user action:
+# precondition, then postcondition; see declare_actions) and, last, ``env`` (a user action
+# for the environment: the clause checks its precondition, Python performs it and applies
+# its postcondition; see Firings.pending).
+RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop", "do", "env"})
 
 # A problem met while applying a compiled rule: (kind, index, detail). Kinds: "action" (an
 # action raised an error: index of the action, message), "open" (a user action not closed
@@ -399,9 +417,11 @@ class MentalState:
             raise KBError(f"only if and forall rules compile into one clause, not {kind}")
         if condition._state is not self:
             raise KBError("this condition was compiled for another mental state")
-        for name, _ in actions:
+        for index, (name, _) in enumerate(actions):
             if name not in RULE_ACTIONS:
                 raise KBError(f"{name} is not an action a rule clause performs")
+            if name == "env" and (index < len(actions) - 1 or kind != "if"):
+                raise KBError("an environment action can only end the actions of an if rule")
         texts = ", ".join(f"{name}(({_text_of(formula)}\n))" for name, formula in actions)
         text = f"'$rule'(({condition.text}\n), [{texts}])"
         key = f"{kind}:{text}"
@@ -421,7 +441,9 @@ class MentalState:
             _shared_rules[shared_key] = shared
         name, names_tuple = shared
         pred = self._engine.predicate(name, len(names_tuple) + 5, _RULES)
-        rule = CompiledRule(self, pred, name, names_tuple, condition.names, kind, len(actions))
+        pending = bool(actions) and actions[-1][0] == "env"
+        rule = CompiledRule(self, pred, name, names_tuple, condition.names, kind, len(actions),
+                            pending)
         self._compiled[key] = rule
         return rule
 
@@ -568,19 +590,17 @@ class MentalState:
         """Adds the positive literals, deletes those under not(..); returns the changes.
         Goals the change achieves are removed at once (blind commitment: the agent calls
         :meth:`blind_commitment` after every action, which then reports them)."""
-        return self._update("insert", formula, bindings)
+        return self._update("insert", instantiate(formula, bindings or {}, self._engine))
 
     def delete(self, formula: ast.PrologText | str,
                bindings: Mapping[str, Term] | None = None) -> list[tuple[str, Term]]:
         """Deletes the positive literals, adds those under not(..); returns the changes
         (achieved goals are removed at once, as for :meth:`insert`)."""
-        return self._update("delete", formula, bindings)
+        return self._update("delete", instantiate(formula, bindings or {}, self._engine))
 
-    def _update(self, mode: str, formula: ast.PrologText | str,
-                bindings: Mapping[str, Term] | None) -> list[tuple[str, Term]]:
-        """Runs insert or delete (``mode``) in Prolog, with blind commitment in the same call
-        when beliefs changed (its result waits for the next :meth:`blind_commitment`)."""
-        term = _substitute(self._engine.parsed(_text_of(formula)), bindings or {})
+    def _update(self, mode: str, term: Term) -> list[tuple[str, Term]]:
+        """Runs insert or delete (``mode``) of ``term`` in Prolog, with blind commitment in
+        the same call when beliefs changed (its result waits for :meth:`blind_commitment`)."""
         result = self._call("update", self._b, self._g, Atom(mode), term, None, None, None)
         deleted, added, achieved = result[4], result[5], result[6]
         self._achieved.extend(achieved)
@@ -593,6 +613,10 @@ class MentalState:
                 changes.extend(("-", instance) for instance in outcome)
         changes.extend(("+", fact) for fact, flag in zip(additions, added, strict=True) if flag)
         return changes
+
+    def insert_term(self, term: Term) -> list[tuple[str, Term]]:
+        """As :meth:`insert` for a formula already a term (a postcondition from Prolog)."""
+        return self._update("insert", term)
 
     def beliefs(self) -> list[Term]:
         """The belief facts (not knowledge, not percepts), in Prolog clause order."""
