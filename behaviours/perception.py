@@ -236,16 +236,14 @@ class TruthPerception:
     def observe(self, world: GarbageWorld) -> Observation:
         """The ideal observation of the world as it is now."""
         state = world.state()
-        model = world.camera_intrinsics(self.camera)
+        camera = world.camera_intrinsics(self.camera)
         parts: dict[str, PartObservation] = {}
         for name in world.parts:
             geom = world.model.geom(f"marker_{name}").id
             centre = world.data.geom_xpos[geom]
             axes = world.data.geom_xmat[geom].reshape(3, 3)
-            half = world.model.geom_size[geom]
-            signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
-            corners = centre + (signs * half) @ axes.T
-            blob = _filled_hull(model.project(corners), model.width, model.height)
+            corners = centre + (_BOX_CORNERS * world.model.geom_size[geom]) @ axes.T
+            blob = _filled_hull(camera.project(corners), camera.width, camera.height)
             if blob is not None:
                 parts[name] = describe_blob(name, blob)
         heights = {name: state.parts[name].pos[2] for name in parts}
@@ -256,6 +254,10 @@ class TruthPerception:
             if p1 != p2 and heights[p1] > heights[p2] + ABOVE_MARGIN_M
         )
         return Observation(parts=parts, above=above, opening=float(state.opening))
+
+
+_BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+"""The eight corners of a box geom in units of its half-sizes."""
 
 
 def _filled_hull(pixels: np.ndarray, width: int, height: int) -> np.ndarray | None:
