@@ -87,6 +87,8 @@ class Observation:
     parts: dict[str, PartObservation]
     above: tuple[tuple[str, str], ...]
     opening: float
+    scale: float = 0.0
+    """Metres per pixel (alpha of eq. 5.14) from the first scale marker seen; 0 if none."""
 
 
 class Perception(Protocol):
@@ -195,12 +197,32 @@ def observe_image(
         blob = largest_blob(colour_mask(hsv, colour))
         if blob is not None:
             parts[part] = describe_blob(part, blob)
-    opening = 0.0
+    scale = _scale(parts, scale_markers)
+    opening = opening_height(hsv) * scale if scale > 0 else 0.0
+    return Observation(parts=parts, above=above_relations(parts), opening=opening, scale=scale)
+
+
+def _scale(parts: Mapping[str, PartObservation], scale_markers: Mapping[str, float]) -> float:
+    """Metres per pixel from the first of ``scale_markers`` among ``parts`` (0 if none is)."""
     reference = next((p for p in scale_markers if p in parts), None)
-    height = opening_height(hsv) if reference is not None else 0
-    if reference is not None and height > 0:
-        opening = height * marker_scale(parts[reference], scale_markers[reference])
-    return Observation(parts=parts, above=above_relations(parts), opening=opening)
+    return 0.0 if reference is None else marker_scale(parts[reference], scale_markers[reference])
+
+
+def part_displacement(before: Observation, after: Observation, part: str) -> float:
+    """How far (m) ``part``'s centre moved between two observations (eq. 5.15).
+
+    The pixel distance between the part's box centres times alpha (the earlier observation's
+    metres per pixel); a part missing from either observation, or no scale, is an error.
+    """
+    missing = [name for name, obs in (("before", before), ("after", after))
+               if part not in obs.parts]
+    if missing:
+        raise ValueError(f"part {part!r} was not seen {' and '.join(missing)} the action")
+    if before.scale <= 0:
+        raise ValueError("no scale marker was seen before the action: cannot convert pixels "
+                         "to metres")
+    (x0, y0), (x1, y1) = before.parts[part].centre, after.parts[part].centre
+    return before.scale * float(np.hypot(x1 - x0, y1 - y0))
 
 
 class CameraPerception:
@@ -253,7 +275,8 @@ class TruthPerception:
             for p2 in sorted(parts)
             if p1 != p2 and heights[p1] > heights[p2] + ABOVE_MARGIN_M
         )
-        return Observation(parts=parts, above=above, opening=float(state.opening))
+        return Observation(parts=parts, above=above, opening=float(state.opening),
+                           scale=_scale(parts, SCALE_MARKERS))
 
 
 _BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)

@@ -18,6 +18,7 @@ from behaviours.perception import (
     largest_blob,
     make_perception,
     observe_image,
+    part_displacement,
 )
 from behaviours.skills import perform_skill
 from sim.scene import CANS
@@ -245,6 +246,41 @@ def test_camera_sees_the_effect_of_a_real_push(worlds):
     world.home()
     assert truth > 0.1
     assert before <= 0.003 and abs(after - truth) <= 0.01
+
+
+@pytest.mark.parametrize("can", sorted(CANS))
+def test_camera_and_truth_agree_on_the_functional_part_s_displacement(worlds, can):
+    world, (part, action) = worlds[can], CANS[can].functional
+    camera, truth = make_perception("camera"), make_perception("truth")
+    world.set_opening(0.0)
+    before = camera.observe(world), truth.observe(world)
+    moved = perform_skill(world, action, part, 0.06).part_displacement
+    after = camera.observe(world), truth.observe(world)
+    world.set_opening(0.0)
+    seen, true = (part_displacement(b, a, part) for b, a in zip(before, after, strict=True))
+    assert seen > 0.01 and abs(seen - true) <= 0.003, (seen, true)
+    if action == "lift_up":  # motion in the image plane: eq. 5.15 sees all of it
+        assert seen == pytest.approx(moved, abs=0.004)
+    assert seen <= moved + 0.004  # the image never shows more than the 3-D motion
+
+
+def test_displacement_needs_the_part_and_a_scale():
+    image = _frame()
+    cv2.rectangle(image, (100, 150), (149, 169), RED, -1)  # 50 px long: 1 mm per pixel
+    cv2.rectangle(image, (100, 90), (124, 99), BLUE, -1)
+    before = observe_image(image, {"body": 0.05})
+    image[:] = GREY
+    cv2.rectangle(image, (100, 150), (149, 169), RED, -1)
+    cv2.rectangle(image, (130, 50), (154, 59), BLUE, -1)  # lid moved by (30, -40) px
+    after = observe_image(image, {"body": 0.05})
+    assert part_displacement(before, after, "lid") == pytest.approx(0.050)
+    assert part_displacement(before, after, "body") == 0.0
+    with pytest.raises(ValueError, match="'handle' was not seen before and after"):
+        part_displacement(before, after, "handle")
+    unscaled = observe_image(image, {"handle": 0.1})
+    assert unscaled.scale == 0.0
+    with pytest.raises(ValueError, match="no scale marker"):
+        part_displacement(unscaled, after, "lid")
 
 
 def test_observations_are_deterministic(worlds):
