@@ -643,6 +643,8 @@ class Agent:
             return self._note(module, (rule,), firings)
         for _, problem in firings.problems:
             self._problem(module, rule, problem)
+        if not firings:
+            return False
         report = self._report
         fired = False
         for _, solution, done in firings.items():

@@ -490,15 +490,19 @@ compile_rule(B, Kind, Name, CondName, CondArity, Text, Names) :-
 %   raised an error is not enabled). Instantiations are
 %   all computed before any action, so the condition sees the state of the rule's start.
 
-fire(Kind, B, Cond, Vars, Actions, Recheck, Total, k(Dones, Values, Pending), Warnings) :-
+fire(Kind, B, Cond, Vars, Actions, Recheck, Total, Kept, Warnings) :-
     findall(Vars, B:Cond, Solutions),
-    B:'$ga_gm'(G),
-    nb_setval('$ga_recheck', Recheck),
-    nb_setval('$ga_pending', none),
-    fire_(Kind, Solutions, Vars, Actions, B, G, Dones, Values),
-    sum_list(Dones, Total),
-    nb_getval('$ga_pending', Pending),
-    take_warnings(Warnings).
+    (   Solutions == []
+    ->  Total = 0, Kept = k([], [], none), Warnings = []
+    ;   B:'$ga_gm'(G),
+        nb_setval('$ga_recheck', Recheck),
+        nb_setval('$ga_pending', none),
+        fire_(Kind, Solutions, Vars, Actions, B, G, Dones, Values),
+        sum_list(Dones, Total),
+        nb_getval('$ga_pending', Pending),
+        Kept = k(Dones, Values, Pending),
+        take_warnings(Warnings)
+    ).
 
 fire_(if, Solutions, Vars, Actions, B, G, Dones, Values) :-
     (   member(Vars, Solutions),
