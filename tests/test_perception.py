@@ -299,8 +299,11 @@ def test_snapshot_writes_an_enlarged_annotated_png(tmp_path):
     assert obs.opening == pytest.approx(0.08, abs=0.01)
     picture = cv2.imread(str(out))
     assert picture.shape == (480, 640, 3)
-    plain = cv2.resize(cv2.cvtColor(GarbageWorld("o2").render(), cv2.COLOR_RGB2BGR), None,
-                       fx=2, fy=2, interpolation=cv2.INTER_NEAREST)
+    world = GarbageWorld("o2")
+    world.set_opening(0.08)
+    plain = cv2.resize(cv2.cvtColor(world.render(), cv2.COLOR_RGB2BGR), None, fx=2, fy=2,
+                       interpolation=cv2.INTER_NEAREST)
+    world.close()
     assert np.count_nonzero(np.any(picture != plain, axis=2)) > 2000  # boxes and text drawn
 
 
