@@ -129,8 +129,8 @@ def test_the_first_scale_marker_seen_scales_the_opening():
     cv2.rectangle(image, (90, 100), (159, 139), DARK, -1)  # 40 px high
     markers = {"body": 0.08, "lid": 0.05}
     assert observe_image(image, markers).opening == pytest.approx(0.080, abs=1e-9)
-    cv2.rectangle(image, (100, 150), (139, 169), RED, -1)  # body seen: 40 px long = 0.08 m
-    assert observe_image(image, markers).opening == pytest.approx(0.080 * 40 / 40 * 1.0)
+    cv2.rectangle(image, (100, 150), (179, 169), RED, -1)  # body seen first: 80 px = 0.08 m
+    assert observe_image(image, markers).opening == pytest.approx(0.040, abs=1e-9)
     assert observe_image(image, {"handle": 0.1}).opening == 0.0
 
 
@@ -281,6 +281,13 @@ def test_displacement_needs_the_part_and_a_scale():
     assert unscaled.scale == 0.0
     with pytest.raises(ValueError, match="no scale marker"):
         part_displacement(unscaled, after, "lid")
+
+
+def test_an_unknown_camera_is_a_clear_error(worlds):
+    with pytest.raises(ValueError, match="unknown camera 'tail'.*head"):
+        CameraPerception("tail").observe(worlds["o1"])
+    with pytest.raises(ValueError, match="unknown camera 'tail'.*head"):
+        TruthPerception("tail").observe(worlds["o1"])
 
 
 def test_observations_are_deterministic(worlds):
