@@ -386,13 +386,14 @@ class Agent:
                 self.warn(f"could not get percepts: {err}")
         self.ms.set_percepts(percepts)
         self._report.percepts = percepts
-        if percepts:
+        if percepts and self.tracer is not None:  # formatting them costs: only for a tracer
             self._trace("percepts", ", ".join(format_term(p) for p in percepts))
         if self.postman is not None:
             messages = self.postman.collect(self.name)
             for sender, mood, content in messages:
                 self.ms.add_received(sender, mood, content)
-                self._trace("received", f"{sender}: {mood}{format_term(content)}")
+                if self.tracer is not None:
+                    self._trace("received", f"{sender}: {mood}{format_term(content)}")
             self._report.messages = messages
 
     def _run_named(self, name: str) -> None:
@@ -429,7 +430,8 @@ class Agent:
 
     def _blind_commitment(self) -> None:
         for goal in self.ms.blind_commitment():
-            self._trace("goal", f"achieved and dropped: {_format_goal(goal)}")
+            if self.tracer is not None:
+                self._trace("goal", f"achieved and dropped: {_format_goal(goal)}")
 
     # ------------------------------------------------------------------ modules and rules
     def _run_module(self, module: ast.Module, bindings: Bindings) -> bool:
@@ -745,19 +747,23 @@ class Agent:
                 if not self.ms.adopt(formula, bindings):
                     self._trace("action", f"adopt refused: {formula.text} (believed or a goal)")
                     return None
-                adopted = self.ms.instantiate(formula, bindings)
-                self._trace("goal", f"adopted {format_term(adopted)}")
+                if self.tracer is not None:
+                    adopted = self.ms.instantiate(formula, bindings)
+                    self._trace("goal", f"adopted {format_term(adopted)}")
             elif name == "drop":
                 for goal in self.ms.drop(formula, bindings):
-                    self._trace("goal", f"dropped {_format_goal(goal)}")
+                    if self.tracer is not None:
+                        self._trace("goal", f"dropped {_format_goal(goal)}")
         except KBError as err:
             self.warn(f"{action.pos}: {name} failed: {err}")
             return None
         return self._act_done((action, bindings))
 
     def _changes(self, changes: Iterable[tuple[str, Term]]) -> None:
-        for sign, term in changes:
-            self._trace("belief", f"{sign}{format_term(term)}")
+        """Traces belief changes (formatted only when a tracer is set)."""
+        if self.tracer is not None:
+            for sign, term in changes:
+                self._trace("belief", f"{sign}{format_term(term)}")
 
     def _act_done(self, description: Performed) -> Performed:
         self._report.performed.append(description)
@@ -782,8 +788,9 @@ class Agent:
                           f"{err.message}; the action is not enabled")
                 continue
             if not answers:
-                self._trace("precondition", f"{_describe((action, bindings))}: pre "
-                            f"{{{spec.pre.text}}} does not hold")
+                if self.tracer is not None:
+                    self._trace("precondition", f"{_describe((action, bindings))}: pre "
+                                f"{{{spec.pre.text}}} does not hold")
                 continue
             enabled = answers[0]
             term = _action_term(spec, self.ms, enabled)
