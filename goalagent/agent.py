@@ -691,7 +691,7 @@ class Agent:
         try:
             for index in range(start, len(rule.actions)):
                 action = rule.actions[index]
-                description = self._perform(module, action, bindings)
+                description = self._perform(module, action, bindings, rule.condition)
                 if description is None:
                     if index == 0:
                         return False  # not enabled: try the next instantiation or rule
@@ -711,9 +711,10 @@ class Agent:
             self._trace("fired", f"{module.name} {rule.pos} [{shown}] -> {described}")
 
     # ------------------------------------------------------------------ actions
-    def _perform(self, module: ast.Module, action: ast.Action,
-                 bindings: Bindings) -> Performed | None:
-        """Perform one action; its description, or None when it is not enabled."""
+    def _perform(self, module: ast.Module, action: ast.Action, bindings: Bindings,
+                 condition: ast.Condition = ()) -> Performed | None:
+        """Perform one action (of a rule whose condition is ``condition``); its description,
+        or None when it is not enabled."""
         if isinstance(action, ast.SendAction):
             return self._send(action, bindings)
         name = action.name
@@ -723,7 +724,7 @@ class Agent:
         if key in self._specs:
             return self._user_action(action, bindings)
         target = self._modules[key]  # validated at load time
-        return self._call_module(target, action, bindings)
+        return self._call_module(target, action, bindings, condition)
 
     def _builtin(self, module: ast.Module, action: ast.ActionCall,
                  bindings: Bindings) -> Performed | None:
@@ -821,8 +822,8 @@ class Agent:
             return None
         return self._act_done(text)
 
-    def _call_module(self, module: ast.Module, action: ast.ActionCall,
-                     bindings: Bindings) -> Performed | None:
+    def _call_module(self, module: ast.Module, action: ast.ActionCall, bindings: Bindings,
+                     condition: ast.Condition) -> Performed | None:
         module_bindings: Bindings | None = {}
         for param, arg in zip(module.params, action.args, strict=True):
             module_bindings = self.ms.unify(param, self.ms.instantiate(arg, bindings),
@@ -831,7 +832,7 @@ class Agent:
                 return None
         description = _describe((action, bindings))
         self._trace("module", f"entering module {description}")
-        own_goal_base = self._enter_goal_focus(module, bindings)
+        own_goal_base = self._enter_goal_focus(module, condition, bindings)
         exit_option = (module.exit or "always") if module.kind == "user" else "always"
         actions_before = len(self._report.performed)
         exited = self._run_module(module, module_bindings)
@@ -843,17 +844,26 @@ class Agent:
         self._report.performed.insert(actions_before, description)
         return description
 
-    def _enter_goal_focus(self, module: ast.Module, bindings: Bindings) -> bool:
-        """Give the module its own goal base as its ``focus`` option says."""
+    def _enter_goal_focus(self, module: ast.Module, condition: ast.Condition,
+                          bindings: Bindings) -> bool:
+        """Give the module its own goal base as its ``focus`` option says: ``new`` an empty
+        one; ``filter`` the goals the calling rule's condition names (its goal, a-goal and
+        goal-a literals, instantiated); ``select`` the current goals that contain them."""
         focus = module.focus or "none"
         if focus == "none":
             return False
+        named = [_conjuncts(self.ms.instantiate(literal.query, bindings))
+                 for literal in condition
+                 if isinstance(literal, ast.MentalLiteral) and literal.query is not None
+                 and literal.op in ("goal", "a-goal", "goal-a")]
         if focus == "new":
             self.ms.push_goal_base([])
+        elif focus == "filter":
+            self.ms.push_goal_base(named)
         else:
-            current = self.ms.goals()
-            selected = [goal for goal in current if goal] if focus == "filter" else current[:1]
-            self.ms.push_goal_base(selected)
+            wanted = [fact for facts in named for fact in facts]
+            self.ms.push_goal_base([goal for goal in self.ms.goals()
+                                    if all(fact in goal for fact in wanted)][:1])
         return True
 
     def _send(self, action: ast.SendAction, bindings: Bindings) -> Performed | None:
@@ -954,6 +964,13 @@ def _action_term(spec: ast.ActionSpec, ms: MentalState, bindings: Bindings) -> S
     if not spec.params:
         return Atom(spec.name)
     return Struct(spec.name, tuple(ms.instantiate(p, bindings) for p in spec.params))
+
+
+def _conjuncts(term: Term) -> list[Term]:
+    """The facts of a conjunction ``(a, b, c)``."""
+    if isinstance(term, Struct) and term.name == "," and term.arity == 2:
+        return _conjuncts(term.args[0]) + _conjuncts(term.args[1])
+    return [term]
 
 
 def _has_variables(term: Term) -> bool:
