@@ -91,6 +91,8 @@ def run(
                 raise _fail("--env is for .goal files; a .mas2g names its own environment")
             system = MultiAgentSystem.from_mas_file(path, env_params=params, **options)
         else:
+            if params and env is None:
+                raise _fail("--env-param sets an environment's init parameters: give --env too")
             system = MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
                                                      **options)
         if load_beliefs is not None:
