@@ -57,8 +57,8 @@ def quote_atom(name: str) -> str:
     """The atom's name as SWI-Prolog's ``writeq`` would write it (quoted when needed)."""
     if _LETTER_ATOM.match(name) or name in ("!", ";", "{}"):
         return name
-    if _SYMBOL_ATOM.match(name) and name != ".":
-        return name
+    if _SYMBOL_ATOM.match(name) and name != "." and "/*" not in name:
+        return name  # (a symbol atom holding /* would start a comment)
     escaped = name.replace("\\", "\\\\").replace("'", "\\'").replace("\n", "\\n")
     escaped = escaped.replace("\t", "\\t")
     return f"'{escaped}'"
