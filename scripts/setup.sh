@@ -7,8 +7,9 @@ SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 missing=()
 command -v swipl >/dev/null 2>&1 || missing+=(swi-prolog-nox)
 # Headless MuJoCo rendering (MUJOCO_GL=egl) needs EGL and Mesa's software drivers.
-ldconfig -p | grep -q 'libEGL.so.1 ' || missing+=(libegl1)
-ldconfig -p | grep -q 'libOpenGL.so.0 ' || missing+=(libopengl0)
+libraries=$(ldconfig -p)  # (grep -q on a pipe would SIGPIPE ldconfig under pipefail)
+grep -q 'libEGL.so.1 ' <<<"$libraries" || missing+=(libegl1)
+grep -q 'libOpenGL.so.0 ' <<<"$libraries" || missing+=(libopengl0)
 [ -e /usr/share/glvnd/egl_vendor.d/50_mesa.json ] || missing+=(libegl-mesa0 libgl1-mesa-dri)
 if [ ${#missing[@]} -gt 0 ]; then
     echo "setup: installing ${missing[*]} with apt-get"
