@@ -18,13 +18,17 @@
 
 %   Agent texts are read with SWI's operators except the prefix operator `table` (tabling
 %   directives), so that the everyday atom `table` (blocks worlds: `Y \= table, ...`) reads
-%   as an atom. Plain texts are read in module ga_read, agent texts in the agent's modules.
+%   as an atom, and with `not` as a prefix operator like `\+` (fy 900), as GOAL's Prolog
+%   read it, so that `not (p)` and `not p` mean not(p) (SWI 9 rejects `not (p)`).
+%   Plain texts are read in module ga_read, agent texts in the agent's modules.
 
 :- set_module(ga_read:base(system)).
 :- op(0, fx, ga_read:table).
+:- op(900, fy, ga_read:not).
 
 hide_operators(M) :-
-    op(0, fx, M:table).
+    op(0, fx, M:table),
+    op(900, fy, M:not).
 
 		 /*******************************
 		 *          READING TEXT        *
