@@ -103,14 +103,21 @@ def run(
     histories = {agent.name: ReliabilityHistory() for agent in system.agents}
     for agent in system.agents:
         histories[agent.name].record(agent)
+    interrupted = False
     try:
-        summaries = system.run(max_cycles,
-                               after_cycle=lambda agent: histories[agent.name].record(agent))
+        system.run(max_cycles, after_cycle=lambda agent: histories[agent.name].record(agent))
+    except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
+        interrupted = True
+        err_console.print("interrupted", markup=False)
+    try:
         _report_affordances(system, histories, save_beliefs, plot)
+        summaries = system.summaries()
     finally:
         system.close()
     for summary in summaries:
         err_console.print(str(summary), markup=False)
+    if interrupted:
+        raise typer.Exit(code=130)
     if any(summary.status == "failed" for summary in summaries):
         raise typer.Exit(code=1)
 
