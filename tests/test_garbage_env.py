@@ -1,0 +1,112 @@
+"""The `garbage` EIS environment: its vocabulary, refusals and the affordance behaviours."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from goalagent.eis import ActException, ActionRefused, ManagementException, load_environment
+from goalagent.eis.terms import Action
+
+
+def environment(tmp_path: Path, **params: object):
+    env = load_environment("garbage")()
+    env.init({"models": str(tmp_path / "models.json"), **params})
+    env.start()
+    env.register_agent("robot")
+    env.associate_entity("robot", "robot")
+    return env
+
+
+def percepts(env) -> set[str]:
+    return {str(p) for p in env.get_all_percepts("robot")["robot"]}
+
+
+def act(env, name: str, *args: object) -> None:
+    env.perform_action("robot", Action.of(name, *args))
+
+
+def test_percepts_describe_the_scene(tmp_path: Path):
+    env = environment(tmp_path, can="o2", trials=3)
+    seen = percepts(env)
+    assert {"trials(3)", "disposed(0)", "obs(body)", "obs(lid)", "obs(handle)"} <= seen
+    assert "above(lid,handle)" in seen and "above(handle,body)" in seen
+    assert "opened" not in seen and "holding(ball)" not in seen
+    assert any(p.startswith("part(handle,") for p in seen)
+    env.kill()
+
+
+@pytest.mark.parametrize(("action", "args", "why"), [
+    ("extend_arm", ("handle", 0.05), "has no part 'handle'"),
+    ("extend_arm", ("lid", 0.2), "out of bounds"),
+    ("learn", ("lid", "extend_arm", "opened", "active"), "active-learning issue"),
+    ("learn", ("lid", "wiggle", "opened", "random"), "unknown action type"),
+    ("drop", ("ball",), "does not hold the ball"),
+    ("grasp", ("cup",), "only the ball"),
+])
+def test_refused_actions_say_why_and_leave_the_world_unchanged(tmp_path, action, args, why):
+    env = environment(tmp_path, can="o1")
+    before = env.world.state()
+    steps = env.world.data.time
+    with pytest.raises(ActionRefused, match=why):
+        act(env, action, *args)
+    assert env.world.state() == before and env.world.data.time == steps
+    env.kill()
+
+
+def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path):
+    env = environment(tmp_path, can="o1")
+    act(env, "grasp", "ball")
+    act(env, "learn", "lid", "sweep_left", "opened", "random")
+    assert "afford(lid,sweep_left,opened,0,0,0.05)" in percepts(env)
+    act(env, "learn", "lid", "extend_arm", "opened", "random")
+    seen = percepts(env)
+    assert "afford(lid,extend_arm,opened,0,0,0.3)" in seen
+    assert any(p.startswith("model(lid,extend_arm,") for p in seen)
+    act(env, "apply", "lid", "extend_arm")
+    seen = percepts(env)
+    assert {"afford(lid,extend_arm,opened,1,1,1)", "opened", "holding(ball)"} <= seen
+    assert not any(p.startswith("afford(") for p in percepts(env))  # reported once
+    act(env, "drop", "ball")
+    assert "in_can(ball)" in percepts(env)
+    act(env, "close_lid")
+    seen = percepts(env)
+    assert "disposed(1)" in seen and "opened" not in seen and "in_can(ball)" not in seen
+    assert Path(tmp_path / "models.json").exists()
+    env.kill()
+
+
+def test_an_arm_skill_reports_its_effect(tmp_path: Path):
+    env = environment(tmp_path, can="o5")
+    act(env, "contract_arm", "handle", 0.1)
+    (effect,) = [p for p in percepts(env) if p.startswith("effect(")]
+    assert effect.startswith("effect(handle,contract_arm,0.1,")
+    assert "opened" in percepts(env)
+    env.kill()
+
+
+def test_a_run_can_be_recorded(tmp_path: Path):
+    video = tmp_path / "run.mp4"
+    env = environment(tmp_path, can="o1", record=str(video))
+    act(env, "extend_arm", "lid", 0.05)
+    env.kill()
+    assert video.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(("params", "message"), [
+    ({"can": "o9"}, "unknown can 'o9'"),
+    ({"perception": "sonar"}, "use camera or truth"),
+    ({"colour": "red"}, "no init parameter 'colour'"),
+])
+def test_bad_init_parameters_are_clear_errors(tmp_path, params, message):
+    env = load_environment("garbage")()
+    with pytest.raises(ManagementException, match=message):
+        env.init(params)
+
+
+def test_an_unknown_agent_cannot_act(tmp_path: Path):
+    env = environment(tmp_path)
+    with pytest.raises(ActException):
+        env.perform_action("stranger", Action.of("grasp", "ball"))
+    env.kill()
