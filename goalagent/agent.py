@@ -666,7 +666,7 @@ class Agent:
                 description = self._act_on(action, self.program.actionspecs[spec], term,
                                            lambda post=post: self.ms.insert_term(post))
                 if description is None:
-                    go_on = False  # its postcondition failed: the combo stops there
+                    go_on = False  # an internal action whose postcondition failed
                 else:
                     performed.append(description)
             if go_on:
@@ -807,11 +807,13 @@ class Agent:
                 post: Callable[[], list[tuple[str, Term]]]) -> Performed | None:
         """Performs an enabled user action: sends ``term`` to the environment (unless the
         spec is internal or there is none), then applies the postcondition (``post``);
-        its description, or None when the postcondition failed."""
+        its description. A postcondition that fails is a warning; the action then counts as
+        not performed (None) unless the environment already performed it."""
         text = format_term(term)
-        if not spec.internal and self.io is not None:
+        sent = not spec.internal and self.io is not None
+        if sent:
             try:
-                self.io.act(term)  # type: ignore[arg-type]
+                self.io.act(term)  # type: ignore[union-attr, arg-type]
             except ActionFailed as err:
                 self.warn(f"{action.pos}: the environment could not perform {text}: {err}")
                 return self._act_done(text)
@@ -819,7 +821,8 @@ class Agent:
             self._changes(post())
         except KBError as err:
             self.warn(f"{action.pos}: {action.name} failed: {err}")
-            return None
+            if not sent:
+                return None
         return self._act_done(text)
 
     def _call_module(self, module: ast.Module, action: ast.ActionCall, bindings: Bindings,

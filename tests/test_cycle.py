@@ -346,3 +346,29 @@ def test_messages_between_two_agents_with_moods():
     got = sorted(str(answer["M"]) for answer in bob.query("bel", "got(alice, M)"))
     assert got == ["fact(1)", "imp(want(2))", "int(ask(3))"]
     assert len(alice.query("bel", "sent(bob, M)")) == 3
+
+
+@pytest.mark.parametrize("traced", [False, True])
+def test_an_environment_action_whose_postcondition_fails_still_happened(traced):
+    sent = []
+    warnings = []
+
+    class Recorder:
+        def percepts(self):
+            return []
+
+        def act(self, action) -> None:
+            sent.append(action)
+
+    agent = make("""
+        init module {
+            beliefs { p(1). p(2). }
+            actionspec { go(X) { pre { true } post { done(X, _) } } }
+        }
+        main module { program { if bel(p(X)) then go(X) + print(after(X)). } }
+    """, io=Recorder(), warn=warnings.append,
+         tracer=(lambda agent, kind, text: None) if traced else None)
+    agent.step()
+    assert sent == [Struct("go", (1,))]  # performed once, not retried with X = 2
+    assert printed(agent) == ["after(1)"]
+    assert any("go failed" in warning for warning in warnings)
