@@ -6,6 +6,7 @@ User mistakes (a malformed file, an unknown environment, a bad parameter) print 
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 from typing import Annotated
 
@@ -19,7 +20,7 @@ from goalagent.affordance import (
     load_affordances,
     save_affordances,
 )
-from goalagent.agent import AgentError, validate_program
+from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.kb.engine import KBError
 from goalagent.kb.terms import Term
@@ -104,8 +105,18 @@ def run(
     for agent in system.agents:
         histories[agent.name].record(agent)
     interrupted = False
+    # A live status line on an interactive stderr (never with --trace, never in pipes).
+    status = (err_console.status("starting") if err_console.is_terminal and not trace
+              else contextlib.nullcontext())
+
+    def after_cycle(agent: Agent) -> None:
+        histories[agent.name].record(agent)
+        if not isinstance(status, contextlib.nullcontext):
+            status.update(f"{agent.name}: cycle {agent.cycle}, {agent.total_actions} actions")
+
     try:
-        system.run(max_cycles, after_cycle=lambda agent: histories[agent.name].record(agent))
+        with status:
+            system.run(max_cycles, after_cycle=after_cycle)
     except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
         interrupted = True
         err_console.print("interrupted", markup=False)
