@@ -17,6 +17,19 @@ def make(text: str, **kwargs) -> Agent:
     return Agent.from_string(text, "test.goal", **kwargs)
 
 
+class Recorder:
+    """An environment seam with no percepts that records the actions sent to it."""
+
+    def __init__(self) -> None:
+        self.sent: list[object] = []
+
+    def percepts(self) -> list[object]:
+        return []
+
+    def act(self, action: object) -> None:
+        self.sent.append(action)
+
+
 def printed(agent: Agent) -> list[str]:
     return agent.output.getvalue().splitlines()
 
@@ -283,14 +296,7 @@ def test_actions_without_environment_act_through_postconditions():
 
 
 def test_internal_actions_are_not_sent_to_the_environment():
-    sent = []
-
-    class Recorder:
-        def percepts(self):
-            return []
-
-        def act(self, action) -> None:
-            sent.append(action)
+    recorder = Recorder()
 
     agent = make("""
         init module { actionspec {
@@ -300,9 +306,9 @@ def test_internal_actions_are_not_sent_to_the_environment():
         main module { program [order=linearall] {
             if true then skip. if true then go(home).
         } }
-    """, io=Recorder())
+    """, io=recorder)
     agent.step()
-    assert sent == [Struct("go", (Atom("home"),))]
+    assert recorder.sent == [Struct("go", (Atom("home"),))]
 
 
 def test_prolog_error_in_a_condition_is_a_warning_and_the_agent_goes_on():
@@ -350,15 +356,8 @@ def test_messages_between_two_agents_with_moods():
 
 @pytest.mark.parametrize("traced", [False, True])
 def test_an_environment_action_whose_postcondition_fails_still_happened(traced):
-    sent = []
+    recorder = Recorder()
     warnings = []
-
-    class Recorder:
-        def percepts(self):
-            return []
-
-        def act(self, action) -> None:
-            sent.append(action)
 
     agent = make("""
         init module {
@@ -366,9 +365,9 @@ def test_an_environment_action_whose_postcondition_fails_still_happened(traced):
             actionspec { go(X) { pre { true } post { done(X, _) } } }
         }
         main module { program { if bel(p(X)) then go(X) + print(after(X)). } }
-    """, io=Recorder(), warn=warnings.append,
+    """, io=recorder, warn=warnings.append,
          tracer=(lambda agent, kind, text: None) if traced else None)
     agent.step()
-    assert sent == [Struct("go", (1,))]  # performed once, not retried with X = 2
+    assert recorder.sent == [Struct("go", (1,))]  # performed once, not retried with X = 2
     assert printed(agent) == ["after(1)"]
     assert any("go failed" in warning for warning in warnings)
