@@ -1,0 +1,8 @@
+"""Pure learners (thesis chapters 3–5): numpy / scikit-learn only, no MuJoCo, no agents.
+
+Chapter 4 (active affordance learning): ``network`` (the small tanh network), ``forward_model``
+(F_ψ, eq. 4.1–4.4), ``cacla`` (actor-critic and the TD-error stop test, eq. 4.5–4.11),
+``exploration`` (Algorithm 3 and the random baseline over a ``ContinuousWorld``),
+``skill_acquisition`` (goal generation and paired skills, eq. 4.12–4.18); ``validation`` and
+``persist`` (versioned JSON files, written atomically) serve them all.
+"""

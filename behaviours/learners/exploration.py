@@ -1,0 +1,182 @@
+"""Algorithm 3 of the thesis (§4.4.3): active affordance learning, and its random baseline.
+
+Written against a small protocol, ``ContinuousWorld`` (observe a state, perform a bounded
+action, observe the next state), so the same loop runs on a MuJoCo can, on a camera, or on a
+synthetic function in a test. Per step k: observe s, choose a, predict ê = F(s, a) (4.2),
+act and observe s', e = s' − s (4.20), η = e − ê (4.3), update F (4.4), r = |η| (4.6),
+δ (4.7), actor if δ > 0 (4.8), critic (4.9); stop when (4.10) holds or after N_s steps.
+
+Modes: ``active`` draws the first ``n_random`` actions uniformly in the bounds, then from
+the actor (4.5); ``random`` (the thesis's baseline, "a random actor") draws every action
+uniformly. Both compute the same TD errors with the same critic, so their averaged TD-error
+curves (Figs 4.6–4.9) are comparable.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+from sklearn.base import BaseEstimator
+from sklearn.utils import check_random_state
+
+from behaviours.learners.cacla import CACLA, TDConvergence
+from behaviours.learners.forward_model import ForwardModel
+from behaviours.learners.validation import ActionBounds, as_rows, check_positive
+
+__all__ = ["EXPLORATION_MODES", "ActiveExplorer", "ContinuousWorld", "ExplorationHistory"]
+
+EXPLORATION_MODES = ("active", "random")
+
+
+@runtime_checkable
+class ContinuousWorld(Protocol):
+    """What Algorithm 3 needs of a world: a state, bounded actions, and their outcome."""
+
+    @property
+    def action_bounds(self) -> Sequence[Sequence[float]]:
+        """One (lo, hi) pair per action dimension, in the world's units."""
+        ...
+
+    def observe(self) -> float | Sequence[float]:
+        """The object state s_o now (a number or a vector)."""
+        ...
+
+    def step(self, action: np.ndarray) -> float | Sequence[float]:
+        """Perform ``action`` (within the bounds) and return the next state s'_o."""
+        ...
+
+
+@dataclass(frozen=True)
+class ExplorationHistory:
+    """Everything one exploration measured, one row per step k = 1..n."""
+
+    states: np.ndarray  # s_o^k, (n, state dims)
+    actions: np.ndarray  # a^k in world units, (n, action dims)
+    effects: np.ndarray  # e_o^k = s' − s (4.20), (n, state dims)
+    predictions: np.ndarray  # ê_o^k (4.2), before the update
+    rewards: np.ndarray  # r = |η_k| (4.6)
+    td_errors: np.ndarray  # δ^k (4.7)
+    averaged: np.ndarray  # δ̄^k (4.11), NaN while k < N
+    converged_at: int | None  # the step k at which (4.10) held, if it did
+
+    @property
+    def steps(self) -> int:
+        """How many exploratory actions were performed."""
+        return int(len(self.actions))
+
+
+class ActiveExplorer(BaseEstimator):
+    """Algorithm 3 (``mode="active"``) or the random baseline (``mode="random"``).
+
+    Parameters (thesis §4.6.1 defaults):
+        mode: ``"active"`` or ``"random"``.
+        n_max: N_s, the most steps (100 for 1-D actions, 300 for 3-D).
+        n_random: the first actions drawn at random in active mode (20).
+        window, tol: N and ε of the convergence test (20, 1e-4).
+        sigma, gamma, alpha, zeta, beta: σ (0.2), γ (0.9), α (0.3), ζ (0.3), β (0.3).
+        n_hidden, init_scale: hidden tanh units (10) and initial weight range (0.3).
+        random_state: seeds the networks, the exploration noise and the random actions.
+    """
+
+    def __init__(
+        self,
+        mode: str = "active",
+        n_max: int = 100,
+        n_random: int = 20,
+        window: int = 20,
+        tol: float = 1e-4,
+        sigma: float = 0.2,
+        gamma: float = 0.9,
+        alpha: float = 0.3,
+        zeta: float = 0.3,
+        beta: float = 0.3,
+        n_hidden: int = 10,
+        init_scale: float = 0.3,
+        random_state: int | np.random.RandomState | None = None,
+    ) -> None:
+        self.mode = mode
+        self.n_max = n_max
+        self.n_random = n_random
+        self.window = window
+        self.tol = tol
+        self.sigma = sigma
+        self.gamma = gamma
+        self.alpha = alpha
+        self.zeta = zeta
+        self.beta = beta
+        self.n_hidden = n_hidden
+        self.init_scale = init_scale
+        self.random_state = random_state
+
+    def _check_params(self) -> None:
+        if self.mode not in EXPLORATION_MODES:
+            raise ValueError(f"unknown exploration mode {self.mode!r}; the modes are "
+                             f"{', '.join(EXPLORATION_MODES)}")
+        check_positive(self.n_max, "n_max", integer=True)
+        if isinstance(self.n_random, bool) or not isinstance(self.n_random, int) or (
+                self.n_random < 0):
+            raise ValueError(f"n_random must be a whole number >= 0, got {self.n_random!r}")
+
+    def explore(self, world: ContinuousWorld) -> ActiveExplorer:
+        """Run the loop on ``world``; sets forward_model_, cacla_, history_, converged_."""
+        self._check_params()
+        bounds = ActionBounds(world.action_bounds)
+        rng = check_random_state(self.random_state)
+        model = ForwardModel(action_bounds=bounds.as_list(), n_hidden=self.n_hidden,
+                             learning_rate=self.alpha, init_scale=self.init_scale,
+                             random_state=rng)
+        cacla = CACLA(action_dims=bounds.dims, n_hidden=self.n_hidden, sigma=self.sigma,
+                      gamma=self.gamma, actor_rate=self.zeta, critic_rate=self.beta,
+                      init_scale=self.init_scale, random_state=rng)
+        test = TDConvergence(self.window, self.tol)
+        rows: dict[str, list] = {key: [] for key in (
+            "states", "actions", "effects", "predictions", "rewards", "td_errors", "averaged")}
+        state = _state(world.observe(), "the world's state")
+        converged_at = None
+        for k in range(1, self.n_max + 1):
+            if self.mode == "active" and k > self.n_random:
+                unit = cacla.sample(state)  # 4.5
+            else:
+                unit = rng.uniform(-1.0, 1.0, size=bounds.dims)
+            action = bounds.from_unit(unit)
+            inputs = np.concatenate([state, action])[None, :]
+            if k == 1:
+                model.initialize(state.size, state.size)
+            predicted = np.atleast_1d(model.predict(inputs)[0])  # 4.2
+            next_state = _state(world.step(action.copy()), "the world's next state")
+            if next_state.shape != state.shape:
+                raise ValueError(f"the world's state changed shape from {state.shape} to "
+                                 f"{next_state.shape}")
+            effect = next_state - state  # 4.20
+            reward = float(np.linalg.norm(effect - predicted))  # 4.3, 4.6
+            model.partial_fit(inputs, effect[None, :])  # 4.4
+            cacla.partial_fit(state[None, :], unit[None, :], [reward], next_state[None, :])
+            delta = cacla.td_errors_[-1]
+            stop = test.update(delta)
+            for key, value in (("states", state), ("actions", action), ("effects", effect),
+                               ("predictions", predicted), ("rewards", reward),
+                               ("td_errors", delta)):
+                rows[key].append(value)
+            rows["averaged"].append(test.averages[-1] if test.averages else np.nan)
+            state = next_state
+            if stop:
+                converged_at = k
+                break
+        self.forward_model_ = model
+        self.cacla_ = cacla
+        self.history_ = ExplorationHistory(
+            **{key: np.asarray(value, dtype=float) for key, value in rows.items()},
+            converged_at=converged_at,
+        )
+        self.converged_ = converged_at is not None
+        self.n_steps_ = self.history_.steps
+        return self
+
+
+def _state(value: object, what: str) -> np.ndarray:
+    """A world's state as a finite 1-D float vector, or a clear error naming ``what``."""
+    return as_rows(np.atleast_1d(np.asarray(value, dtype=float))[None, :], what)[0]
+
