@@ -7,6 +7,7 @@ mental state (``goalagent.kb``) turns them into Prolog goals; nothing here talks
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Literal as TypingLiteral
 
@@ -230,3 +231,11 @@ class MasProgram:
     agentfiles: tuple[AgentFile, ...]
     launches: tuple[LaunchRule, ...]
     pos: Pos
+
+
+def iter_rules(rules: Iterable[Rule]) -> Iterator[Rule]:
+    """Every rule, nested ones included, in source order."""
+    for rule in rules:
+        yield rule
+        if rule.rules:
+            yield from iter_rules(rule.rules)

@@ -1,0 +1,36 @@
+"""Parse agent programs into immutable program objects (``goalagent.ast``).
+
+The structure is read by lark with ``grammar.lark``; every Prolog fragment is then read by
+SWI-Prolog itself (``goalagent.kb.engine``), so Prolog text means exactly what it means to
+SWI-Prolog. Every error is a ``GoalSyntaxError`` carrying ``file:line:col``.
+
+One module per kind of file: ``goal_file`` (GOAL's single-file `.goal` format),
+``mas_file`` (`.mas2g`), ``prolog_file`` (``#import``ed `.pl`); the AST builder they share
+is ``ast_builder`` with its parts ``goal_sections``, ``conditions`` (mental state conditions
+and ``#define`` macros) and ``mas_sections``; ``source`` blanks comments and maps offsets;
+``grammar`` runs lark and words its errors. GOAL 6's multi-file format (.mod2g / .act2g
+with ``use ... as ...``) gets its own ``*_file`` module and builder part.
+"""
+
+from goalagent.ast import iter_rules
+from goalagent.parser.errors import GoalSyntaxError
+from goalagent.parser.goal_file import parse_agent, parse_agent_file
+from goalagent.parser.goal_sections import LIBRARY
+from goalagent.parser.mas_file import parse_mas, parse_mas_file
+from goalagent.parser.prolog_file import parse_prolog_file
+from goalagent.parser.source import Source
+from goalagent.parser.variables import rename_variables, variable_occurrences
+
+__all__ = [
+    "LIBRARY",
+    "GoalSyntaxError",
+    "Source",
+    "iter_rules",
+    "parse_agent",
+    "parse_agent_file",
+    "parse_mas",
+    "parse_mas_file",
+    "parse_prolog_file",
+    "rename_variables",
+    "variable_occurrences",
+]

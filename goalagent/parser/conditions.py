@@ -1,0 +1,126 @@
+"""Mental state conditions and ``#define`` macros: the literals of a rule's condition, with
+each macro call expanded into the macro's condition (arguments substituted, its other
+variables renamed apart)."""
+
+from __future__ import annotations
+
+import itertools
+import re
+
+from lark import v_args
+
+from goalagent import ast
+from goalagent.parser.builder_base import BuilderBase
+from goalagent.parser.errors import GoalSyntaxError
+from goalagent.parser.variables import rename_variables, variable_occurrences
+
+
+def condition_texts(condition: ast.Condition):
+    """The Prolog texts of a condition's literals, negated ones included."""
+    for literal in condition:
+        if isinstance(literal, ast.NotLiteral):
+            yield from condition_texts(literal.condition)
+        elif literal.query is not None:
+            yield literal.query
+
+
+@v_args(meta=True)
+class ConditionParts(BuilderBase):
+    """The builder's part for conditions and macros (a macro is known from its definition on;
+    a call before it is an error, as in GOAL)."""
+
+    def __init__(self, source) -> None:
+        super().__init__(source)
+        self.macros: dict[tuple[str, int], ast.Macro] = {}
+        self.macro_list: list[ast.Macro] = []
+        self._fresh_suffixes = itertools.count(1)
+
+    def macro(self, meta, children):
+        name = children[1]
+        params = next((c for c in children[2:] if isinstance(c, tuple) and c and
+                       isinstance(c[0], ast.PrologText)), ())
+        condition = children[-2]
+        param_names = []
+        for param in params:
+            if not re.fullmatch(r"[A-Z_][A-Za-z0-9_]*", param.text):
+                raise GoalSyntaxError.at(param.pos, "a macro parameter must be a variable")
+            param_names.append(param.text)
+        macro = ast.Macro(str(name), tuple(param_names), condition, self._token_pos(name))
+        self.macros[(macro.name, len(param_names))] = macro
+        self.macro_list.append(macro)
+        return macro
+
+    def msc(self, meta, children):
+        literals: list[ast.Literal] = []
+        for child in children:
+            if isinstance(child, tuple):
+                literals.extend(child)  # an expanded macro
+            else:
+                literals.append(child)
+        return tuple(literals)
+
+    def _mental(self, op: str, meta, children) -> ast.MentalLiteral:
+        return ast.MentalLiteral(op, self.check(children[1]), self._pos(meta))
+
+    def bel(self, meta, children):
+        return self._mental("bel", meta, children)
+
+    def goal(self, meta, children):
+        return self._mental("goal", meta, children)
+
+    def agoal(self, meta, children):
+        return self._mental("a-goal", meta, children)
+
+    def goala(self, meta, children):
+        return self._mental("goal-a", meta, children)
+
+    def percept(self, meta, children):
+        return self._mental("percept", meta, children)
+
+    def not_(self, meta, children):
+        return ast.NotLiteral(children[1], self._pos(meta))
+
+    def true_(self, meta, children):
+        return ast.MentalLiteral("true", None, self._pos(meta))
+
+    def macro_call(self, meta, children):
+        name = str(children[0])
+        args: tuple[ast.PrologText, ...] = children[1] if len(children) > 1 else ()
+        macro = self.macros.get((name, len(args)))
+        if macro is None:
+            raise GoalSyntaxError.at(
+                self._pos(meta),
+                f"unknown mental literal {name}/{len(args)}: expected bel, goal, a-goal, "
+                "goal-a, percept, not, true or a macro defined earlier with #define",
+            )
+        return self._expand_macro(macro, args)
+
+    def _expand_macro(self, macro: ast.Macro,
+                      args: tuple[ast.PrologText, ...]) -> ast.Condition:
+        """Substitute the arguments for the parameters; other variables become fresh."""
+        mapping = {
+            param: arg.text if re.fullmatch(r"[A-Za-z0-9_]+", arg.text) else f"({arg.text})"
+            for param, arg in zip(macro.params, args, strict=True)
+        }
+        suffix = f"_M{next(self._fresh_suffixes)}"
+        for literal_text in condition_texts(macro.condition):
+            for var in variable_occurrences(literal_text.text):
+                if var not in mapping and var != "_":
+                    mapping[var] = var + suffix
+        return self._renamed_condition(macro.condition, mapping)
+
+    def _renamed_condition(self, condition: ast.Condition,
+                           mapping: dict[str, str]) -> ast.Condition:
+        """``condition`` with its variables renamed by ``mapping`` (texts checked again)."""
+        renamed: list[ast.Literal] = []
+        for literal in condition:
+            if isinstance(literal, ast.NotLiteral):
+                renamed.append(ast.NotLiteral(self._renamed_condition(literal.condition,
+                                                                      mapping), literal.pos))
+            elif literal.query is None:
+                renamed.append(literal)
+            else:
+                text = rename_variables(literal.query.text, mapping)
+                query = self.check(ast.PrologText(text, literal.query.pos))
+                renamed.append(ast.MentalLiteral(literal.op, query, literal.pos))
+        return tuple(renamed)

@@ -1,0 +1,124 @@
+"""`.goal` agent programs (GOAL's single-file format): parse, gather what is global to the
+agent, and warn about singleton variables as GOAL does."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator
+from dataclasses import replace
+from pathlib import Path
+
+from goalagent import ast
+from goalagent.parser.ast_builder import AstBuilder, build
+from goalagent.parser.builder_base import ParsedSection
+from goalagent.parser.conditions import condition_texts
+from goalagent.parser.errors import GoalSyntaxError
+from goalagent.parser.source import read_program_file
+from goalagent.parser.variables import variable_occurrences
+
+
+def parse_agent(text: str, file: str = "<string>") -> ast.AgentProgram:
+    """Parse the text of a `.goal` agent program."""
+    (name, items), builder = build(text, file, "agent")  # type: ignore[misc]
+    program = _program_from_items(name, items, file, builder)
+    return _with_singleton_warnings(program)
+
+
+def parse_agent_file(path: str | Path) -> ast.AgentProgram:
+    """Parse a `.goal` file (any extension but `.mas2g`)."""
+    return parse_agent(read_program_file(path), str(path))
+
+
+def _program_from_items(name: str | None, items: list, file: str,
+                        builder: AstBuilder) -> ast.AgentProgram:
+    """The program of a file's top-level items: its modules (a program section outside any
+    module is the main module) and, gathered from all of them, what is global to the agent."""
+    modules: list[ast.Module] = []
+    top: dict[str, list] = {"knowledge": [], "beliefs": [], "goals": [], "actionspecs": []}
+    top_program: ParsedSection | None = None
+    for item in items:
+        if isinstance(item, ast.Module):
+            if item.kind != "user" and any(m.name == item.name for m in modules):
+                raise GoalSyntaxError.at(item.pos, f"there is already a {item.name} module")
+            modules.append(item)
+        elif isinstance(item, ParsedSection):
+            if item.kind == "program":
+                top_program = item
+            else:
+                top[item.kind].extend(item.items)
+    if top_program is not None:
+        if any(m.kind == "main" for m in modules):
+            raise GoalSyntaxError.at(top_program.pos,
+                                     "a program section outside modules and a main module")
+        modules.append(ast.Module("main", "main", top_program.pos, rules=top_program.items,
+                                  order=top_program.options.get("order")))
+    everything = [top, *({"knowledge": list(m.knowledge), "beliefs": list(m.beliefs),
+                          "goals": list(m.goals), "actionspecs": list(m.actionspecs)}
+                         for m in modules)]
+    gathered = {key: tuple(x for part in everything for x in part[key]) for key in top}
+    overriding = {(spec.name, spec.arity) for spec in gathered["actionspecs"]
+                  if spec.name in ast.BUILTIN_ACTIONS}
+    if overriding:
+        modules = [replace(m, rules=_mark_overrides(m.rules, overriding)) for m in modules]
+    return ast.AgentProgram(
+        name=name or Path(file).stem,
+        file=file,
+        modules=tuple(modules),
+        macros=tuple(builder.macro_list),
+        knowledge=gathered["knowledge"],
+        beliefs=gathered["beliefs"],
+        goals=gathered["goals"],
+        actionspecs=gathered["actionspecs"],
+    )
+
+
+def _mark_overrides(rules: tuple[ast.Rule, ...],
+                    overriding: set[tuple[str, int]]) -> tuple[ast.Rule, ...]:
+    """Calls of built-in names that an ``@env`` actionspec declares go to that actionspec."""
+    marked = []
+    for rule in rules:
+        actions = tuple(
+            replace(a, overrides_builtin=True)
+            if isinstance(a, ast.ActionCall) and (a.name, a.arity) in overriding else a
+            for a in rule.actions
+        )
+        inner = _mark_overrides(rule.rules, overriding) if rule.rules else rule.rules
+        marked.append(replace(rule, actions=actions, rules=inner))
+    return tuple(marked)
+
+
+def _rule_texts(rule: ast.Rule) -> Iterator[ast.PrologText]:
+    """Every Prolog text of a rule: condition, actions, nested rules."""
+    yield from condition_texts(rule.condition)
+    for action in rule.actions:
+        if isinstance(action, ast.SendAction):
+            yield action.receiver
+            yield action.content
+        else:
+            yield from action.args
+    for inner in rule.rules or ():
+        yield from _rule_texts(inner)
+
+
+def _with_singleton_warnings(program: ast.AgentProgram) -> ast.AgentProgram:
+    """Singleton variables in rules, as GOAL reports them (warnings, not errors)."""
+    warnings = []
+    for module in program.modules:
+        for rule in module.rules:
+            counts: Counter[str] = Counter()
+            for text in _rule_texts(rule):
+                counts.update(variable_occurrences(text.text))
+            if rule.list_var:  # listall uses its list variable and what it collects
+                counts[rule.list_var] += 1
+                for text in condition_texts(rule.condition):
+                    counts.update(variable_occurrences(text.text))
+            for param in module.params:  # module parameters are bound by the caller
+                for var in variable_occurrences(param.text):
+                    if counts[var]:
+                        counts[var] += 1
+            for var, count in counts.items():
+                if count == 1 and not var.startswith("_") and "_M" not in var:
+                    warnings.append(f"{rule.pos}: warning: singleton variable {var} in rule")
+    if not warnings:
+        return program
+    return replace(program, warnings=tuple(warnings))

@@ -1,0 +1,212 @@
+"""The builder's part for `.goal` programs: sections, actionspecs, ``#import``, actions,
+rules and modules (conditions and macros are in ``conditions.py``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from lark import Token, v_args
+
+from goalagent import ast
+from goalagent.parser.builder_base import BuilderBase, ParsedSection
+from goalagent.parser.errors import GoalSyntaxError
+
+LIBRARY = Path(__file__).resolve().parents[1] / "kb"  # Prolog libraries #import finds by name
+
+_MODULE_OPTIONS = {
+    "exit": ("always", "never", "nogoals", "noaction"),
+    "focus": ("none", "new", "select", "filter"),
+}
+_PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive")}
+_MOODS = ("!", "?", ":")
+_CONJUNCTION_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
+
+
+@v_args(meta=True)
+class GoalParts(BuilderBase):
+    """Tree nodes of a `.goal` program. ``#import`` parses another file through
+    ``self._import_prolog_file``, which the composed ``AstBuilder`` provides."""
+
+    # --- sections -------------------------------------------------------------------------
+    def knowledge(self, meta, children):
+        return ParsedSection("knowledge", self._facts(children[1:]), self._pos(meta))
+
+    def beliefs(self, meta, children):
+        return ParsedSection("beliefs", self._facts(children[1:]), self._pos(meta))
+
+    def goals(self, meta, children):
+        return ParsedSection("goals", tuple(children[1:]), self._pos(meta))
+
+    def program(self, meta, children):
+        options = next((c for c in children if isinstance(c, list)), None)
+        rules = tuple(c for c in children if isinstance(c, ast.Rule))
+        return ParsedSection(
+            "program", rules, self._pos(meta), self._options(options, _PROGRAM_OPTIONS)
+        )
+
+    def actionspecs(self, meta, children):
+        return ParsedSection("actionspecs", tuple(children[1:]), self._pos(meta))
+
+    def pre(self, meta, children):
+        return self._pre_or_post_text(children)
+
+    def post(self, meta, children):
+        return self._pre_or_post_text(children)
+
+    def _pre_or_post_text(self, children) -> ast.PrologText:
+        """The checked text of ``pre { .. }`` / ``post { .. }``; ``true`` when empty."""
+        if len(children) > 1:
+            return self.check(children[1])
+        return ast.PrologText("true", self._token_pos(children[0]), ())
+
+    def actionspec(self, meta, children):
+        name = children[0]
+        params = next((c for c in children if isinstance(c, tuple)), ())
+        internal = any(isinstance(c, Token) and c.type == "AT_INT" for c in children)
+        environment = any(isinstance(c, Token) and c.type == "AT_ENV" for c in children)
+        if str(name) in ast.BUILTIN_ACTIONS and not environment:
+            raise GoalSyntaxError.at(
+                self._token_pos(name), f"{name} is a built-in action; write "
+                f"{name}(...)@env {{ ... }} to declare an environment action with that name")
+        pre, post = children[-2], children[-1]
+        return ast.ActionSpec(str(name), params, pre, post, self._token_pos(name), internal,
+                              environment)
+
+    def import_(self, meta, children):
+        """``#import "file.pl".``: the file's clauses become knowledge (GOAL 5)."""
+        name = str(self.engine.parse_term(str(children[1])))
+        pos = self._token_pos(children[1])
+        if not name.endswith(".pl"):
+            raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: only Prolog (.pl) files "
+                                     "can be imported; put modules in this file")
+        path = Path(self.source.file).parent / name
+        if not path.exists() and (LIBRARY / name).exists():
+            path = LIBRARY / name  # a library shipped with goalagent, e.g. affordance.pl
+        if not path.exists():
+            raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: no such file next to "
+                                     "this program nor in goalagent's Prolog libraries")
+        clauses = self._import_prolog_file(path)  # type: ignore[attr-defined]
+        return ParsedSection("knowledge", clauses, pos)
+
+    # --- actions ---------------------------------------------------------------------------
+    def combo(self, meta, children):
+        return tuple(children)
+
+    def call(self, meta, children):
+        name = str(children[0])
+        args = children[1] if len(children) > 1 else ()
+        pos = self._pos(meta)
+        if name in ("send", "sendonce"):
+            if len(args) != 2:
+                raise GoalSyntaxError.at(
+                    pos, f"{name} needs an addressee: write Receiver.{name}(Message), "
+                    f"with Receiver an agent, allother or all"
+                )
+            mood, content = self._mood(args[1])
+            return ast.SendAction(name == "sendonce", args[0], mood, content, pos)
+        if name in _CONJUNCTION_ACTIONS and len(args) > 1:
+            # insert(a, not(b)) is insert((a, not(b))): one conjunction, as GOAL reads it
+            joined = ", ".join(arg.text for arg in args)
+            args = (self.check(ast.PrologText(joined, args[0].pos)),)
+        return ast.ActionCall(name, args, pos)
+
+    def exit_module(self, meta, children):
+        return ast.ActionCall("exit-module", (), self._pos(meta))
+
+    def receiver(self, meta, children):
+        token = children[0]
+        return ast.PrologText(str(token), self._token_pos(token), (str(token),)
+                              if token.type == "VAR" else ())
+
+    def send(self, meta, children):
+        receiver, keyword, content = children[0], children[1], children[2]
+        mood, message = self._mood(content)
+        return ast.SendAction(str(keyword) == "sendonce", receiver, mood, message,
+                              self._pos(meta))
+
+    def _mood(self, content: ast.PrologText) -> tuple[str, ast.PrologText]:
+        """A message's mood prefix (``:`` when none) and its content without it."""
+        text = content.text
+        mood = ":"
+        if text[:1] in _MOODS and not text.startswith(":-") and len(text) > 1:
+            mood = text[0]
+            stripped = text[1:].lstrip()
+            skipped = len(text) - len(stripped)
+            pos = self.source.pos(content.pos.offset + skipped)
+            content = ast.PrologText(stripped, pos)
+        return mood, self.check(content)
+
+    # --- rules ---------------------------------------------------------------------------
+    def combo_body(self, meta, children):
+        return ("actions", children[0])
+
+    def block_body(self, meta, children):
+        rules = tuple(c for c in children if isinstance(c, ast.Rule))
+        return ("rules", rules)
+
+    def _rule(self, kind: str, meta, condition, body, list_var=None) -> ast.Rule:
+        """A rule whose body is an action combo or a nested block of rules."""
+        body_kind, content = body
+        if body_kind == "actions":
+            return ast.Rule(kind, condition, self._pos(meta), actions=content, list_var=list_var)
+        return ast.Rule(kind, condition, self._pos(meta), rules=content, list_var=list_var)
+
+    def if_rule(self, meta, children):
+        return self._rule("if", meta, children[1], children[3])
+
+    def forall_rule(self, meta, children):
+        return self._rule("forall", meta, children[1], children[3])
+
+    def listall_rule(self, meta, children):
+        return self._rule("listall", meta, children[3], children[5], list_var=str(children[1]))
+
+    def listall_rule_rtl(self, meta, children):
+        return self._rule("listall", meta, children[1], children[5], list_var=str(children[3]))
+
+    # --- modules ---------------------------------------------------------------------------
+    def init_head(self, meta, children):
+        return ("init", "init", (), children[2] if len(children) > 2 else None, meta)
+
+    def main_head(self, meta, children):
+        return ("main", "main", (), children[2] if len(children) > 2 else None, meta)
+
+    def event_head(self, meta, children):
+        return ("event", "event", (), children[2] if len(children) > 2 else None, meta)
+
+    def user_head(self, meta, children):
+        name = str(children[1])
+        params = next((c for c in children[2:] if isinstance(c, tuple)), ())
+        options = next((c for c in children[2:] if isinstance(c, list)), None)
+        return ("user", name, params, options, meta)
+
+    def module(self, meta, children):
+        kind, name, params, options, head_meta = children[0]
+        opts = self._options(options, _MODULE_OPTIONS)
+        fields: dict[str, list] = {"knowledge": [], "beliefs": [], "goals": [], "actionspecs": []}
+        rules: tuple[ast.Rule, ...] = ()
+        order = None
+        seen_program = False
+        for item in children[1:]:
+            if isinstance(item, ast.Macro):
+                continue
+            if item.kind == "program":
+                if seen_program:
+                    raise GoalSyntaxError.at(item.pos, f"module {name} has two program sections")
+                seen_program = True
+                rules, order = item.items, item.options.get("order")
+            else:
+                fields[item.kind].extend(item.items)
+        return ast.Module(
+            name, kind, self.source.pos(head_meta.start_pos), params,
+            exit=opts.get("exit"), focus=opts.get("focus"), order=order, rules=rules,
+            knowledge=tuple(fields["knowledge"]), beliefs=tuple(fields["beliefs"]),
+            goals=tuple(fields["goals"]), actionspecs=tuple(fields["actionspecs"]),
+        )
+
+    def wrapper(self, meta, children):
+        return ("wrapper", str(children[1]), children[2:])
+
+    def agent(self, meta, children):
+        if len(children) == 1 and isinstance(children[0], tuple) and children[0][0] == "wrapper":
+            return children[0][1], list(children[0][2])
+        return None, list(children)
