@@ -264,8 +264,8 @@ class TruthPerception:
             geom = world.model.geom(f"marker_{name}").id
             centre = world.data.geom_xpos[geom]
             axes = world.data.geom_xmat[geom].reshape(3, 3)
-            corners = centre + (_BOX_CORNERS * world.model.geom_size[geom]) @ axes.T
-            blob = _filled_hull(camera.project(corners), camera.width, camera.height)
+            corners = centre + (BOX_CORNERS * world.model.geom_size[geom]) @ axes.T
+            blob = filled_hull(camera.project(corners), camera.width, camera.height)
             if blob is not None:
                 parts[name] = describe_blob(name, blob)
         heights = {name: state.parts[name].pos[2] for name in parts}
@@ -279,12 +279,14 @@ class TruthPerception:
                            scale=_scale(parts, SCALE_MARKERS))
 
 
-_BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
 """The eight corners of a box geom in units of its half-sizes."""
 
 
-def _filled_hull(pixels: np.ndarray, width: int, height: int) -> np.ndarray | None:
-    """Mask of the pixels whose centres lie in the projected points' convex hull (or None).
+def filled_hull(pixels: np.ndarray, width: int, height: int,
+                min_pixels: int = MIN_BLOB_PIXELS) -> np.ndarray | None:
+    """Mask of the pixels whose centres lie in the projected points' convex hull (or None if
+    it covers fewer than ``min_pixels``).
 
     That is how the renderer covers a polygon (pixel (i, j) has its centre at j + 0.5,
     i + 0.5), so the mask has the pixels the camera would segment.
@@ -302,7 +304,7 @@ def _filled_hull(pixels: np.ndarray, width: int, height: int) -> np.ndarray | No
     for (ax, ay), (bx, by) in zip(a, b, strict=True):
         inside &= orientation * ((bx - ax) * (ys - ay) - (by - ay) * (xs - ax)) >= 0
     mask[y0:y1, x0:x1][inside] = 255
-    if cv2.countNonZero(mask) < MIN_BLOB_PIXELS:
+    if cv2.countNonZero(mask) < min_pixels:
         return None
     return mask
 

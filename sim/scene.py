@@ -21,9 +21,13 @@ Run ``python -m sim.scene`` to (re)write the generated scenes to ``sim/assets/<c
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
+
+from sim.mjcf import LIGHTING
+from sim.mjcf import box as _box
+from sim.mjcf import fmt as _v
+from sim.mjcf import look_at as _look_at
 
 TABLE_TOP = 0.40
 """Height of the table surface (m)."""
@@ -126,32 +130,6 @@ LID_RANGE = 1.75
 """Upper limit of every lid hinge (rad)."""
 
 
-def _v(*xs: float) -> str:
-    """Format numbers for an MJCF attribute."""
-    return " ".join(f"{x:.5g}" for x in xs)
-
-
-def _box(name: str, centre: tuple[float, float, float], half: tuple[float, float, float],
-         rgba: str, collide: bool = True, extra: str = "") -> str:
-    """One box geom; visual-only geoms neither collide nor carry mass."""
-    flags = "" if collide else ' contype="0" conaffinity="0" group="1" density="0"'
-    return (f'<geom name="{name}" type="box" pos="{_v(*centre)}" size="{_v(*half)}" '
-            f'rgba="{rgba}"{flags}{extra}/>')
-
-
-def _look_at(eye: tuple[float, float, float], target: tuple[float, float, float]) -> str:
-    """MJCF ``xyaxes`` of a camera at ``eye`` looking at ``target`` with +z up."""
-    f = [t - e for t, e in zip(target, eye, strict=True)]
-    n = math.sqrt(sum(c * c for c in f))
-    f = [c / n for c in f]
-    right = [f[1], -f[0], 0.0]
-    rn = math.hypot(right[0], right[1])
-    right = [c / rn for c in right]
-    up = [right[1] * f[2] - right[2] * f[1], right[2] * f[0] - right[0] * f[2],
-          right[0] * f[1] - right[1] * f[0]]
-    return _v(*right, *up)
-
-
 def _body_xml(c: CanSpec) -> list[str]:
     """Static can body: bottom and four walls, a dark liner inside, the red marker in front."""
     w, d, h, t = c.width / 2, c.depth, c.height, WALL
@@ -237,9 +215,7 @@ def build_mjcf(can: str) -> str:
     parts = [f'<mujoco model="garbage_{can}">',
              '<compiler angle="radian" autolimits="true"/>',
              '<option timestep="0.002" integrator="implicitfast" cone="elliptic"/>',
-             '<visual><headlight ambient="0.45 0.45 0.45" diffuse="0.45 0.45 0.45" '
-             'specular="0.05 0.05 0.05"/><quality shadowsize="0"/>'
-             '<global offwidth="640" offheight="480"/></visual>',
+             LIGHTING,
              '<default><geom friction="0.6 0.005 0.0001" solref="0.004 1"/></default>',
              "<worldbody>",
              '<light name="top" pos="0 0 2.2" dir="0 0 -1" diffuse="0.45 0.45 0.45" '

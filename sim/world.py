@@ -27,6 +27,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 
+from sim.base import CameraModel  # noqa: E402
 from sim.scene import (  # noqa: E402
     ARM_RANGE,
     BALL_RADIUS,
@@ -90,31 +91,6 @@ class WorldState:
     holding_ball: bool
     ball_in_can: bool
     effector_pos: tuple[float, float, float]
-
-
-@dataclass(frozen=True)
-class CameraModel:
-    """Pinhole model of a rendered camera: intrinsics plus its pose in the world."""
-
-    width: int
-    height: int
-    fovy: float
-    fx: float
-    fy: float
-    cx: float
-    cy: float
-    pos: np.ndarray
-    rot: np.ndarray
-    """World-from-camera rotation; camera looks along its -z, +y is image up."""
-
-    def project(self, points: Sequence[Sequence[float]] | np.ndarray) -> np.ndarray:
-        """Pixel coordinates (u right, v down) of world points, shape (N, 2)."""
-        p = np.atleast_2d(np.asarray(points, dtype=float))
-        cam = (p - self.pos) @ self.rot  # rows are camera-frame coordinates
-        depth = -cam[:, 2]
-        u = self.cx + self.fx * cam[:, 0] / depth
-        v = self.cy - self.fy * cam[:, 1] / depth
-        return np.stack([u, v], axis=1)
 
 
 class GarbageWorld:
