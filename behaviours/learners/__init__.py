@@ -5,4 +5,8 @@ Chapter 4 (active affordance learning): ``network`` (the small tanh network), ``
 ``exploration`` (Algorithm 3 and the random baseline over a ``ContinuousWorld``),
 ``skill_acquisition`` (goal generation and paired skills, eq. 4.12–4.18); ``validation`` and
 ``persist`` (versioned JSON files, written atomically) serve them all.
+
+Chapter 5 (part-based affordance models and transfer): ``part_models`` (ĝ, ĥ, 5.9–5.12),
+``protocol`` (the object under test), ``baseline`` (Algorithm 4), ``similarity``
+(Algorithm 5), ``transfer`` (Algorithm 6), ``known_objects`` (the known-object database).
 """

@@ -14,6 +14,7 @@ from pathlib import Path
 
 __all__ = [
     "FORMAT", "VERSION", "LearnerFileError", "json_params", "read_learner", "write_learner",
+    "write_text_atomically",
 ]
 
 FORMAT = "goalagent-learner"
@@ -25,10 +26,15 @@ class LearnerFileError(ValueError):
 
 
 def write_learner(path: str | os.PathLike[str], kind: str, params: dict, state: dict) -> Path:
-    """Write atomically: a temporary file in the same folder, fsync, then ``os.replace``."""
-    target = Path(path)
+    """Write atomically (see ``write_text_atomically``)."""
     text = json.dumps({"format": FORMAT, "version": VERSION, "kind": kind,
                        "params": params, "state": state}, indent=1)
+    return write_text_atomically(path, text)
+
+
+def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
+    """A temporary file in the same folder, fsync, then ``os.replace``: all or nothing."""
+    target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
     try:

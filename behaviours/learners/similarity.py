@@ -1,0 +1,181 @@
+"""Similarity of parts and objects, and Algorithm 5: find relevant source objects (§5.5.3).
+
+Parts are grouped by the k-nearest-neighbour classifier of scikit-learn over their Table 5.1
+descriptors (area, rectangleness, squareness), trained on the parts of the known objects with
+each part's name as its group ("similar parts are classified into the same group"). A part
+farther than ``max_distance`` from every known part is novel: similar to nothing. Objects are
+compared by counting the ``above`` relations they share once the target's parts are mapped to
+their groups; ties go to the object whose parts look most alike (mean descriptor distance).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from sklearn.base import BaseEstimator
+from sklearn.neighbors import KNeighborsClassifier
+
+from behaviours.learners.known_objects import KnownObject
+from behaviours.learners.part_models import OpeningGoal, Selection, select_part_action
+from behaviours.learners.protocol import ObjectView
+
+DEFAULT_WEIGHTS = (1000.0, 1.0, 1.0)
+"""Weights putting (area, rectangleness, squareness) on like ranges before distances.
+
+A marker's area is ~0.001..0.01 of the image while the ratios lie in 0..1, so area counts in
+per-mille (standardising by the spread instead over-weights squareness, ~1 for every marker).
+"""
+
+
+class PartSimilarity(BaseEstimator):
+    """k-nearest-neighbour groups of parts over weighted Table 5.1 descriptors.
+
+    ``fit(X, y)``: X one descriptor per known part, y its group (the part's name). Neighbours
+    vote weighted by inverse distance, so one close part outvotes two far ones.
+    """
+
+    def __init__(self, n_neighbors: int = 3, weights: Sequence[float] = DEFAULT_WEIGHTS,
+                 max_distance: float = 1.0) -> None:
+        self.n_neighbors = n_neighbors
+        self.weights = weights
+        self.max_distance = max_distance
+
+    def _weigh(self, X: object) -> np.ndarray:
+        """Descriptors as a weighted (n, d) array, or a clear ValueError."""
+        array = np.atleast_2d(np.asarray(X, dtype=float))
+        weights = np.asarray(self.weights, dtype=float)
+        if array.ndim != 2 or array.shape[1] != weights.size:
+            raise ValueError(f"descriptors must have {weights.size} values each, got shape "
+                             f"{array.shape}")
+        if not np.all(np.isfinite(array)):
+            raise ValueError("a descriptor contains a value that is not a finite number")
+        return array * weights
+
+    def fit(self, X: object, y: Sequence[str]) -> PartSimilarity:
+        """Remember the known parts' descriptors and groups."""
+        if isinstance(self.n_neighbors, bool) or not isinstance(self.n_neighbors, int) or (
+                self.n_neighbors < 1):
+            raise ValueError(f"n_neighbors must be a whole number >= 1, got {self.n_neighbors!r}")
+        if not (isinstance(self.max_distance, (int, float)) and self.max_distance > 0):
+            raise ValueError(f"max_distance must be a positive number, got {self.max_distance!r}")
+        points = self._weigh(X)
+        labels = np.asarray(list(y), dtype=object)
+        if points.shape[0] == 0 or labels.size != points.shape[0]:
+            raise ValueError(f"need one group per descriptor and at least one part, got "
+                             f"{points.shape[0]} descriptors and {labels.size} groups")
+        self.classifier_ = KNeighborsClassifier(
+            n_neighbors=min(self.n_neighbors, points.shape[0]), weights="distance"
+        ).fit(points, labels)
+        self.n_parts_ = points.shape[0]
+        return self
+
+    def predict(self, X: object) -> np.ndarray:
+        """The group of each descriptor, or None where the part is novel."""
+        if not hasattr(self, "classifier_"):
+            raise ValueError("this PartSimilarity is not fitted yet; call fit first")
+        points = self._weigh(X)
+        distances, _ = self.classifier_.kneighbors(points, n_neighbors=1)
+        groups = self.classifier_.predict(points).astype(object)
+        groups[distances[:, 0] > self.max_distance] = None
+        return groups
+
+    def group(self, descriptor: object) -> str | None:
+        """The group of one part (None: novel)."""
+        return self.predict([descriptor])[0]
+
+    def distance(self, a: object, b: object) -> float:
+        """Weighted Euclidean distance between two descriptors."""
+        return float(np.linalg.norm(self._weigh(a)[0] - self._weigh(b)[0]))
+
+
+def fit_similarity(objects: Iterable[KnownObject], **params: object) -> PartSimilarity | None:
+    """A PartSimilarity trained on every part of ``objects`` (None if there are no parts)."""
+    descriptors, groups = [], []
+    for known in objects:
+        for name, descriptor in known.parts.items():
+            descriptors.append(descriptor)
+            groups.append(name)
+    if not descriptors:
+        return None
+    return PartSimilarity(**params).fit(descriptors, groups)
+
+
+def similar_part(similarity: PartSimilarity, view: ObjectView, group: str,
+                 descriptor: object, exclude: Iterable[str] = ()) -> str | None:
+    """The part of ``view`` in ``group`` nearest to ``descriptor`` (lines 5, 25 of Alg. 6)."""
+    skip = set(exclude)
+    names = [name for name in view.parts if name not in skip]
+    if not names:
+        return None
+    groups = similarity.predict([view.parts[name] for name in names])
+    members = [name for name, g in zip(names, groups, strict=True) if g == group]
+    if not members:
+        return None
+    return min(members, key=lambda name: similarity.distance(view.parts[name], descriptor))
+
+
+def shared_relations(similarity: PartSimilarity, view: ObjectView, known: KnownObject) -> int:
+    """How many of the target's ``above`` relations, mapped to groups, the known object has."""
+    names = list(view.parts)
+    group_of = dict(zip(names, similarity.predict([view.parts[n] for n in names]), strict=True))
+    mapped = {(group_of[a], group_of[b]) for a, b in view.above
+              if group_of.get(a) is not None and group_of.get(b) is not None}
+    return len(mapped & set(known.above))
+
+
+def look_alike(similarity: PartSimilarity, view: ObjectView, known: KnownObject) -> float:
+    """Mean distance from each grouped target part to the known object's part of its group."""
+    distances = []
+    names = list(view.parts)
+    for name, group in zip(names, similarity.predict([view.parts[n] for n in names]),
+                           strict=True):
+        if group is not None and group in known.parts:
+            distances.append(similarity.distance(view.parts[name], known.parts[group]))
+    return float(np.mean(distances)) if distances else math.inf
+
+
+@dataclass(frozen=True)
+class SourceCandidate:
+    """A relevant source object (Algorithm 5) and the parts that make it relevant."""
+
+    known: KnownObject
+    rehearsal: Selection  # ψ*, a*, θ* of the known object for the target's task (lines 4-5)
+    target_part: str  # the target's part similar to ψ* (line 7)
+    shared_relations: int
+    distance: float
+
+
+def rehearse(known: KnownObject, goal: OpeningGoal, initial_state: float,
+             delta2: float) -> Selection | None:
+    """Lines 4-5 of Algorithm 5 (2-4 of Algorithm 6): 5.11/5.12 on the known object's models
+    as if it were in the target's initial state with the target's goal."""
+    return select_part_action(known.models, known.bounds, goal.desired_effect(initial_state),
+                              delta1=goal.delta1, delta2=delta2)
+
+
+def rank_sources(objects: Iterable[KnownObject], view: ObjectView, goal: OpeningGoal, *,
+                 delta2: float = 0.002,
+                 similarity_params: Mapping[str, object] | None = None
+                 ) -> list[SourceCandidate]:
+    """Algorithm 5: the known objects whose functional part looks like a part of the target,
+    most similar first (shared above relations, then look-alike parts, then the older)."""
+    known_objects = list(objects)
+    similarity = fit_similarity(known_objects, **dict(similarity_params or {}))
+    if similarity is None:
+        return []
+    ranked: list[tuple[tuple[float, float, int], SourceCandidate]] = []
+    for index, known in enumerate(known_objects):
+        rehearsal = rehearse(known, goal, view.state, delta2)
+        if rehearsal is None:
+            continue
+        target = similar_part(similarity, view, rehearsal.part, known.parts[rehearsal.part])
+        if target is None:
+            continue
+        shared = shared_relations(similarity, view, known)
+        distance = look_alike(similarity, view, known)
+        ranked.append(((-shared, distance, index),
+                       SourceCandidate(known, rehearsal, target, shared, distance)))
+    return [candidate for _, candidate in sorted(ranked, key=lambda item: item[0])]
