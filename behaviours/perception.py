@@ -4,7 +4,8 @@ The camera pipeline follows thesis §5.3.1 and §5.6.1: the head-camera frame is
 HSV, each marker colour (body red, lid blue, handle green) is segmented, the largest connected
 component of a colour is that part's blob, bounded by a minimum-area (rotated) rectangle, and
 described by Table 5.1 (area, rectangleness, squareness). The opening is the height of the
-dark interior's bounding box scaled to metres by the known marker size (eq. 5.14).
+dark interior's bounding box scaled to metres by the known marker size (eq. 5.14); chapter 4's
+state s_o is that box's share of the image (eq. 4.19).
 ``CameraPerception`` runs that pipeline on the world's rendered head-camera frame;
 ``TruthPerception`` builds the same ``Observation`` from the simulator's ground truth (marker
 boxes projected through the camera model, so descriptors are comparable), so tests and fast
@@ -89,6 +90,8 @@ class Observation:
     opening: float
     scale: float = 0.0
     """Metres per pixel (alpha of eq. 5.14) from the first scale marker seen; 0 if none."""
+    opening_area: float = 0.0
+    """s_o of eq. 4.19: the dark opening's bounding box as a fraction of the image (0..1)."""
 
 
 class Perception(Protocol):
@@ -174,12 +177,6 @@ def dark_region(image_hsv: np.ndarray) -> tuple[int, int, int, int] | None:
     return int(x), int(y), int(w), int(h)
 
 
-def opening_height(image_hsv: np.ndarray) -> int:
-    """Height in pixels of the bounding box of the dark interior (0 when none is visible)."""
-    box = dark_region(image_hsv)
-    return 0 if box is None else box[3]
-
-
 def observe_image(
     image: np.ndarray, scale_markers: Mapping[str, float] = SCALE_MARKERS
 ) -> Observation:
@@ -198,8 +195,12 @@ def observe_image(
         if blob is not None:
             parts[part] = describe_blob(part, blob)
     scale = _scale(parts, scale_markers)
-    opening = opening_height(hsv) * scale if scale > 0 else 0.0
-    return Observation(parts=parts, above=above_relations(parts), opening=opening, scale=scale)
+    box = dark_region(hsv)
+    height = 0 if box is None else box[3]
+    opening = height * scale if scale > 0 else 0.0
+    area = 0.0 if box is None else box[2] * box[3] / float(image.shape[0] * image.shape[1])
+    return Observation(parts=parts, above=above_relations(parts), opening=opening, scale=scale,
+                       opening_area=area)
 
 
 def _scale(parts: Mapping[str, PartObservation], scale_markers: Mapping[str, float]) -> float:
@@ -248,7 +249,9 @@ class TruthPerception:
     Each marker box of the model is projected through the camera's pinhole model and filled
     as a polygon, then described exactly like a camera blob, so descriptors are comparable
     with ``CameraPerception``'s; ``above`` compares true marker heights; the opening is
-    ``world.state().opening``. No rendering, so it is fast and needs no GL context.
+    ``world.state().opening``; the opening's image area (eq. 4.19) is the bounding box of the
+    projected gap (``GarbageWorld.gap_corners``). No rendering, so it is fast and needs no GL
+    context.
     """
 
     def __init__(self, camera: str = "head"):
@@ -275,8 +278,14 @@ class TruthPerception:
             for p2 in sorted(parts)
             if p1 != p2 and heights[p1] > heights[p2] + ABOVE_MARGIN_M
         )
+        corners = camera.project(world.gap_corners())
+        gap = _filled_hull(corners, camera.width, camera.height)
+        area = 0.0
+        if gap is not None and corners[2:, 1].mean() < corners[:2, 1].mean():  # lid edge higher
+            _, _, w, h = cv2.boundingRect(cv2.findNonZero(gap))
+            area = w * h / float(camera.width * camera.height)
         return Observation(parts=parts, above=above, opening=float(state.opening),
-                           scale=_scale(parts, SCALE_MARKERS))
+                           scale=_scale(parts, SCALE_MARKERS), opening_area=area)
 
 
 BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)

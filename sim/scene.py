@@ -14,7 +14,9 @@ Mechanisms (all contacts inside a can are excluded; parts move only through thei
 - pull handle (o5): the same handle on a slide toward the robot; lifting it is blocked.
 Lids of handle cans are hinged at their back-top edge, so pushing their face presses them
 shut against the joint limit. Hinge and slide friction (``frictionloss``) plus damping keep
-every part where the robot left it.
+every part where the robot left it. For chapter 4's continuous actions the hand can also keep
+hold of the lid or the handle at the point it touches (an inactive ``connect`` equality per
+part, switched on by ``GarbageWorld.hold``), so moving the hand back closes what it opened.
 
 Run ``python -m sim.scene`` to (re)write the generated scenes to ``sim/assets/<can>.xml``.
 """
@@ -128,6 +130,8 @@ SITE = 'size="0.003" rgba="0 0 0 0"'
 """Reference points (rim and lid front edges) are invisible."""
 LID_RANGE = 1.75
 """Upper limit of every lid hinge (rad)."""
+HOLDABLE = ("lid", "handle")
+"""Parts the hand can keep hold of (a ball-joint constraint, off until ``hold``; thesis ch. 4)."""
 
 
 def _body_xml(c: CanSpec) -> list[str]:
@@ -260,6 +264,10 @@ def build_mjcf(can: str) -> str:
     if "handle" in c.parts:
         parts.append(f'<joint name="gear" joint1="lid_hinge" joint2="handle_slide" '
                      f'polycoef="0 {c.gear:.5g} 0 0 0" solref="0.005 1"/>')
+    for part in HOLDABLE:  # anchors are set when the hand takes hold (GarbageWorld.hold)
+        if part in c.parts:
+            parts.append(f'<connect name="hold_{part}" body1="hand" body2="{part}" '
+                         'anchor="0 0 0" active="false" solref="0.005 1"/>')
     parts.append("</equality>")
     parts.append("<actuator>")
     for axis, (lo, hi), home in zip("xyz", ARM_RANGE, HOME, strict=True):

@@ -33,6 +33,7 @@ from sim.scene import (  # noqa: E402
     BALL_RADIUS,
     CANS,
     GRIP_OFFSET,
+    HOLDABLE,
     HOME,
     LID_RANGE,
     MARKER_SIZE,
@@ -67,6 +68,8 @@ ARM_SPEED = 0.4
 """Speed (m/s) of the arm's set-point along a straight-line move."""
 ARRIVE_TOL = 1.5e-3
 """Distance (m) from the set-point at which the hand counts as arrived."""
+HOLD_REACH = 0.01
+"""The hand takes hold of a part only if it is at most this far (m) from the part's surface."""
 FRAME_RATE = 25.0
 """Frames per second of simulated time in recorded videos."""
 
@@ -133,6 +136,10 @@ class GarbageWorld:
         ball[:2] += rng.uniform(-0.01, 0.01, size=2)
         self._grip_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, "grip")
         d.eq_active[self._grip_id] = 0
+        self._holds = {part: mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, f"hold_{part}")
+                       for part in HOLDABLE if part in self.parts}
+        for hold in self._holds.values():
+            d.eq_active[hold] = 0
         self.set_ball_collisions(True)
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._ball_body = m.body("ball").id
@@ -232,6 +239,56 @@ class GarbageWorld:
         """Move the hand back to its resting position beside the can."""
         return self.move_arm_to(HOME)
 
+    def relax(self) -> None:
+        """Aim the arm's controllers at where the hand is, so it pushes on nothing, and settle."""
+        self.data.ctrl[:3] = self.effector_pos - np.asarray(HOME)
+        self.settle(300)
+
+    # ------------------------------------------------------------------- hold
+    @property
+    def held_part(self) -> str | None:
+        """The part the hand keeps hold of, if any (see ``hold``)."""
+        return next((p for p, eq in self._holds.items() if self.data.eq_active[eq]), None)
+
+    def hold(self, part: str) -> None:
+        """Keep hold of ``part`` at the point the hand touches: a ball joint from now on.
+
+        The hand must be within ``HOLD_REACH`` of the part (approach it first). While held,
+        the part follows the hand as far as its own joint lets it, both ways: the hand that
+        pushed a lid open can pull it shut again (thesis ch. 4's paired skills).
+        """
+        if part not in self._holds:
+            held = ", ".join(self._holds) or "nothing"
+            raise ValueError(f"can {self.can} has no part {part!r} to hold; it has {held}")
+        if self.held_part is not None:
+            raise ValueError(f"the hand already holds the {self.held_part}; release it first")
+        gap = self._distance_to(part)
+        if gap > HOLD_REACH:
+            raise ValueError(f"the hand is {gap:.3f} m from the {part}; it must be within "
+                             f"{HOLD_REACH} m to take hold (approach the part first)")
+        m, d = self.model, self.data
+        body = m.body(part).id
+        eq = self._holds[part]
+        m.eq_data[eq, 0:3] = 0.0  # the hand's centre ...
+        offset = self.effector_pos - d.xpos[body]
+        m.eq_data[eq, 3:6] = d.xmat[body].reshape(3, 3).T @ offset  # ... where it is on the part
+        d.eq_active[eq] = 1
+        self.relax()
+
+    def release(self) -> None:
+        """Let go of the held part (nothing happens if none is held)."""
+        for eq in self._holds.values():
+            self.data.eq_active[eq] = 0
+        self.relax()
+
+    def _distance_to(self, part: str) -> float:
+        """Smallest distance (m) between the hand and the colliding geoms of ``part``."""
+        m, d = self.model, self.data
+        hand = m.geom("hand").id
+        body = m.body(part).id
+        geoms = [g for g in range(m.ngeom) if m.geom_bodyid[g] == body and m.geom_contype[g]]
+        return min(mujoco.mj_geomDistance(m, d, hand, g, 1.0, None) for g in geoms)
+
     # ------------------------------------------------------------------- ball
     @property
     def grip_point(self) -> np.ndarray:
@@ -308,6 +365,19 @@ class GarbageWorld:
         if slide is not None:
             slide.qvel[:] = 0.0
         mujoco.mj_forward(m, d)
+
+    def gap_corners(self) -> np.ndarray:
+        """World corners (4, 3) of the dark gap the head camera sees into (eq. 4.19).
+
+        The gap runs from the inner front edge of the rim (behind the front wall) to the lid's
+        front edge, between the inner side walls; projected through the camera model, its
+        bounding box matches the camera's dark region within 0.002 + 5 % of the image share.
+        """
+        half = self.spec.width / 2 - WALL
+        rim = self.data.site("rim_front").xpos + np.array([WALL, 0.0, 0.0])
+        lid = self.data.site("lid_front").xpos
+        return np.array([rim + [0, -half, 0], rim + [0, half, 0],
+                         lid + [0, half, 0], lid + [0, -half, 0]])
 
     def state(self) -> WorldState:
         """Ground truth now: opening, part markers, ball and hand."""

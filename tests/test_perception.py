@@ -93,6 +93,14 @@ def test_opening_is_dark_height_scaled_by_the_marker():
     assert observe_image(image2, {"body": 0.05}).opening == pytest.approx(0.080, abs=1e-9)
 
 
+def test_opening_area_is_the_dark_box_share_of_the_image():
+    """Eq. 4.19: s_o = w·h / (W·H) of the dark region's bounding box, marker or not."""
+    image = _frame()
+    cv2.rectangle(image, (90, 100), (159, 139), DARK, -1)  # 70 x 40 px
+    assert observe_image(image).opening_area == pytest.approx(70 * 40 / (W * H))
+    assert observe_image(_frame()).opening_area == 0.0
+
+
 def test_no_dark_region_or_no_marker_means_no_opening():
     image = _frame()
     cv2.rectangle(image, (100, 150), (149, 169), RED, -1)
@@ -194,6 +202,16 @@ def test_camera_and_truth_agree_on_the_opening_parts_and_relations(sweep, worlds
         assert ("lid", "body") in seen.above
         if "handle" in seen.parts:
             assert {("handle", "body"), ("lid", "handle")} <= set(seen.above)
+
+
+@pytest.mark.parametrize("can", sorted(CANS))
+def test_camera_and_truth_agree_on_the_opening_area(sweep, can):
+    """s_o (eq. 4.19) from the rendered frame and from the projected gap, 0 to 0.20 m open."""
+    areas = [(seen.opening_area, true.opening_area) for _, seen, true in sweep[can]]
+    assert areas[0] == (0.0, 0.0)  # closed: no dark region at all
+    for seen, true in areas:
+        assert abs(seen - true) <= 0.002 + 0.05 * true, areas
+    assert [t for _, t in areas] == sorted(t for _, t in areas) and areas[-1][1] > 0.05
 
 
 def test_a_closed_can_reads_no_opening(sweep):

@@ -124,6 +124,54 @@ def test_lid_stays_where_it_was_left(world: GarbageWorld) -> None:
         assert world.opening() == pytest.approx(0.11, abs=2e-3), can
 
 
+def test_a_held_lid_follows_the_hand_both_ways_and_stays_when_released(
+        world: GarbageWorld) -> None:
+    """hold(): a ball joint where the hand touches; pulling back closes what pushing opened."""
+    world.reset("o1", seed=0)
+    face = world.state().parts["lid"].pos
+    world.move_arm_to([-0.12, face[1], face[2]])
+    with pytest.raises(ValueError, match="must be within 0.01 m to take hold"):
+        world.hold("lid")
+    world.move_arm_to([face[0] - 0.017, face[1], face[2]])
+    world.hold("lid")
+    assert world.held_part == "lid"
+    with pytest.raises(ValueError, match="already holds the lid"):
+        world.hold("lid")
+    for _ in range(6):
+        world.move_arm(0.0, 0.0, 0.01)
+    opened = world.opening()
+    assert opened > 0.03
+    for _ in range(3):
+        world.move_arm(0.0, 0.0, -0.01)
+    assert 0.005 < world.opening() < opened - 0.015  # moving back closes it again
+    world.release()
+    assert world.held_part is None
+    left = world.opening()
+    world.move_arm(-0.05, 0.0, 0.0)
+    world.step(1000)
+    assert world.opening() == pytest.approx(left, abs=2e-3)  # friction keeps it there
+    world.reset(seed=0)
+    assert world.held_part is None and world.opening() < 1e-3
+
+
+def test_hold_refuses_parts_the_can_cannot_hold(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    with pytest.raises(ValueError, match="no part 'handle' to hold; it has lid"):
+        world.hold("handle")
+    with pytest.raises(ValueError, match="no part 'body' to hold"):
+        world.hold("body")
+
+
+def test_gap_corners_span_the_opening(world: GarbageWorld) -> None:
+    world.reset("o5", seed=0)
+    world.set_opening(0.1)
+    corners = world.gap_corners()
+    assert corners.shape == (4, 3)
+    assert np.linalg.norm(corners[2] - corners[1]) == pytest.approx(0.1, abs=0.01)
+    assert corners[1, 1] - corners[0, 1] == pytest.approx(world.spec.width - 2 * 0.008)
+    world.set_opening(0.0)
+
+
 def test_set_opening_refuses_impossible_widths(world: GarbageWorld) -> None:
     """Openings beyond what the hinge allows are refused and the lid is left closed."""
     world.reset("o1", seed=0)

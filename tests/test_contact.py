@@ -1,0 +1,83 @@
+"""Chapter 4's continuous interface: the hand holds the lid or handle and moves in small steps."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from behaviours.contact import PartContact
+from behaviours.learners.exploration import ContinuousWorld
+from behaviours.perception import CameraPerception
+from sim.scene import HOME
+from sim.world import GarbageWorld
+
+
+@pytest.fixture(scope="module")
+def world() -> GarbageWorld:
+    made = GarbageWorld("o1")
+    yield made
+    made.close()
+
+
+def run(contact: PartContact, moves: list[list[float]]) -> list[float]:
+    """s_o before and after each move."""
+    states = [contact.observe()]
+    states += [contact.step(np.array(move)) for move in moves]
+    return states
+
+
+def test_pushing_the_lid_opens_it_and_pulling_back_closes_it(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    with PartContact(world, "lid") as contact:
+        assert isinstance(contact, ContinuousWorld) and world.held_part == "lid"
+        assert contact.action_bounds == [(-0.01, 0.01)]
+        states = run(contact, [[0.01]] * 10 + [[-0.01]] * 12)
+    opening, closing = np.diff(states[:11]), np.diff(states[10:])
+    assert states[0] == 0.0 and states[10] > 0.008
+    assert np.all(opening >= 0) and np.all(closing <= 0)  # e_o = s'_o − s_o (4.20)
+    assert states[-1] < 0.002  # closed again
+    assert world.held_part is None and np.allclose(world.effector_pos, HOME, atol=3e-3)
+
+
+def test_pulling_the_handle_opens_it_and_pushing_closes_it(world: GarbageWorld) -> None:
+    world.reset("o5", seed=0)
+    with PartContact(world, "handle", dims=3) as contact:
+        assert contact.action_bounds == [(-0.01, 0.01)] * 3
+        states = run(contact, [[-0.01, 0.0, -0.005]] * 6 + [[0.01, 0.0, 0.0]] * 8)
+    assert states[6] > 0.025 and np.all(np.diff(states[:7]) > 0.003)
+    assert states[-1] < 0.003
+    assert world.opening() < 0.01  # the can stays as the hand left it
+
+
+def test_the_camera_agrees_with_ground_truth_along_a_run(world: GarbageWorld) -> None:
+    world.reset("o5", seed=0)
+    camera = CameraPerception()
+    with PartContact(world, "handle") as contact:
+        for _ in range(8):
+            truth = contact.step(np.array([-0.01]))
+            assert abs(camera.observe(world).opening_area - truth) <= 0.002 + 0.05 * truth
+
+
+@pytest.mark.parametrize(
+    ("move", "message"),
+    [([0.02], "out of bounds"), ([float("nan")], "finite number"), ([0.01, 0.0], "1 finite")],
+)
+def test_bad_actions_are_refused_and_leave_the_world_unchanged(
+        world: GarbageWorld, move: list[float], message: str) -> None:
+    world.reset("o1", seed=0)
+    with PartContact(world, "lid") as contact:
+        contact.step(np.array([0.01]))
+        before = (world.opening(), tuple(world.effector_pos))
+        with pytest.raises(ValueError, match=message):
+            contact.step(np.array(move))
+        assert (world.opening(), tuple(world.effector_pos)) == before
+
+
+def test_misuse_is_a_clear_error(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    with pytest.raises(ValueError, match="has no part 'handle'"):
+        PartContact(world, "handle")
+    with pytest.raises(ValueError, match="dims must be 1"):
+        PartContact(world, "lid", dims=2)
+    with pytest.raises(ValueError, match="does not hold the lid; call start first"):
+        PartContact(world, "lid").step(np.array([0.01]))
