@@ -279,7 +279,7 @@ class TruthPerception:
             if p1 != p2 and heights[p1] > heights[p2] + ABOVE_MARGIN_M
         )
         corners = camera.project(world.gap_corners())
-        gap = _filled_hull(corners, camera.width, camera.height)
+        gap = filled_hull(corners, camera.width, camera.height)
         area = 0.0
         if gap is not None and corners[2:, 1].mean() < corners[:2, 1].mean():  # lid edge higher
             _, _, w, h = cv2.boundingRect(cv2.findNonZero(gap))
