@@ -1,4 +1,5 @@
-# The README's two commands: `make demo` (set up + main demo) and `make test` (set up + suite).
+# The README's two commands: `make demo` (set up + main demo) and `make test` (set up, the
+# import-layer contract of pyproject.toml, then the suite).
 export MUJOCO_GL ?= egl
 PY := .venv/bin/python
 
@@ -13,6 +14,7 @@ demo: setup
 		--load-beliefs out/exp1.pl --save-beliefs out/exp2.pl --plot out/exp2-reliability.png
 
 test: setup
+	.venv/bin/lint-imports --no-cache
 	$(PY) -m pytest -q -p no:cacheprovider
 
 lint:

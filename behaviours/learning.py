@@ -3,15 +3,17 @@
 Random mode samples θ uniformly in the action's bounds lo < θ <= hi (thesis: 0 < θ <= θ0),
 measures each effect (the change of opening, eq. 5.3) through a plain callable, fits
 Ĥ(θ) = b + c·θ (eq. 6.7) after every sample and stops when the regression has settled
-(eq. 5.19) or after ``n_max`` samples. The model's maximum e_max (eq. 6.8) decides the percept:
+(eq. 5.19) or after ``n_max`` samples. The model's maximum e_max (eq. 6.8) decides the evidence:
 ``afford(Obj, Act, Eff, 0, 0, r1)`` when e_max ≥ δ (6.10, 6.11), else
 ``afford(Obj, Act, Eff, 0, 0, r2)`` (6.14). θ_max (eq. 6.13) is what the agent uses to verify
-the prediction; ``verification_percept`` turns the observed effect into ``afford(..., 1, 1, 1)``
+the prediction; ``verify_effect`` turns the observed effect into ``afford(..., 1, 1, 1)``
 or ``afford(..., 1, 0, 0)`` (§6.3.3).
 
+Results are plain Python data (``AffordanceEvidence``): turning them into an agent's percepts
+is the robot application's job (``robot/envs/garbage.py``), so this layer knows no agent.
 ``learn`` knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
 ``learn_in_world`` runs it on the simulated can through ``behaviours.skills.perform_skill``,
-and ``AffordanceBehaviours`` turns an agent's ``learn`` and ``apply`` actions into percepts.
+and ``AffordanceBehaviours`` carries out an agent's ``learn`` and ``apply`` requests.
 """
 
 from __future__ import annotations
@@ -27,7 +29,6 @@ from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
 from behaviours.models import LinearEffectModel, ModelStore, check_bounds
-from goalagent.kb.terms import Atom, Struct
 
 if TYPE_CHECKING:
     from behaviours.perception import Perception
@@ -97,10 +98,26 @@ class RandomExplorer(BaseEstimator):
 
 
 @dataclass(frozen=True)
-class LearnResult:
-    """What ``learn`` reports: the percept, the best parameter and its predicted effect."""
+class AffordanceEvidence:
+    """The six arguments of an ``afford(Obj, Act, Eff, Tot, Suc, Rel)`` percept (eq. 6.1).
 
-    afford_term: Struct  # afford(Obj, Act, Eff, 0, 0, r1 | r2)
+    Numbers keep their Python type (``1`` stays an int, ``0.3`` a float) so the percept the
+    environment builds from them is exactly the term the agent's rules expect.
+    """
+
+    obj: str
+    act: str
+    eff: str
+    tot: int
+    suc: int
+    rel: int | float
+
+
+@dataclass(frozen=True)
+class LearnResult:
+    """What ``learn`` reports: the evidence, the best parameter and its predicted effect."""
+
+    evidence: AffordanceEvidence  # afford(Obj, Act, Eff, 0, 0, r1 | r2)
     theta_max: float  # eq. 6.13
     e_max: float  # eq. 6.8
     samples: int  # how many actions the exploration performed
@@ -108,20 +125,13 @@ class LearnResult:
     model: LinearEffectModel
 
 
-def afford_percept(
-    obj: str, action: str, effect_name: str, tot: int, suc: int, rel: float
-) -> Struct:
-    """The percept afford(Obj, Act, Eff, Tot, Suc, Rel) as a term (eq. 6.1)."""
-    return Struct("afford", (Atom(obj), Atom(action), Atom(effect_name), tot, suc, rel))
-
-
-def verification_percept(
+def verify_effect(
     *, obj: str, action: str, effect_name: str, observed_effect: float, delta: float
-) -> Struct:
+) -> AffordanceEvidence:
     """§6.3.3: afford(..., 1, 1, 1) if the observed effect reaches δ (6.9), else (..., 1, 0, 0)."""
     if observed_effect >= delta:
-        return afford_percept(obj, action, effect_name, 1, 1, 1)
-    return afford_percept(obj, action, effect_name, 1, 0, 0)
+        return AffordanceEvidence(obj, action, effect_name, 1, 1, 1)
+    return AffordanceEvidence(obj, action, effect_name, 1, 0, 0)
 
 
 def _check_mode(mode: str) -> None:
@@ -160,7 +170,7 @@ def learn(
     r1: float = 0.3,
     r2: float = 0.05,
 ) -> LearnResult:
-    """Learn Ĥ for (obj, action) in ``mode`` and report the affordance percept (§6.3.4).
+    """Learn Ĥ for (obj, action) in ``mode`` and report the affordance evidence (§6.3.4).
 
     ``key`` names the model in ``store`` (normally (can, part, action); default (obj, action));
     a stored model under the same key is replaced by the new one and the store is saved.
@@ -185,7 +195,7 @@ def learn(
     if store is not None:
         store.put(tuple(key) if key is not None else (obj, action), explorer.bounds, model)
     return LearnResult(
-        afford_term=afford_percept(obj, action, effect_name, 0, 0, reliability),
+        evidence=AffordanceEvidence(obj, action, effect_name, 0, 0, reliability),
         theta_max=theta_max,
         e_max=e_max,
         samples=explorer.n_samples_,
@@ -230,8 +240,7 @@ def learn_in_world(
     it (e.g. the camera, eq. 5.14) when one is given. ``options`` go to ``learn`` (n_min,
     settle_tol, r1, r2).
     """
-    from behaviours.skills import check_skill
-    from sim.world import THETA_BOUNDS
+    from behaviours.skills import THETA_BOUNDS, check_skill
 
     _check_mode(mode)
     check_skill(world, action, part, THETA_BOUNDS.get(action, (0.0, 0.0))[1])
@@ -262,9 +271,9 @@ def learn_in_world(
 
 @dataclass(frozen=True)
 class ApplyResult:
-    """What using an affordance reports: the verification percept, the θ used, the effect."""
+    """What using an affordance reports: the verification evidence, the θ used, the effect."""
 
-    afford_term: Struct  # afford(Obj, Act, Eff, 1, 1, 1) or afford(Obj, Act, Eff, 1, 0, 0)
+    evidence: AffordanceEvidence  # afford(Obj, Act, Eff, 1, 1, 1) or (Obj, Act, Eff, 1, 0, 0)
     theta: float
     effect: float
 
@@ -272,8 +281,8 @@ class ApplyResult:
 class AffordanceBehaviours:
     """The affordance actions an agent sends to the simulated can: learn and apply (§6.3).
 
-    ``learn(part, action)`` explores (§6.3.4) and reports the r1/r2 percept; ``apply(part,
-    action)`` acts once with the best known θ (eq. 6.13) and reports the verification percept
+    ``learn(part, action)`` explores (§6.3.4) and reports the r1/r2 evidence; ``apply(part,
+    action)`` acts once with the best known θ (eq. 6.13) and reports the verification evidence
     (§6.3.3). One seeded generator feeds every exploration, so a whole run is reproducible.
     """
 
@@ -322,7 +331,7 @@ class AffordanceBehaviours:
 
         The store may answer with another can's model of the part (``ModelStore.lookup``).
         """
-        from sim.world import THETA_BOUNDS
+        from behaviours.skills import THETA_BOUNDS
 
         known = self._theta.get((self.world.can, part, action))
         if known is not None:
@@ -334,17 +343,16 @@ class AffordanceBehaviours:
 
     def apply(self, part: str, action: str, effect_name: str = "opened") -> ApplyResult:
         """Act once with theta_for(part, action) and verify the effect against δ (6.9)."""
-        from behaviours.skills import check_skill
-        from sim.world import THETA_BOUNDS
+        from behaviours.skills import THETA_BOUNDS, check_skill
 
         check_skill(self.world, action, part, THETA_BOUNDS.get(action, (0.0, 0.0))[1])
         theta = self.theta_for(part, action)
         effect = _measured_effect(self.world, self.perception, action, part, theta)
-        percept = verification_percept(
+        evidence = verify_effect(
             obj=part,
             action=action,
             effect_name=effect_name,
             observed_effect=effect,
             delta=self.delta,
         )
-        return ApplyResult(afford_term=percept, theta=theta, effect=effect)
+        return ApplyResult(evidence=evidence, theta=theta, effect=effect)

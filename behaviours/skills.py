@@ -23,10 +23,26 @@ from dataclasses import dataclass
 import numpy as np
 
 from sim.scene import BALL_RADIUS, GRIP_OFFSET, HAND_RADIUS, WALL
-from sim.world import ACTION_DIRECTIONS, ACTION_TYPES, THETA_BOUNDS, GarbageWorld
+from sim.world import GarbageWorld
 
-__all__ = ["SkillError", "SkillResult", "check_skill", "drop_ball", "grasp_ball",
-           "perform_skill"]
+__all__ = ["ACTION_DIRECTIONS", "ACTION_TYPES", "THETA_BOUNDS", "SkillError", "SkillResult",
+           "check_skill", "drop_ball", "grasp_ball", "perform_skill"]
+
+ACTION_TYPES: tuple[str, ...] = (
+    "extend_arm", "contract_arm", "sweep_left", "sweep_right", "lift_up", "sweep_down",
+)
+"""Thesis §5.6.1 / §6.4.1 action types: push forward, pull back, sweep left/right, lift, down."""
+ACTION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
+    "extend_arm": (1.0, 0.0, 0.0),
+    "contract_arm": (-1.0, 0.0, 0.0),
+    "sweep_left": (0.0, 1.0, 0.0),
+    "sweep_right": (0.0, -1.0, 0.0),
+    "lift_up": (0.0, 0.0, 1.0),
+    "sweep_down": (0.0, 0.0, -1.0),
+}
+"""Unit direction of each action type in the world frame (robot faces +x, left is +y)."""
+THETA_BOUNDS: dict[str, tuple[float, float]] = {a: (0.0, 0.1) for a in ACTION_TYPES}
+"""Allowed θ per action type: lo < θ <= hi metres (thesis: 0 < θ <= θ0 = 0.1 m)."""
 
 MARGIN = 0.004
 """Free space (m) left between the hand and a part when the hand arrives in its vicinity."""

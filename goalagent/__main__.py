@@ -1,5 +1,5 @@
 """`python -m goalagent` runs the command-line interface."""
 
-from goalagent.cli import app
+from goalagent.cli import main
 
-app()
+main()

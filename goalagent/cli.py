@@ -2,43 +2,38 @@
 
 User mistakes (a malformed file, an unknown environment, a bad parameter) print one
 ``file:line:col: message`` line on stderr and exit with code 2, never a traceback.
+Installed extensions (``goalagent.extensions``) add commands, ``run`` options and run hooks:
+``main`` builds the command line from the language's commands and theirs.
 """
 
 from __future__ import annotations
 
 import contextlib
+import inspect
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.table import Table
 
-from goalagent.affordance import (
-    ReliabilityHistory,
-    affordances,
-    load_affordances,
-    save_affordances,
-)
 from goalagent.agent import Agent, AgentError, validate_program
+from goalagent.beliefs import BeliefSaver, load_beliefs
+from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.extensions import (
+    Extension,
+    RunContext,
+    RunHook,
+    SavedPredicate,
+    installed_extensions,
+)
 from goalagent.kb.engine import KBError
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
 from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
 
-app = typer.Typer(
-    add_completion=False,
-    no_args_is_help=True,
-    help="Run GOAL agent programs whose beliefs live in SWI-Prolog.",
-)
-err_console = Console(stderr=True, highlight=False, soft_wrap=True)
-USER_ERROR = 2
-
-
-def _fail(message: str) -> typer.Exit:
-    err_console.print(f"[bold red]error:[/] {message}", markup=True)
-    return typer.Exit(code=USER_ERROR)
+HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 
 
 def _env_params(pairs: list[str]) -> dict[str, Term]:
@@ -46,9 +41,22 @@ def _env_params(pairs: list[str]) -> dict[str, Term]:
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
-            raise _fail(f"--env-param {pair!r}: expected KEY=VALUE")
+            raise user_error(f"--env-param {pair!r}: expected KEY=VALUE")
         params[key.strip()] = parse_parameter(value.strip())
     return params
+
+
+def _saved_predicates(indicators: list[str],
+                      extensions: Sequence[Extension]) -> tuple[SavedPredicate, ...]:
+    """The extensions' saved predicates, then those named by ``--save-predicate NAME/ARITY``."""
+    chosen = {p.indicator: p for e in extensions for p in e.saved_predicates}
+    for indicator in indicators:
+        name, sep, arity = indicator.strip().rpartition("/")
+        if not sep or not name or not arity.isdigit():
+            raise user_error(f"--save-predicate {indicator!r}: expected NAME/ARITY, "
+                             "e.g. visited/2")
+        chosen.setdefault(f"{name}/{int(arity)}", SavedPredicate(name, int(arity)))
+    return tuple(chosen.values())
 
 
 class _TracePrinter:
@@ -61,8 +69,7 @@ class _TracePrinter:
         self.console.print(f"[dim]{agent}[/] [cyan]{kind:>12}[/] {text}", markup=True)
 
 
-@app.command()
-def run(
+def _language_run_options(
     path: Annotated[Path, typer.Argument(help="A .goal agent file or a .mas2g system file.")],
     env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
     env_param: Annotated[
@@ -76,52 +83,94 @@ def run(
         Path | None, typer.Option(help="Prolog facts (e.g. saved afford/6) to add to the "
                                        "agents' beliefs before they start.")] = None,
     save_beliefs: Annotated[
-        Path | None, typer.Option(help="Write the final afford/6 beliefs here.")] = None,
-    plot: Annotated[
-        Path | None, typer.Option(help="PNG of afford/6 reliabilities over the actions taken "
-                                       "(default: afford-AGENT.png when agents have any).")
-    ] = None,
+        Path | None, typer.Option(help="Write the final beliefs of the saved predicates here "
+                                       "(those extensions declare, e.g. afford/6, and "
+                                       "--save-predicate).")] = None,
+    save_predicate: Annotated[
+        list[str] | None, typer.Option("--save-predicate", help="NAME/ARITY of a predicate "
+                                       "--save-beliefs also writes (repeatable).")] = None,
 ) -> None:
-    """Run an agent (or a multi-agent system) until it terminates or the cycle limit."""
-    params = _env_params(env_param or [])
-    options = dict(seed=seed, tracer=_TracePrinter() if trace else None,
+    """The language's own ``run`` options (its signature is the start of ``run``'s)."""
+
+
+def _run_command(extensions: Sequence[Extension]) -> Callable[..., None]:
+    """``run`` with the language's options followed by those the extensions add."""
+    parameters = list(inspect.signature(_language_run_options, eval_str=True).parameters.values())
+    taken = {parameter.name for parameter in parameters}
+    for extension in extensions:
+        for option in extension.run_options:
+            if option.name in taken:
+                err_console.print(f"warning: goalagent extension {extension.name!r}: run option "
+                                  f"--{option.name.replace('_', '-')} is already taken",
+                                  markup=False)
+                continue
+            taken.add(option.name)
+            annotation = Annotated[option.type | None, typer.Option(help=option.help)]
+            parameters.append(inspect.Parameter(option.name, inspect.Parameter.KEYWORD_ONLY,
+                                                default=option.default, annotation=annotation))
+
+    def run(**values: Any) -> None:
+        """Run an agent (or a multi-agent system) until it terminates or the cycle limit."""
+        _run(values, extensions)
+
+    run.__signature__ = inspect.Signature(parameters)  # type: ignore[attr-defined]
+    return run
+
+
+def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
+    """What ``goalagent run`` does with its option ``values``."""
+    path: Path = values["path"]
+    env: str | None = values["env"]
+    trace: bool = values["trace"]
+    params = _env_params(values["env_param"] or [])
+    predicates = _saved_predicates(values["save_predicate"] or [], extensions)
+    if values["save_beliefs"] is not None and not predicates:
+        raise user_error("--save-beliefs: no predicate to save; name one with "
+                         "--save-predicate NAME/ARITY")
+    options = dict(seed=values["seed"], tracer=_TracePrinter() if trace else None,
                    warn=lambda message: err_console.print(message, markup=False))
     try:
         if path.suffix == ".mas2g":
             if env is not None:
-                raise _fail("--env is for .goal files; a .mas2g names its own environment")
+                raise user_error("--env is for .goal files; a .mas2g names its own environment")
             system = MultiAgentSystem.from_mas_file(path, env_params=params, **options)
         else:
             if params and env is None:
-                raise _fail("--env-param sets an environment's init parameters: give --env too")
+                raise user_error("--env-param sets an environment's init parameters: "
+                                 "give --env too")
             system = MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
                                                      **options)
-        if load_beliefs is not None:
+        if values["load_beliefs"] is not None:
             for agent in system.agents:
-                load_affordances(agent, load_beliefs)
+                load_beliefs(agent, values["load_beliefs"])
     except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
-        raise _fail(str(err)) from None
-    histories = {agent.name: ReliabilityHistory() for agent in system.agents}
-    for agent in system.agents:
-        histories[agent.name].record(agent)
+        raise user_error(str(err)) from None
+    hooks: list[RunHook] = [make() for extension in extensions for make in extension.run_hooks]
+    if values["save_beliefs"] is not None:
+        hooks.append(BeliefSaver(values["save_beliefs"], predicates))
+    context = RunContext(system, values, err_console)
+    for hook in hooks:
+        hook.start(context)
     interrupted = False
     # A live status line on an interactive stderr (never with --trace, never in pipes).
     status = (err_console.status("starting") if err_console.is_terminal and not trace
               else contextlib.nullcontext())
 
     def after_cycle(agent: Agent) -> None:
-        histories[agent.name].record(agent)
+        for hook in hooks:
+            hook.after_cycle(context, agent)
         if not isinstance(status, contextlib.nullcontext):
             status.update(f"{agent.name}: cycle {agent.cycle}, {agent.total_actions} actions")
 
     try:
         with status:
-            system.run(max_cycles, after_cycle=after_cycle)
+            system.run(values["max_cycles"], after_cycle=after_cycle)
     except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
         interrupted = True
         err_console.print("interrupted", markup=False)
     try:
-        _report_affordances(system, histories, save_beliefs, plot)
+        for hook in hooks:
+            hook.finish(context)
         summaries = system.summaries()
     finally:
         system.close()
@@ -133,31 +182,6 @@ def run(
         raise typer.Exit(code=1)
 
 
-def _report_affordances(system: MultiAgentSystem, histories: dict[str, ReliabilityHistory],
-                        save: Path | None, plot: Path | None) -> None:
-    """The afford/6 table on stderr, the reliability plot, and the saved beliefs."""
-    for agent in system.agents:
-        rows = affordances(agent)
-        if not rows:
-            continue
-        table = Table(title=f"afford/6 beliefs of {agent.name}")
-        for column in ("Obj", "Act", "Eff", "Tot", "Suc", "Rel"):
-            table.add_column(column, justify="right" if column in "TotSucRel" else "left")
-        for row in rows:
-            table.add_row(row.obj, row.act, row.eff, str(row.tot), str(row.suc),
-                          f"{row.rel:.3f}")
-        err_console.print(table)
-        target = plot if plot is not None and len(system.agents) == 1 else (
-            plot.with_name(f"{plot.stem}-{agent.name}{plot.suffix}") if plot is not None
-            else Path(f"afford-{agent.name}.png"))
-        histories[agent.name].plot(target, f"Affordance reliabilities of {agent.name}")
-        err_console.print(f"reliability plot: {target}", markup=False)
-    if save is not None:
-        count = save_affordances(system.agents, save)
-        err_console.print(f"saved {count} afford/6 beliefs to {save}", markup=False)
-
-
-@app.command()
 def check(
     paths: Annotated[list[Path], typer.Argument(help=".goal and .mas2g files to check.")],
 ) -> None:
@@ -184,25 +208,18 @@ def check(
         raise typer.Exit(code=USER_ERROR)
 
 
-@app.command()
-def snapshot(
-    can: Annotated[str, typer.Option(help="Which garbage can: o1 .. o5.")] = "o1",
-    out: Annotated[Path, typer.Option(help="Where to write the PNG.")] = Path("frame.png"),
-    seed: Annotated[int, typer.Option(help="Scene seed.")] = 0,
-    opening: Annotated[
-        float | None, typer.Option(help="Open the can this far (metres) first.")] = None,
-) -> None:
-    """Render the head camera with each perceived part boxed and labelled and the measured
-    opening written on the image."""
-    from sim.scene import CANS
-    from sim.snapshot import render_snapshot
+def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
+    """The ``goalagent`` command line: ``run`` and ``check``, then the extensions' commands."""
+    extensions = installed_extensions() if extensions is None else extensions
+    app = typer.Typer(add_completion=False, no_args_is_help=True, help=HELP)
+    app.command(name="run")(_run_command(extensions))
+    app.command()(check)
+    for extension in extensions:
+        if extension.add_commands is not None:
+            extension.add_commands(app)
+    return app
 
-    if can not in CANS:
-        raise _fail(f"unknown can {can!r}; known cans: {', '.join(sorted(CANS))}")
-    try:
-        observation = render_snapshot(can, out, seed=seed, opening=opening)
-    except ValueError as err:
-        raise _fail(str(err)) from None
-    parts = ", ".join(sorted(observation.parts))
-    err_console.print(f"{out}: can {can}, parts {parts}, opening {observation.opening:.3f} m",
-                      markup=False)
+
+def main() -> None:
+    """The ``goalagent`` console script."""
+    create_app()()

@@ -1,9 +1,6 @@
 """MuJoCo worlds: the garbage cans (ch. 5-6), navigation and stacking (ch. 3), head search (App. A).
 
-Importing any of them selects headless EGL rendering unless ``MUJOCO_GL`` says otherwise, so
-scenes render on machines without a display.
+Scenes as data, world wrappers, rendering; imports nothing of goalagent, behaviours or robot.
+No import sets ``MUJOCO_GL``: call ``sim.headless.use_headless_rendering()`` before importing a
+world (or set ``MUJOCO_GL=egl``) so scenes render on machines without a display.
 """
-
-import os
-
-os.environ.setdefault("MUJOCO_GL", "egl")

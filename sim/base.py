@@ -13,10 +13,8 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-os.environ.setdefault("MUJOCO_GL", "egl")
-
-import mujoco  # noqa: E402
-import numpy as np  # noqa: E402
+import mujoco
+import numpy as np
 
 MAX_IMAGE = (640, 480)
 """Largest frame (width, height) the scenes' offscreen buffers hold."""

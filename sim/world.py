@@ -22,13 +22,11 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-os.environ.setdefault("MUJOCO_GL", "egl")
+import mujoco
+import numpy as np
 
-import mujoco  # noqa: E402
-import numpy as np  # noqa: E402
-
-from sim.base import CameraModel  # noqa: E402
-from sim.scene import (  # noqa: E402
+from sim.base import CameraModel
+from sim.scene import (
     ARM_RANGE,
     BALL_RADIUS,
     CANS,
@@ -43,26 +41,8 @@ from sim.scene import (  # noqa: E402
     build_mjcf,
 )
 
-__all__ = [
-    "ACTION_DIRECTIONS", "ACTION_TYPES", "CANS", "MARKER_SIZE", "THETA_BOUNDS", "CameraModel",
-    "CanSpec", "GarbageWorld", "PartState", "WorldState",
-]
-
-ACTION_TYPES: tuple[str, ...] = (
-    "extend_arm", "contract_arm", "sweep_left", "sweep_right", "lift_up", "sweep_down",
-)
-"""Thesis §5.6.1 / §6.4.1 action types: push forward, pull back, sweep left/right, lift, down."""
-ACTION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
-    "extend_arm": (1.0, 0.0, 0.0),
-    "contract_arm": (-1.0, 0.0, 0.0),
-    "sweep_left": (0.0, 1.0, 0.0),
-    "sweep_right": (0.0, -1.0, 0.0),
-    "lift_up": (0.0, 0.0, 1.0),
-    "sweep_down": (0.0, 0.0, -1.0),
-}
-"""Unit direction of each action type in the world frame (robot faces +x, left is +y)."""
-THETA_BOUNDS: dict[str, tuple[float, float]] = {a: (0.0, 0.1) for a in ACTION_TYPES}
-"""Allowed θ per action type: lo < θ <= hi metres (thesis: 0 < θ <= θ0 = 0.1 m)."""
+__all__ = ["CANS", "MARKER_SIZE", "CameraModel", "CanSpec", "GarbageWorld", "PartState",
+           "WorldState"]
 
 ARM_SPEED = 0.4
 """Speed (m/s) of the arm's set-point along a straight-line move."""

@@ -1,4 +1,4 @@
-"""goalagent/kb/affordance.pl in a real mental state: eq. 6.3, parameters, bands, roulette.
+"""goalagent/lib/affordance.pl in a real mental state: eq. 6.3, parameters, bands, roulette.
 
 The library is read the way ``#import "affordance.pl".`` reads it (parse_prolog_file) and
 loaded as knowledge into a MentalState, i.e. into the agent's own SWI-Prolog module.

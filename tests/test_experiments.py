@@ -10,10 +10,11 @@ from pathlib import Path
 
 import pytest
 
-from goalagent.affordance import affordances, load_affordances, save_affordances
 from goalagent.agent import Agent
+from goalagent.beliefs import load_beliefs, save_beliefs
 from goalagent.kb.terms import Atom
 from goalagent.mas import MultiAgentSystem
+from robot.affordance import AFFORD, affordances
 
 ROOT = Path(__file__).resolve().parents[1]
 MAS = ROOT / "agents" / "garbage_disposal.mas2g"
@@ -50,7 +51,7 @@ def run(can: str, seed: int, models: Path, beliefs: Path | None = None,
                                             output=io.StringIO(), warn=lambda message: None)
     (agent,) = system.agents
     if beliefs is not None:
-        load_affordances(agent, beliefs)
+        load_beliefs(agent, beliefs)
     trail = Trail()
     system.run(max_cycles=400, after_cycle=trail.record)
     return system, trail
@@ -85,7 +86,7 @@ def test_experiment_2_relearns_on_the_handle_after_the_lid_fails(tmp_path: Path,
     models = tmp_path / "models.json"
     first, _ = run("o1", seed, models)
     saved = tmp_path / "exp1.pl"
-    save_affordances(first.agents, saved)
+    save_beliefs(first.agents, [AFFORD], saved)
     first.close()
 
     system, trail = run("o2", seed, models, beliefs=saved)

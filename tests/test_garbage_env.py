@@ -6,8 +6,11 @@ from pathlib import Path
 
 import pytest
 
+from behaviours.learning import AffordanceEvidence
 from goalagent.eis import ActException, ActionRefused, ManagementException, load_environment
 from goalagent.eis.terms import Action
+from goalagent.kb.terms import format_term
+from robot.envs.garbage import afford_percept
 
 
 def environment(tmp_path: Path, **params: object):
@@ -110,3 +113,11 @@ def test_an_unknown_agent_cannot_act(tmp_path: Path):
     with pytest.raises(ActException):
         env.perform_action("stranger", Action.of("grasp", "ball"))
     env.kill()
+
+
+def test_afford_percepts_keep_the_numbers_the_behaviours_report():
+    """learn's r1 stays the float 0.3; apply's verdict stays the integers 1, 1, 1 (§6.3.3)."""
+    learned = afford_percept(AffordanceEvidence("lid", "extend_arm", "opened", 0, 0, 0.3))
+    verified = afford_percept(AffordanceEvidence("lid", "extend_arm", "opened", 1, 1, 1))
+    assert format_term(learned) == "afford(lid,extend_arm,opened,0,0,0.3)"
+    assert format_term(verified) == "afford(lid,extend_arm,opened,1,1,1)"

@@ -9,13 +9,13 @@ import pytest
 from sklearn.base import clone
 
 from behaviours.learning import (
+    AffordanceEvidence,
     LearningModeUnavailable,
     RandomExplorer,
     learn,
-    verification_percept,
+    verify_effect,
 )
 from behaviours.models import LinearEffectModel
-from goalagent.kb.terms import Atom, Struct, format_term
 
 EXTEND = (0.0, 0.1)
 WIDE_NEGATIVE = (-0.1, 0.0)
@@ -59,10 +59,8 @@ def test_linear_effect_settles_at_once_and_predicts_opening() -> None:
     assert result.model.intercept_ == pytest.approx(0.007, abs=1e-12)
     assert result.theta_max == 0.1
     assert result.e_max == pytest.approx(0.1363)
-    assert result.afford_term == Struct(
-        "afford", (Atom("lid"), Atom("extend_arm"), Atom("opened"), 0, 0, 0.3)
-    )
-    assert format_term(result.afford_term) == "afford(lid,extend_arm,opened,0,0,0.3)"
+    assert result.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 0, 0, 0.3)
+    assert type(result.evidence.tot) is int and type(result.evidence.rel) is float
 
 
 def test_ineffective_action_reports_r2_with_a_usable_theta_max() -> None:
@@ -71,21 +69,22 @@ def test_ineffective_action_reports_r2_with_a_usable_theta_max() -> None:
     assert result.model.coef_ == pytest.approx(-0.021)
     assert result.theta_max == result.model.theta_.min() > 0.0
     assert result.e_max == pytest.approx(0.003 - 0.021 * result.theta_max)
-    assert result.afford_term.args[3:] == (0, 0, 0.05)
+    evidence = result.evidence
+    assert (evidence.tot, evidence.suc, evidence.rel) == (0, 0, 0.05)
 
 
 def test_an_effective_decreasing_action_still_gets_a_valid_theta_max() -> None:
     result = run(lambda t: 0.2 - t, bounds=(0.02, 0.1))
     assert 0.02 < result.theta_max <= 0.1
     assert result.e_max == pytest.approx(0.2 - result.theta_max)
-    assert result.afford_term.args[5] == 0.3
+    assert result.evidence.rel == 0.3
 
 
 def test_flat_noisy_effect_settles_and_reports_r2() -> None:
     result = run(noisy_flat(1), n_max=20)
     assert result.settled and result.samples < 20
     assert abs(result.e_max) < 0.02
-    assert result.afford_term.args[5] == 0.05
+    assert result.evidence.rel == 0.05
 
 
 def test_saturating_effect_settles_later_under_a_stricter_tolerance() -> None:
@@ -94,7 +93,7 @@ def test_saturating_effect_settles_later_under_a_stricter_tolerance() -> None:
     assert all(a.samples >= b.samples for a, b in zip(strict, loose, strict=True))
     assert sum(r.samples for r in strict) > sum(r.samples for r in loose) + 10
     assert any(not r.settled and r.samples == 15 for r in strict)  # the curve never fits
-    assert all(r.e_max >= 0.1 and r.afford_term.args[5] == 0.3 for r in strict + loose)
+    assert all(r.e_max >= 0.1 and r.evidence.rel == 0.3 for r in strict + loose)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -161,15 +160,16 @@ def test_a_bad_effect_value_is_named() -> None:
     assert run(lambda t: np.float32(t)).model.coef_ == pytest.approx(1.0)  # any real number
 
 
-def test_verification_percepts_follow_6_3_3() -> None:
-    success = verification_percept(
+def test_verification_follows_6_3_3() -> None:
+    success = verify_effect(
         obj="lid", action="extend_arm", effect_name="opened", observed_effect=0.156, delta=0.1
     )
-    failure = verification_percept(
+    failure = verify_effect(
         obj="lid", action="extend_arm", effect_name="opened", observed_effect=0.02, delta=0.1
     )
-    assert format_term(success) == "afford(lid,extend_arm,opened,1,1,1)"
-    assert format_term(failure) == "afford(lid,extend_arm,opened,1,0,0)"
+    assert success == AffordanceEvidence("lid", "extend_arm", "opened", 1, 1, 1)
+    assert failure == AffordanceEvidence("lid", "extend_arm", "opened", 1, 0, 0)
+    assert all(type(n) is int for n in (success.tot, success.suc, success.rel, failure.rel))
 
 
 def test_effect_model_follows_sklearn_conventions() -> None:

@@ -9,14 +9,14 @@ import pytest
 
 from behaviours.learning import (
     AffordanceBehaviours,
+    AffordanceEvidence,
     LearningModeUnavailable,
     learn_in_world,
-    verification_percept,
+    verify_effect,
 )
 from behaviours.models import ModelStore
 from behaviours.perception import Observation
 from behaviours.skills import SkillError, perform_skill
-from goalagent.kb.terms import format_term
 from sim.world import GarbageWorld
 
 DELTA = 0.1
@@ -36,17 +36,17 @@ def test_extend_arm_on_the_lid_is_learned_and_verified(world: GarbageWorld, tmp_
     result = learn_in_world(
         world, part="lid", action="extend_arm", delta=DELTA, n_max=8, random_state=1, store=store
     )
-    assert format_term(result.afford_term) == "afford(lid,extend_arm,opened,0,0,0.3)"
+    assert result.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 0, 0, 0.3)
     assert result.e_max >= DELTA and result.theta_max == 0.1
     assert 4 <= result.samples <= 8
     assert result.model.effect_.max() >= DELTA  # the samples really opened the lid
     assert world.opening() == pytest.approx(0.0, abs=1e-3)  # the can is left as found
     # rule 6.12 goes on with θ_max (6.13): the observed effect verifies the affordance
     observed = perform_skill(world, "extend_arm", "lid", result.theta_max).effect
-    percept = verification_percept(
+    verified = verify_effect(
         obj="lid", action="extend_arm", effect_name="opened", observed_effect=observed, delta=DELTA
     )
-    assert format_term(percept) == "afford(lid,extend_arm,opened,1,1,1)"
+    assert verified == AffordanceEvidence("lid", "extend_arm", "opened", 1, 1, 1)
     stored = ModelStore(tmp_path / "effects.json").get(("o1", "lid", "extend_arm"))
     assert stored is not None and stored.model.n_samples_ == result.samples
 
@@ -56,7 +56,7 @@ def test_sweeping_the_lid_is_predicted_ineffective(world: GarbageWorld) -> None:
     result = learn_in_world(
         world, part="lid", action="sweep_left", delta=DELTA, n_max=6, random_state=2
     )
-    assert format_term(result.afford_term) == "afford(lid,sweep_left,opened,0,0,0.05)"
+    assert result.evidence == AffordanceEvidence("lid", "sweep_left", "opened", 0, 0, 0.05)
     assert result.e_max < DELTA
 
 
@@ -103,8 +103,8 @@ def test_default_n_min_does_not_settle_on_three_lucky_samples(world: GarbageWorl
     hasty = learn_in_world(world, n_min=3, **options)
     world.reset("o3", seed=0)
     default = learn_in_world(world, **options)
-    assert hasty.samples == 3 and hasty.afford_term.args[5] == 0.05
-    assert default.samples >= 4 and default.afford_term.args[5] == 0.3
+    assert hasty.samples == 3 and hasty.evidence.rel == 0.05
+    assert default.samples >= 4 and default.evidence.rel == 0.3
 
 
 def test_behaviours_learn_apply_and_carry_theta_to_another_can(
@@ -115,17 +115,17 @@ def test_behaviours_learn_apply_and_carry_theta_to_another_can(
     robot = AffordanceBehaviours(world, store=ModelStore(tmp_path / "effects.json"), seed=4)
     assert robot.theta_for("lid", "extend_arm") == 0.1  # nothing learned: the largest θ
     learned = robot.learn("lid", "extend_arm")
-    assert learned.afford_term.args[5] == 0.3
+    assert learned.evidence.rel == 0.3
     used = robot.apply("lid", "extend_arm")
     assert used.theta == learned.theta_max
-    assert format_term(used.afford_term) == "afford(lid,extend_arm,opened,1,1,1)"
+    assert used.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 1, 1, 1)
     assert world.opening() >= DELTA
 
     world.reset("o2", seed=0)
     later = AffordanceBehaviours(world, store=ModelStore(tmp_path / "effects.json"))
     assert later.theta_for("lid", "extend_arm") == learned.theta_max  # o1's model
     failed = later.apply("lid", "extend_arm")
-    assert format_term(failed.afford_term) == "afford(lid,extend_arm,opened,1,0,0)"
+    assert failed.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 1, 0, 0)
     with pytest.raises(LearningModeUnavailable, match="transfer-learning issue"):
         later.learn("handle", "lift_up", mode="transfer")
 

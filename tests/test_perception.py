@@ -21,8 +21,8 @@ from behaviours.perception import (
     part_displacement,
 )
 from behaviours.skills import perform_skill
+from robot.snapshot import render_snapshot
 from sim.scene import CANS
-from sim.snapshot import render_snapshot
 from sim.world import GarbageWorld
 
 W, H = 320, 240

@@ -7,8 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from behaviours.skills import SkillError, drop_ball, grasp_ball, perform_skill
-from sim.world import ACTION_TYPES, CANS, GarbageWorld
+from behaviours.skills import ACTION_TYPES, SkillError, drop_ball, grasp_ball, perform_skill
+from sim.world import CANS, GarbageWorld
 
 GOAL = 0.1
 """Thesis goal width (m)."""

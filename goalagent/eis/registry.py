@@ -1,17 +1,20 @@
 """Finding environments by registered name or by ``package.module:Class`` path.
 
 Built-in environments are registered lazily as import paths, so naming one costs nothing until
-it is loaded (the MuJoCo ``garbage`` environment imports MuJoCo only when asked for).
+it is loaded. Applications add theirs through an extension (``goalagent.extensions``): the
+robot application's ``garbage`` imports MuJoCo only when an agent asks for it.
 """
 
 from __future__ import annotations
 
 import importlib
+import sys
 from collections.abc import Callable
 from typing import TypeVar, overload
 
 from goalagent.eis.exceptions import ManagementException, NoEnvironmentException
 from goalagent.eis.interface import Environment
+from goalagent.extensions import Extension, installed_extensions
 
 E = TypeVar("E", bound=type[Environment])
 
@@ -19,8 +22,27 @@ _REGISTRY: dict[str, type[Environment] | str] = {
     "blocksworld": "goalagent.eis.envs.blocksworld:BlocksWorld",
     "towerworld": "goalagent.eis.envs.towerworld:TowerWorld",
     "printer": "goalagent.eis.envs.printer:Printer",
-    "garbage": "sim.envs.garbage:GarbageEnvironment",
 }
+_FROM_EXTENSION: dict[str, Extension] = {}
+"""Names an extension registered, with that extension (prepared before the first import)."""
+_extensions_registered = False
+
+
+def _register_extensions() -> None:
+    """Add the installed extensions' environment names, once; a clash is skipped, not fatal."""
+    global _extensions_registered
+    if _extensions_registered:
+        return
+    _extensions_registered = True
+    for extension in installed_extensions():
+        for name, path in extension.environments.items():
+            try:
+                register_environment(name, path)
+            except (ManagementException, TypeError) as error:
+                print(f"warning: goalagent extension {extension.name!r}: {error}",
+                      file=sys.stderr)
+                continue
+            _FROM_EXTENSION[name] = extension
 
 
 def _path_of(cls: type) -> str:
@@ -66,7 +88,8 @@ def register_environment(name: str, target: E | str | None = None) -> object:
 
 
 def known_environments() -> list[str]:
-    """The registered environment names, sorted."""
+    """The registered environment names (built in and from extensions), sorted."""
+    _register_extensions()
     return sorted(_REGISTRY)
 
 
@@ -99,6 +122,7 @@ def _import_path(spec: str) -> type[Environment]:
 
 def load_environment(spec: str) -> type[Environment]:
     """The environment class for a registered name or a ``package.module:Class`` path."""
+    _register_extensions()
     entry = _REGISTRY.get(spec)
     if entry is None:
         if ":" not in spec:
@@ -108,6 +132,8 @@ def load_environment(spec: str) -> type[Environment]:
             )
         return _import_path(spec)
     if isinstance(entry, str):
+        if spec in _FROM_EXTENSION:
+            _FROM_EXTENSION[spec].ensure_prepared()
         cls = _import_path(entry)
         _REGISTRY[spec] = cls
         return cls

@@ -11,7 +11,7 @@ from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase, ParsedSection
 from goalagent.parser.errors import GoalSyntaxError
 
-LIBRARY = Path(__file__).resolve().parents[1] / "kb"  # Prolog libraries #import finds by name
+LIBRARY = Path(__file__).resolve().parents[1] / "lib"  # Prolog libraries #import finds by name
 
 _MODULE_OPTIONS = {
     "exit": ("always", "never", "nogoals", "noaction"),

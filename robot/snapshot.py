@@ -1,9 +1,9 @@
 """Head-camera snapshot with each perceived part boxed and labelled and the opening written on.
 
-Backs ``goalagent snapshot --can o1 --out frame.png``: one look at what the robot's camera
-perception makes of a can, to check markers, descriptors and the opening by eye. Perception
-runs on the 320x240 frame the robot uses; the picture is drawn at ``SCALE`` times that size so
-the labels are legible.
+Backs ``goalagent snapshot --can o1 --out frame.png`` (or ``goalagent robot snapshot``): one
+look at what the robot's camera perception makes of a can, to check markers, descriptors and
+the opening by eye. Perception runs on the 320x240 frame the robot uses; the picture is drawn
+at ``SCALE`` times that size so the labels are legible.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Percepts describe what the robot perceives each cycle (camera or ground truth, see
 ``behaviours.perception``); actions run the motor skills of ``behaviours.skills`` and the
 affordance behaviours of ``behaviours.learning`` (thesis ch. 6). The vocabulary is documented
-in ``sim/envs/README.md``. A refused action (a part not on this can, θ out of bounds, a mode
+in ``robot/envs/README.md``. A refused action (a part not on this can, θ out of bounds, a mode
 not available) raises ``ActionRefused`` before the world is touched.
 """
 
@@ -14,21 +14,34 @@ import os
 from collections.abc import Iterable
 from pathlib import Path
 
-from behaviours.learning import AffordanceBehaviours, LearningModeUnavailable
+from behaviours.learning import AffordanceBehaviours, AffordanceEvidence, LearningModeUnavailable
 from behaviours.models import ModelStore
 from behaviours.perception import Observation, make_perception
-from behaviours.skills import SkillError, check_skill, drop_ball, grasp_ball, perform_skill
+from behaviours.skills import (
+    THETA_BOUNDS,
+    SkillError,
+    check_skill,
+    drop_ball,
+    grasp_ball,
+    perform_skill,
+)
 from goalagent.eis.exceptions import ActionRefused, ManagementException
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 from goalagent.kb.terms import Atom, Struct
 from sim.scene import CANS
-from sim.world import THETA_BOUNDS, GarbageWorld
+from sim.world import GarbageWorld
 
 CLOSED = 0.01
 """An opening (m) below this counts as closed."""
 CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm", "handle"))
 """What the robot tries, in order, to close a can: press the lid down, press a lifted handle
 down, push a pulled handle back in (the first whose part the can has and that closes it)."""
+
+
+def afford_percept(evidence: AffordanceEvidence) -> Struct:
+    """The percept ``afford(Obj, Act, Eff, Tot, Suc, Rel)`` (eq. 6.1) for what a behaviour found."""
+    return Struct("afford", (Atom(evidence.obj), Atom(evidence.act), Atom(evidence.eff),
+                             evidence.tot, evidence.suc, evidence.rel))
 
 
 def default_model_path() -> Path:
@@ -222,7 +235,7 @@ class GarbageEnvironment(PythonEnvironment):
         except LearningModeUnavailable as error:
             raise ActionRefused(str(error)) from None
         self._changed()
-        self._events.append(result.afford_term)
+        self._events.append(afford_percept(result.evidence))
         self._events.append(Struct("model", (Atom(part), Atom(action_type),
                                              round(result.theta_max, 4),
                                              round(result.e_max, 4))))
@@ -234,4 +247,4 @@ class GarbageEnvironment(PythonEnvironment):
         self._affordance_request(part, action_type)
         result = self.behaviours.apply(part, action_type)
         self._changed()
-        self._events.append(result.afford_term)
+        self._events.append(afford_percept(result.evidence))

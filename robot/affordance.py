@@ -1,23 +1,35 @@
-"""Affordance knowledge seen from Python: afford/6 tables, reliability plots, persistence.
+"""Affordance knowledge seen from Python: afford/6 rows, their history and its plot.
 
-The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in ``kb/affordance.pl`` and
-the agent program; this module only reads an agent's ``afford/6`` beliefs, keeps their
-history for a plot, and saves or loads them as Prolog facts (written atomically).
+The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in the language's library
+``goalagent/lib/affordance.pl`` and the agent program; this module only reads an agent's
+``afford/6`` beliefs, keeps their history for a plot, and declares ``afford/6`` to
+``--save-beliefs`` (``AFFORD``), which writes them as Prolog facts.
 """
 
 from __future__ import annotations
 
-import os
-import tempfile
-from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from goalagent.agent import Agent
-from goalagent.kb.terms import Atom, Struct, format_term
-from goalagent.parser import parse_prolog_file
+from goalagent.extensions import SavedPredicate
+from goalagent.kb.terms import Atom, Term
+
+if TYPE_CHECKING:
+    from goalagent.agent import Agent
 
 AFFORD_QUERY = "afford(Obj, Act, Eff, Tot, Suc, Rel)"
+
+
+def _canonical_afford(args: tuple[Term, ...]) -> tuple[Term, ...]:
+    """Atoms, two counts and a float reliability (``Rel`` = 1 is saved as ``1.0``)."""
+    obj, act, eff, tot, suc, rel = args
+    return (Atom(str(obj)), Atom(str(act)), Atom(str(eff)), int(tot), int(suc), float(rel))
+
+
+AFFORD = SavedPredicate("afford", 6, "afford(Obj, Act, Eff, Tot, Suc, Rel) beliefs",
+                        canonical=_canonical_afford)
+"""``afford/6`` as ``goalagent run --save-beliefs`` writes it."""
 
 
 @dataclass(frozen=True)
@@ -33,12 +45,8 @@ class Affordance:
 
     @property
     def key(self) -> tuple[str, str, str]:
+        """What the affordance is about: (Obj, Act, Eff)."""
         return (self.obj, self.act, self.eff)
-
-    def as_fact(self) -> str:
-        term = Struct("afford", (Atom(self.obj), Atom(self.act), Atom(self.eff), self.tot,
-                                 self.suc, self.rel))
-        return format_term(term) + "."
 
 
 def affordances(agent: Agent) -> list[Affordance]:
@@ -93,39 +101,3 @@ class ReliabilityHistory:
         path.parent.mkdir(parents=True, exist_ok=True)
         figure.savefig(path, dpi=110)
         plt.close(figure)
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that a crash leaves either the old or the new file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-
-
-def save_affordances(agents: Iterable[Agent], path: Path) -> int:
-    """Write every agent's ``afford/6`` beliefs as Prolog facts; returns how many."""
-    lines = ["% afford(Obj, Act, Eff, Tot, Suc, Rel) beliefs saved by goalagent"]
-    count = 0
-    for agent in agents:
-        rows = affordances(agent)
-        lines.append(f"% agent {agent.name}")
-        lines.extend(row.as_fact() for row in rows)
-        count += len(rows)
-    write_atomically(path, "\n".join(lines) + "\n")
-    return count
-
-
-def load_affordances(agent: Agent, path: Path) -> int:
-    """Add the facts of a saved file to the agent's beliefs (before its first cycle)."""
-    facts = parse_prolog_file(path)
-    for fact in facts:
-        agent.ms.insert(fact)
-    return len(facts)

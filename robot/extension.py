@@ -1,0 +1,27 @@
+"""The robot application as a goalagent extension (entry point ``robot`` in the group
+``goalagent.extensions``, see ``pyproject.toml``).
+
+Everything the robot adds to the language is declared here and nowhere else: the ``garbage``
+environment (and the ch.3-5 task worlds as they arrive under ``robot/envs/``), the robot
+commands (``robot/cli.py``), the afford/6 report and ``--plot`` of ``goalagent run``
+(``robot/report.py``), and ``afford/6`` as a predicate ``--save-beliefs`` writes. This module
+and what it imports stay light (no MuJoCo, no OpenCV): goalagent loads it for every command.
+"""
+
+from __future__ import annotations
+
+from goalagent.extensions import Extension
+from robot.affordance import AFFORD
+from robot.cli import add_commands
+from robot.report import PLOT_OPTION, AffordanceReport
+from sim.headless import use_headless_rendering
+
+EXTENSION = Extension(
+    name="robot",
+    environments={"garbage": "robot.envs.garbage:GarbageEnvironment"},
+    add_commands=add_commands,
+    run_options=(PLOT_OPTION,),
+    run_hooks=(AffordanceReport,),
+    saved_predicates=(AFFORD,),
+    prepare=use_headless_rendering,
+)

@@ -1,1 +1,0 @@
-"""EIS environments built on the simulated world (the `garbage` environment)."""
