@@ -1,0 +1,180 @@
+"""The three XCS tasks: navigation and stacking (thesis §3.5) and head-camera search (App. A).
+
+A task turns one action index into world calls (Table 3.1's behaviours, App. A's head moves),
+perceives the state before and after it, and returns the reward (eqs. 3.14, 3.15, App. A),
+whether the trial is over, and the push effect for the affordance table (§3.5.2). Trials start
+from the same setting each time (§3.5.7); ``reset(trial)`` also makes the world's change of
+the experiment: the boxes exchanged after ``exchange_after`` trials, the target moved after
+``move_after``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from behaviours.blob_grid import GridPerception, centre_seen
+from behaviours.object_state import ObjectPerception, ObjectState, push_effect
+from sim.navigation import NavigationWorld
+from sim.search import SearchWorld
+from sim.stacking import StackingWorld
+
+D_DST = 0.05
+"""The goal is reached within this distance (m) of the destination (eq. 3.14)."""
+D_MOVE = 0.05
+"""A step that brings the robot less than this (m) nearer the destination is punished (3.14)."""
+GOAL_REWARD = 1000.0
+PUNISHMENT = -100.0
+NAVIGATION_ACTIONS = {"000": "walk_left", "001": "walk_ahead", "011": "walk_right",
+                      "010": "push_ahead"}
+STACKING_ACTIONS = {"100": "push_stand", "101": "push_squat", "110": "choose_box",
+                    "111": "choose_foam"}
+"""Table 3.1: the navigation task uses the first four actions, stacking the latter four."""
+SEARCH_ACTIONS = {"00": "look_up", "01": "look_right", "10": "look_down", "11": "look_left"}
+"""App. A: one bit per head motor and direction."""
+
+
+def navigation_reward(distance: float, progress: float) -> float:
+    """Eq. 3.14: 1000 within ``D_DST`` of the destination, -100 for progress under ``D_MOVE``."""
+    if distance < D_DST:
+        return GOAL_REWARD
+    if progress < D_MOVE:
+        return PUNISHMENT
+    return 0.0
+
+
+def stacking_reward(stacked: bool, chose: bool) -> float:
+    """Eq. 3.15: 1000 once the stack is as high as the table, -100 for choosing an object."""
+    if stacked:
+        return GOAL_REWARD
+    return PUNISHMENT if chose else 0.0
+
+
+def search_reward(bits: str) -> float:
+    """App. A: 1000 when the centre of the image sees the target, else nothing."""
+    return GOAL_REWARD if centre_seen(bits) else 0.0
+
+
+@dataclass(frozen=True)
+class View:
+    """The state a learner sees: its bits and the object in front (None: nothing, or search)."""
+
+    bits: str
+    obj: str | None
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What one action brought: reward, end of trial, success, and the push effect (if any)."""
+
+    reward: float
+    done: bool
+    success: bool
+    effect: int | None = None
+
+
+class Task(Protocol):
+    """An episodic task over a MuJoCo world."""
+
+    actions: tuple[str, ...]
+    names: dict[str, str]
+
+    def reset(self, trial: int) -> View: ...
+    def perform(self, action: int) -> tuple[Outcome, View]: ...
+
+
+def _view(state: ObjectState) -> View:
+    return View(state.bits, state.object_bits if state.front is not None else None)
+
+
+class NavigationTask:
+    """Reach the destination past the two boxes (§3.5.1); the boxes swap after a while."""
+
+    names = NAVIGATION_ACTIONS
+    actions = tuple(NAVIGATION_ACTIONS)
+
+    def __init__(self, world: NavigationWorld, perception: ObjectPerception,
+                 exchange_after: int = 10):
+        """Drive ``world`` and perceive it with ``perception``."""
+        self.world, self.perception, self.exchange_after = world, perception, exchange_after
+        self.state = perception.observe(world)
+
+    def reset(self, trial: int) -> View:
+        """Start trial ``trial`` (0-based): the boxes are exchanged from ``exchange_after`` on."""
+        self.world.reset(exchanged=trial >= self.exchange_after)
+        self.state = self.perception.observe(self.world)
+        return _view(self.state)
+
+    def perform(self, action: int) -> tuple[Outcome, View]:
+        """Walk or push, then reward by eq. 3.14; falling off the table ends the trial."""
+        name = self.names[self.actions[action]]
+        before, distance = self.state, self.world.distance_to_destination()
+        if name == "push_ahead":
+            self.world.push()
+        else:
+            self.world.walk(name.removeprefix("walk_"))
+        self.state = self.perception.observe(self.world)
+        now = self.world.distance_to_destination()
+        reward = navigation_reward(now, distance - now)
+        success = now < D_DST
+        effect = push_effect(before, self.state) if name == "push_ahead" else None
+        return Outcome(reward, success or self.world.fallen, success, effect), _view(self.state)
+
+
+class StackingTask:
+    """Make a stack beside the table as high as the table (Fig. 3.4)."""
+
+    names = STACKING_ACTIONS
+    actions = tuple(STACKING_ACTIONS)
+
+    def __init__(self, world: StackingWorld, perception: ObjectPerception):
+        """Drive ``world`` and perceive it with ``perception``."""
+        self.world, self.perception = world, perception
+        self.state = perception.observe(world)
+
+    def reset(self, trial: int) -> View:
+        """Start a trial: the lift up and empty, every object back with the operator."""
+        self.world.reset()
+        self.state = self.perception.observe(self.world)
+        return _view(self.state)
+
+    def perform(self, action: int) -> tuple[Outcome, View]:
+        """Push in a pose or ask for an object, then reward by eq. 3.15."""
+        name = self.names[self.actions[action]]
+        before = self.state
+        verb, what = name.split("_")
+        if verb == "push":
+            self.world.push(what)
+        else:
+            self.world.choose(what)
+        self.state = self.perception.observe(self.world)
+        stacked = self.world.state().stacked
+        effect = push_effect(before, self.state) if verb == "push" else None
+        return (Outcome(stacking_reward(stacked, verb == "choose"), stacked, stacked, effect),
+                _view(self.state))
+
+
+class SearchTask:
+    """Turn the head until the centre of the image sees the target (App. A)."""
+
+    names = SEARCH_ACTIONS
+    actions = tuple(SEARCH_ACTIONS)
+
+    def __init__(self, world: SearchWorld, perception: GridPerception,
+                 places: tuple[str, str] = ("up_left", "right"), move_after: int = 10):
+        """The target stands at ``places[0]`` for ``move_after`` trials, then at ``places[1]``."""
+        self.world, self.perception = world, perception
+        self.places, self.move_after = places, move_after
+
+    def reset(self, trial: int) -> View:
+        """Start a trial from the resting pose, the target where this trial has it."""
+        self.world.place_target(self.places[int(trial >= self.move_after)])
+        self.world.rest()
+        return View(self.perception.observe(self.world), None)
+
+    def perform(self, action: int) -> tuple[Outcome, View]:
+        """Turn the head one step (reset past the boundary) and reward what the centre sees."""
+        self.world.look(self.names[self.actions[action]].removeprefix("look_"))
+        bits = self.perception.observe(self.world)
+        found = centre_seen(bits)
+        return Outcome(search_reward(bits), found, found), View(bits, None)
