@@ -26,7 +26,8 @@ from sim.scene import MARKER_SIZE
 if TYPE_CHECKING:
     from sim.world import GarbageWorld
 
-PART_COLOURS: dict[str, str] = {"body": "red", "lid": "blue", "handle": "green"}
+PART_COLOURS: dict[str, str] = {"body": "red", "lid": "blue", "handle": "green",
+                                 "pedal": "magenta"}
 """Which marker colour identifies which part (the rendering convention of sim/world.py)."""
 
 # HSV ranges in OpenCV units (H 0..179, S and V 0..255); red wraps around hue 0.
@@ -34,6 +35,7 @@ _HSV_RANGES: dict[str, tuple[tuple[tuple[int, int, int], tuple[int, int, int]], 
     "red": (((0, 120, 60), (8, 255, 255)), ((172, 120, 60), (179, 255, 255))),
     "blue": (((105, 120, 60), (130, 255, 255)),),
     "green": (((45, 120, 60), (80, 255, 255)),),
+    "magenta": (((140, 120, 60), (165, 255, 255)),),
     "dark": (((0, 0, 0), (179, 255, 40)),),
 }
 MIN_BLOB_PIXELS = 12
@@ -47,6 +49,8 @@ SCALE_MARKERS: dict[str, float] = {"body": MARKER_SIZE["body"][0], "lid": MARKER
 The body marker comes first: its horizontal width is not foreshortened by the camera's pitch
 and lies at the rim's depth, so it measures the opening within ~5 mm; the lid is a fallback.
 """
+SIDE_GAP_OFFSET = 0.01
+"""A dark gap whose centre lies this far (m) beside the can's centre line is a side gap."""
 ABOVE_MARGIN_M = 0.005
 """Height difference (m) over which one part counts as above another in ground truth."""
 DESCRIPTOR_WEIGHTS = np.array([1000.0, 1.0, 1.0])
@@ -196,11 +200,28 @@ def observe_image(
             parts[part] = describe_blob(part, blob)
     scale = _scale(parts, scale_markers)
     box = dark_region(hsv)
-    height = 0 if box is None else box[3]
-    opening = height * scale if scale > 0 else 0.0
+    opening = gap_pixels(box, parts, scale) * scale if scale > 0 else 0.0
     area = 0.0 if box is None else box[2] * box[3] / float(image.shape[0] * image.shape[1])
     return Observation(parts=parts, above=above_relations(parts), opening=opening, scale=scale,
                        opening_area=area)
+
+
+def gap_pixels(box: tuple[int, int, int, int] | None, parts: Mapping[str, PartObservation],
+               scale: float) -> int:
+    """The dark box's extent in pixels that measures the opening (eq. 5.14).
+
+    A hinged lid opens a gap in front of it, centred on the can: its height is the opening,
+    as in the thesis. A lid that slides sideways opens a gap beside it, off the can's centre
+    line (the body marker's): there its width is the opening.
+    """
+    if box is None:
+        return 0
+    x, _, width, height = box
+    body = parts.get("body")
+    if body is not None and scale > 0 and abs(x + width / 2 - body.centre[0]) * scale > (
+            SIDE_GAP_OFFSET):
+        return width
+    return height
 
 
 def _scale(parts: Mapping[str, PartObservation], scale_markers: Mapping[str, float]) -> float:

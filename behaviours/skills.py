@@ -8,10 +8,11 @@ object (change of the opening, eq. 5.3), both from ground truth.
 Approach points: a flat part (body, lid) is approached on its face, so an action starts just
 in front of the face's marker (only pushing meets resistance there), except pressing a lid
 down, which starts just above the lid's top near its front edge (this closes an open lid). A
-handle is a
-bar standing off the can, so the hand starts on the side of the bar opposite to the motion:
-in front of it to push, in the gap behind it to pull, below it to lift, above it to press
-down, beside it to sweep; the hand reaches the gap from below the bar.
+handle (like
+a pedal, or the tab on a sliding lid's front edge) is a bar standing off the can, so the hand
+starts on the side of the bar opposite to the motion: in front of it to push, in the gap
+behind it to pull, below it to lift, above it to press down, beside it to sweep; the hand
+reaches the gap from below the bar.
 """
 
 from __future__ import annotations
@@ -87,16 +88,16 @@ def check_skill(world: GarbageWorld, action: str, part: str, theta: float) -> fl
 
 def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
     """Waypoints from the free corridor to the start point of ``action`` on ``part``."""
-    ps = world.state().parts[part]
-    centre = np.array(ps.pos)
-    half = np.array(ps.size) / 2
-    axes = world.data.geom_xmat[world.model.geom(f"marker_{part}").id].reshape(3, 3)
+    grip = world.model.geom(_grip_geom(world, part)).id
+    centre = world.data.geom_xpos[grip].copy()
+    half = world.model.geom_size[grip].copy()
+    axes = world.data.geom_xmat[grip].reshape(3, 3)
     direction = np.array(ACTION_DIRECTIONS[action])
     if part == "lid" and action == "sweep_down":  # press on the lid's top, near its front
         top = _lid_top_front(world)
         high = top[2] + 0.08
         return [np.array([CLEAR_X, top[1], high]), np.array([top[0], top[1], high]), top]
-    if part != "handle":
+    if not _is_bar(world, part):
         normal = axes[:, 0] if axes[0, 0] >= 0 else -axes[:, 0]
         start = centre - normal * (half[0] + HAND_RADIUS + MARGIN)
         return [np.array([CLEAR_X, start[1], start[2]]), start]
@@ -106,6 +107,17 @@ def _approach(world: GarbageWorld, action: str, part: str) -> list[np.ndarray]:
         return [np.array([CLEAR_X, start[1], below]), np.array([start[0], start[1], below]),
                 start]
     return [np.array([CLEAR_X, start[1], start[2]]), start]
+
+
+def _is_bar(world: GarbageWorld, part: str) -> bool:
+    """Parts that stand off the can and are gripped from a side: a handle, a pedal, the tab
+    on a sliding lid's front edge (a flat face is approached on its face instead)."""
+    return part in ("handle", "pedal") or (part == "lid" and world.spec.mechanism == "slide_lid")
+
+
+def _grip_geom(world: GarbageWorld, part: str) -> str:
+    """The box the hand works around: the part's marker, or the tab behind a sliding lid's."""
+    return "tab" if part == "lid" and world.spec.mechanism == "slide_lid" else f"marker_{part}"
 
 
 def _lid_top_front(world: GarbageWorld) -> np.ndarray:

@@ -41,6 +41,7 @@ MARKER_SIZE: dict[str, tuple[float, float]] = {
     "body": (0.08, 0.04),
     "lid": (0.05, 0.02),
     "handle": (0.10, 0.03),
+    "pedal": (0.05, 0.02),
 }
 """Visible (width along y, height along z) of each part's colour marker, in metres."""
 MARKER_THICKNESS = 0.002
@@ -64,12 +65,11 @@ HEAD_CAMERA_TARGET = (0.08, 0.0, 0.67)
 HEAD_CAMERA_FOVY = 45.0
 
 RGBA = {
-    "body": "0.80 0.80 0.82 1",
-    "lid": "0.93 0.93 0.90 1",
     "dark": "0.02 0.02 0.02 1",
     "red": "0.85 0.05 0.05 1",
     "blue": "0.05 0.15 0.85 1",
     "green": "0.10 0.72 0.10 1",
+    "magenta": "0.80 0.10 0.75 1",
     "post": "0.60 0.60 0.62 1",
     "table": "0.76 0.72 0.66 1",
     "floor": "0.55 0.55 0.58 1",
@@ -80,13 +80,25 @@ RGBA = {
 }
 
 
+MECHANISMS: dict[str, tuple[str, str]] = {
+    "push_lid": ("lid", "extend_arm"),
+    "lift_handle": ("handle", "lift_up"),
+    "pull_handle": ("handle", "contract_arm"),
+    "slide_lid": ("lid", "sweep_left"),  # or sweep_right, see CanSpec.slide
+    "pedal": ("pedal", "sweep_down"),
+}
+"""Each opening mechanism and the (part, action) that opens it: the can's functional pair."""
+
+
 @dataclass(frozen=True)
 class CanSpec:
-    """Geometry and mechanism of one garbage can (all lengths in metres)."""
+    """Geometry, mechanism and paint of one garbage can (lengths in metres, colours RGB 0..1).
+
+    Cans are data: ``sim.canfile`` reads them from YAML files (``sim/cans/*.yaml``).
+    """
 
     name: str
-    parts: tuple[str, ...]
-    functional: tuple[str, str]
+    mechanism: str
     width: float
     depth: float
     height: float
@@ -94,6 +106,32 @@ class CanSpec:
     lid_marker_z: float
     gear: float = 0.0
     handle_drop: float = 0.13
+    slide: str = "left"
+    """Which way a sliding lid opens (``left`` or ``right``; slide_lid only)."""
+    pedal_z: float = 0.035
+    """Height of the pedal bar's centre above the table (pedal only)."""
+    body_colour: tuple[float, float, float] = (0.80, 0.80, 0.82)
+    lid_colour: tuple[float, float, float] = (0.93, 0.93, 0.90)
+    source: str = ""
+    """The file the can was read from (empty for a can made in code)."""
+
+    def __post_init__(self) -> None:
+        if self.mechanism not in MECHANISMS:
+            raise ValueError(f"unknown mechanism {self.mechanism!r}; known: "
+                             f"{', '.join(MECHANISMS)}")
+
+    @property
+    def parts(self) -> tuple[str, ...]:
+        """The can's parts: body and lid, plus a handle or a pedal if the mechanism has one."""
+        extra = {"lift_handle": ("handle",), "pull_handle": ("handle",), "pedal": ("pedal",)}
+        return ("body", "lid", *extra.get(self.mechanism, ()))
+
+    @property
+    def functional(self) -> tuple[str, str]:
+        """The (part, action) that opens the can."""
+        if self.mechanism == "slide_lid":
+            return "lid", f"sweep_{self.slide}"
+        return MECHANISMS[self.mechanism]
 
     @property
     def rim(self) -> float:
@@ -101,28 +139,23 @@ class CanSpec:
         return TABLE_TOP + self.height
 
     @property
-    def mechanism(self) -> str:
-        """Which of the three opening mechanisms this can has."""
-        return {"lid": "push", "handle": self.functional[1]}[self.functional[0]]
+    def lid_joint(self) -> str:
+        """The joint that opens the lid: a hinge, or a slide for a sliding lid."""
+        return "lid_slide" if self.mechanism == "slide_lid" else "lid_hinge"
+
+    @property
+    def geared_joint(self) -> str | None:
+        """The joint geared to the lid (handle or pedal slide), if any."""
+        return {"lift_handle": "handle_slide", "pull_handle": "handle_slide",
+                "pedal": "pedal_slide", "slide_lid": "tab_slide"}.get(self.mechanism)
 
 
-CANS: dict[str, CanSpec] = {
-    "o1": CanSpec("o1", ("body", "lid"), ("lid", "extend_arm"), 0.22, 0.30, 0.26, 0.13, 0.11),
-    "o2": CanSpec(
-        "o2", ("body", "lid", "handle"), ("handle", "lift_up"), 0.22, 0.30, 0.26, 0.03, 0.015,
-        gear=7.0,
-    ),
-    "o3": CanSpec("o3", ("body", "lid"), ("lid", "extend_arm"), 0.20, 0.24, 0.24, 0.19, 0.17),
-    "o4": CanSpec(
-        "o4", ("body", "lid", "handle"), ("handle", "lift_up"), 0.24, 0.28, 0.28, 0.03, 0.015,
-        gear=13.0,
-    ),
-    "o5": CanSpec(
-        "o5", ("body", "lid", "handle"), ("handle", "contract_arm"), 0.22, 0.28, 0.27, 0.03,
-        0.015, gear=6.0, handle_drop=0.07,
-    ),
-}
-"""The five cans of thesis Fig. 5.2 / Table 5.3."""
+def _load_cans() -> dict[str, CanSpec]:
+    """The five thesis cans from their files (sim/cans/o1.yaml .. o5.yaml)."""
+    from sim.canfile import load_can, shipped_can_path
+
+    return {name: load_can(shipped_can_path(name)) for name in ("o1", "o2", "o3", "o4", "o5")}
+
 
 HOLD = 'solreffriction="0.004 1" solimpfriction="0.99 0.999 0.001"'
 """Stiff dry friction on lid and handle joints, so parts hold still where they were left."""
@@ -132,23 +165,42 @@ LID_RANGE = 1.75
 """Upper limit of every lid hinge (rad)."""
 HOLDABLE = ("lid", "handle")
 """Parts the hand can keep hold of (a ball-joint constraint, off until ``hold``; thesis ch. 4)."""
+SLIDE_TRAVEL = 0.75
+"""How far a sliding lid can slide, as a fraction of the can's width."""
+TAB_DEPTH = 0.03
+"""Depth (x) of the tab in front of a sliding lid, which carries the lid's marker ..."""
+TAB_GAP = 0.005
+"""... and the space between the tab and the can's front face."""
+TAB_HALF_HEIGHT = 0.03
+"""Half the tab's height: well above and below the hand's radius, so the hand cannot ride
+over it."""
+PEDAL_DEPTH = 0.05
+"""Depth (x) of the pedal's foot plate."""
+PEDAL_CLEARANCE = 0.005
+"""Space left between the pressed-down pedal and the table."""
+
+
+def _rgba(colour: tuple[float, float, float]) -> str:
+    """An MJCF rgba attribute of an opaque paint colour (two decimals)."""
+    return " ".join(f"{x:.2f}" for x in colour) + " 1"
 
 
 def _body_xml(c: CanSpec) -> list[str]:
     """Static can body: bottom and four walls, a dark liner inside, the red marker in front."""
     w, d, h, t = c.width / 2, c.depth, c.height, WALL
     z0 = TABLE_TOP
+    paint = _rgba(c.body_colour)
     rows = ['<body name="can_body" pos="0 0 0">']
-    rows.append(_box("body_bottom", (d / 2, 0, z0 + t / 2), (d / 2, w, t / 2), RGBA["body"]))
-    rows.append(_box("body_front", (t / 2, 0, z0 + h / 2), (t / 2, w, h / 2), RGBA["body"]))
+    rows.append(_box("body_bottom", (d / 2, 0, z0 + t / 2), (d / 2, w, t / 2), paint))
+    rows.append(_box("body_front", (t / 2, 0, z0 + h / 2), (t / 2, w, h / 2), paint))
     hb = (h - CAP) / 2  # back and side walls stop under a dark cap, seen only when open
-    rows.append(_box("body_back", (d - t / 2, 0, z0 + hb), (t / 2, w, hb), RGBA["body"]))
+    rows.append(_box("body_back", (d - t / 2, 0, z0 + hb), (t / 2, w, hb), paint))
     rows.append(_box("cap_back", (d - t / 2, 0, z0 + h - CAP / 2), (t / 2, w, CAP / 2),
                      RGBA["dark"]))
     for side, sign in (("left", 1), ("right", -1)):
         y = sign * (w - t / 2)
         rows.append(_box(f"body_{side}", (d / 2, y, z0 + hb), (d / 2 - t, t / 2, hb),
-                         RGBA["body"]))
+                         paint))
         rows.append(_box(f"cap_{side}", (d / 2, y, z0 + h - CAP / 2), (d / 2 - t, t / 2, CAP / 2),
                          RGBA["dark"]))
     li = 0.001
@@ -170,16 +222,18 @@ def _body_xml(c: CanSpec) -> list[str]:
 
 
 def _lid_xml(c: CanSpec) -> list[str]:
-    """Hinged lid; push lids hinge at the back-bottom edge, handle-can lids at the back-top."""
+    """Hinged lid; push lids hinge at the back-bottom edge, the others at the back-top."""
+    if c.mechanism == "slide_lid":
+        return _slide_lid_xml(c)
     w, d, lh = c.width / 2, c.depth, c.lid_height
-    push = c.mechanism == "push"
+    push = c.mechanism == "push_lid"
     zb = 0.0 if push else -lh  # z of the lid's underside in the hinge frame
     hinge_z = c.rim if push else c.rim + lh
     mw, mh = MARKER_SIZE["lid"]
     rows = [f'<body name="lid" pos="{_v(d, 0, hinge_z)}">',
             f'<joint name="lid_hinge" type="hinge" axis="0 1 0" range="0 {LID_RANGE}" '
             f'limited="true" damping="1.0" frictionloss="0.25" armature="0.002" {HOLD}/>',
-            _box("lid_shell", (-d / 2, 0, zb + lh / 2), (d / 2, w, lh / 2), RGBA["lid"],
+            _box("lid_shell", (-d / 2, 0, zb + lh / 2), (d / 2, w, lh / 2), _rgba(c.lid_colour),
                  extra=' mass="0.1"'),
             _box("lid_underside", (-d / 2, 0, zb - 0.0011), (d / 2 - 0.001, w - 0.001, 0.001),
                  RGBA["dark"], collide=False),
@@ -190,11 +244,55 @@ def _lid_xml(c: CanSpec) -> list[str]:
     return rows
 
 
+def _slide_lid_xml(c: CanSpec) -> list[str]:
+    """A flat lid on a sideways slide, moved through a tab in front of its front edge: the tab
+    (which carries the lid's blue marker and which the hand sweeps) slides too, geared to the
+    lid like a lever (the lid travels ``gear`` times as far). The lid's front-centre starts at
+    the rim's front-centre, so the opening (the distance between the two) is how far it slid."""
+    w, d, lh = c.width / 2, c.depth, c.lid_height
+    mw, mh = MARKER_SIZE["lid"]
+    axis = f"0 {1 if c.slide == 'left' else -1} 0"
+    travel = SLIDE_TRAVEL * c.width
+    paint = _rgba(c.lid_colour)
+    return [f'<body name="lid" pos="{_v(0, 0, c.rim)}">',
+            f'<joint name="lid_slide" type="slide" axis="{axis}" range="0 {travel:.5g}" '
+            f'limited="true" damping="2" frictionloss="3" armature="0.02" {HOLD}/>',
+            _box("lid_shell", (d / 2, 0, lh / 2), (d / 2, w, lh / 2), paint, extra=' mass="0.1"'),
+            f'<site name="lid_front" pos="0 0 0" {SITE}/>',
+            "</body>",
+            f'<body name="lid_tab" pos="{_v(-TAB_GAP - TAB_DEPTH / 2, 0, c.rim + lh / 2)}">',
+            f'<joint name="tab_slide" type="slide" axis="{axis}" range="0 {travel / c.gear:.5g}" '
+            f'limited="true" damping="2" frictionloss="3" armature="0.02" {HOLD}/>',
+            _box("tab", (0, 0, 0), (TAB_DEPTH / 2, mw / 2, TAB_HALF_HEIGHT), paint,
+                 extra=' mass="0.01"'),
+            _box("marker_lid", (-TAB_DEPTH / 2 - MARKER_THICKNESS / 2, 0, 0),
+                 (MARKER_THICKNESS / 2, mw / 2, mh / 2), RGBA["blue"], collide=False),
+            "</body>"]
+
+
+def _pedal_xml(c: CanSpec) -> list[str]:
+    """A magenta foot plate low on the front, left of the body marker, on a slide pressed
+    down and geared to the lid hinge; it can travel until it nearly reaches the table."""
+    pw, ph = MARKER_SIZE["pedal"]
+    x = -HANDLE_GAP - PEDAL_DEPTH / 2
+    y = c.width / 2 - pw / 2 - 0.015
+    travel = min(LID_RANGE / c.gear, c.pedal_z - ph / 2 - PEDAL_CLEARANCE)
+    rows = [f'<body name="pedal" pos="{_v(x, y, TABLE_TOP + c.pedal_z)}">',
+            f'<joint name="pedal_slide" type="slide" axis="0 0 -1" range="0 {travel:.5g}" '
+            f'limited="true" damping="2" frictionloss="6" armature="0.05" {HOLD}/>',
+            _box("marker_pedal", (0, 0, 0), (PEDAL_DEPTH / 2, pw / 2, ph / 2), RGBA["magenta"],
+                 extra=' mass="0.05"'),
+            _box("pedal_post", (PEDAL_DEPTH / 2 + HANDLE_GAP / 2, 0, 0),
+                 (HANDLE_GAP / 2, 0.005, ph / 2), RGBA["post"], extra=' mass="0.01"'),
+            "</body>"]
+    return rows
+
+
 def _handle_xml(c: CanSpec) -> list[str]:
     """Staple handle (green bar on two grey posts) on a slide geared to the lid hinge."""
     bw, bh = MARKER_SIZE["handle"]
     bx = -HANDLE_GAP - HANDLE_DEPTH / 2
-    axis = "0 0 1" if c.mechanism == "lift_up" else "-1 0 0"
+    axis = "0 0 1" if c.mechanism == "lift_handle" else "-1 0 0"
     travel = LID_RANGE / c.gear
     post_y = bw / 2 - 0.005
     rows = [f'<body name="handle" pos="{_v(bx, 0, c.rim - c.handle_drop)}">',
@@ -209,14 +307,17 @@ def _handle_xml(c: CanSpec) -> list[str]:
     return rows
 
 
-def build_mjcf(can: str) -> str:
-    """The complete MJCF scene for one can, as text."""
-    if can not in CANS:
-        raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
-    c = CANS[can]
+def build_mjcf(can: str | CanSpec) -> str:
+    """The complete MJCF scene for one can (a CanSpec, or the name of a thesis can), as text."""
+    if isinstance(can, CanSpec):
+        c = can
+    elif can in thesis_cans():
+        c = thesis_cans()[can]
+    else:
+        raise ValueError(f"unknown can {can!r}; expected one of {', '.join(thesis_cans())}")
     (x0, x1), (y0, y1), (z0, z1) = ARM_RANGE
     hx, hy, hz = HOME
-    parts = [f'<mujoco model="garbage_{can}">',
+    parts = [f'<mujoco model="garbage_{c.name}">',
              '<compiler angle="radian" autolimits="true"/>',
              '<option timestep="0.002" integrator="implicitfast" cone="elliptic"/>',
              LIGHTING,
@@ -233,6 +334,8 @@ def build_mjcf(can: str) -> str:
     parts += _lid_xml(c)
     if "handle" in c.parts:
         parts += _handle_xml(c)
+    if "pedal" in c.parts:
+        parts += _pedal_xml(c)
     parts += [f'<body name="hand" pos="{_v(hx, hy, hz)}" gravcomp="1">',
               f'<joint name="arm_x" type="slide" axis="1 0 0" range="{_v(x0 - hx, x1 - hx)}" '
               'damping="60"/>',
@@ -254,15 +357,16 @@ def build_mjcf(can: str) -> str:
               "<contact>",
               '<exclude body1="hand" body2="ball"/>',
               '<exclude body1="can_body" body2="lid"/>']
-    if "handle" in c.parts:
-        parts += ['<exclude body1="can_body" body2="handle"/>',
-                  '<exclude body1="lid" body2="handle"/>']
+    for extra in ("handle", "pedal", "lid_tab"):
+        if extra in c.parts or (extra == "lid_tab" and c.mechanism == "slide_lid"):
+            parts += [f'<exclude body1="can_body" body2="{extra}"/>',
+                      f'<exclude body1="lid" body2="{extra}"/>']
     parts.append("</contact>")
     parts.append("<equality>")
     parts.append(f'<weld name="grip" body1="hand" body2="ball" active="false" '
                  f'relpose="{_v(GRIP_OFFSET, 0, 0, 1, 0, 0, 0)}" solref="0.01 1"/>')
-    if "handle" in c.parts:
-        parts.append(f'<joint name="gear" joint1="lid_hinge" joint2="handle_slide" '
+    if c.geared_joint is not None:
+        parts.append(f'<joint name="gear" joint1="{c.lid_joint}" joint2="{c.geared_joint}" '
                      f'polycoef="0 {c.gear:.5g} 0 0 0" solref="0.005 1"/>')
     for part in HOLDABLE:  # anchors are set when the hand takes hold (GarbageWorld.hold)
         if part in c.parts:
@@ -284,10 +388,24 @@ def asset_path(can: str) -> Path:
     return Path(__file__).parent / "assets" / f"{can}.xml"
 
 
+def thesis_cans() -> dict[str, CanSpec]:
+    """The five thesis cans o1..o5 of Fig. 5.2 / Table 5.3, read from their files once."""
+    if "CANS" not in globals():
+        globals()["CANS"] = _load_cans()
+    return globals()["CANS"]
+
+
+def __getattr__(name: str) -> object:
+    """``CANS`` (the five thesis cans) is read from their files on first use (PEP 562)."""
+    if name == "CANS":
+        return thesis_cans()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def write_assets() -> list[Path]:
     """Write every generated scene under ``sim/assets/`` (for viewers and inspection)."""
     paths = []
-    for can in CANS:
+    for can in thesis_cans():
         path = asset_path(can)
         path.write_text(build_mjcf(can))
         paths.append(path)

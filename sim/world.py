@@ -33,7 +33,6 @@ from sim.scene import (
     GRIP_OFFSET,
     HOLDABLE,
     HOME,
-    LID_RANGE,
     MARKER_SIZE,
     TABLE_TOP,
     WALL,
@@ -68,7 +67,7 @@ class WorldState:
     """Ground truth of the world at one instant."""
 
     opening: float
-    lid_angle: float
+    lid_angle: float  # the lid joint's position: an angle (rad), or metres for a sliding lid
     parts: dict[str, PartState]
     ball_pos: tuple[float, float, float]
     holding_ball: bool
@@ -79,12 +78,13 @@ class WorldState:
 class GarbageWorld:
     """One can on a table, a Cartesian arm with a grasping hand, a ball and a head camera."""
 
-    def __init__(self, can: str = "o1", seed: int = 0, width: int = 320, height: int = 240):
-        """Build the scene of ``can`` and reset it under ``seed``."""
+    def __init__(self, can: str | CanSpec = "o1", seed: int = 0, width: int = 320,
+                 height: int = 240):
+        """Build the scene of ``can`` (a thesis can's name or any CanSpec), reset under seed."""
         if width <= 0 or height <= 0 or width > 640 or height > 480:
             raise ValueError(f"image size {width}x{height} must lie within 1x1..640x480")
         self._width, self._height = width, height
-        self._can = ""
+        self._spec: CanSpec | None = None
         self._seed = seed
         self._renderer: mujoco.Renderer | None = None
         self._recorder: _Recorder | None = None
@@ -93,17 +93,20 @@ class GarbageWorld:
         self.reset(can, seed)
 
     # ----------------------------------------------------------------- set-up
-    def reset(self, can: str | None = None, seed: int | None = None) -> None:
+    def reset(self, can: str | CanSpec | None = None, seed: int | None = None) -> None:
         """Restore the initial scene (closed lid, ball on the table, hand home)."""
-        can = self._can if can is None else can
         if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)):
             raise ValueError(f"seed must be an integer, got {seed!r}")
-        if can not in CANS:
-            raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
-        if can != self._can:
-            self.model = mujoco.MjModel.from_xml_string(build_mjcf(can))
+        if isinstance(can, str):
+            if can not in CANS:
+                raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
+            can = CANS[can]
+        spec = self._spec if can is None else can
+        assert spec is not None
+        if spec != self._spec:
+            self.model = mujoco.MjModel.from_xml_string(build_mjcf(spec))
             self.data = mujoco.MjData(self.model)
-            self._can = can
+            self._spec = spec
             if self._renderer is not None:
                 self._renderer.close()
                 self._renderer = None
@@ -132,18 +135,19 @@ class GarbageWorld:
 
     @property
     def can(self) -> str:
-        """Name of the current can (o1..o5)."""
-        return self._can
+        """Name of the current can (o1..o5, or a can file's name)."""
+        return self.spec.name
 
     @property
     def spec(self) -> CanSpec:
         """Geometry and mechanism of the current can."""
-        return CANS[self._can]
+        assert self._spec is not None
+        return self._spec
 
     @property
     def parts(self) -> tuple[str, ...]:
         """Parts of the current can."""
-        return CANS[self._can].parts
+        return self.spec.parts
 
     @property
     def seed(self) -> int:
@@ -304,7 +308,8 @@ class GarbageWorld:
     def ball_touches_can(self) -> bool:
         """True if the ball currently touches the can's body, lid or handle."""
         m, d = self.model, self.data
-        can_bodies = {m.body(n).id for n in ("can_body", "lid", "handle") if _has_body(m, n)}
+        can_bodies = {m.body(n).id for n in ("can_body", "lid", "handle", "pedal")
+                      if _has_body(m, n)}
         for c in d.contact[: d.ncon]:
             b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
             if (b1 == self._ball_body and b2 in can_bodies) or (
@@ -321,9 +326,14 @@ class GarbageWorld:
     def set_opening(self, width: float) -> None:
         """Put the lid (and a geared handle) where the opening is ``width`` m, at rest."""
         m, d = self.model, self.data
-        hinge = d.joint("lid_hinge")
-        slide = d.joint("handle_slide") if "handle" in self.parts else None
+        hinge = d.joint(self.spec.lid_joint)
+        geared = self.spec.geared_joint
+        slide = d.joint(geared) if geared is not None else None
         gear = self.spec.gear
+        # the lid opens as far as its own joint or the geared joint's range allows
+        lid_range = float(m.jnt_range[m.joint(self.spec.lid_joint).id][1])
+        if geared is not None:
+            lid_range = min(lid_range, gear * float(m.jnt_range[m.joint(geared).id][1]))
 
         def place(angle: float) -> float:
             hinge.qpos[0] = angle
@@ -332,11 +342,11 @@ class GarbageWorld:
             mujoco.mj_kinematics(m, d)
             return self.opening()
 
-        top = place(LID_RANGE)
+        top = place(lid_range)
         if not 0.0 <= width <= top:
             place(0.0)
             raise ValueError(f"opening {width} m outside 0..{top:.3f} m for can {self.can}")
-        lo, hi = 0.0, LID_RANGE
+        lo, hi = 0.0, lid_range
         for _ in range(50):
             mid = (lo + hi) / 2
             lo, hi = (mid, hi) if place(mid) < width else (lo, mid)
@@ -371,7 +381,7 @@ class GarbageWorld:
         ball = d.xpos[self._ball_body]
         return WorldState(
             opening=self.opening(),
-            lid_angle=float(d.joint("lid_hinge").qpos[0]),
+            lid_angle=float(d.joint(self.spec.lid_joint).qpos[0]),
             parts=parts,
             ball_pos=_tup(ball),
             holding_ball=bool(d.eq_active[self._grip_id]),
