@@ -21,7 +21,8 @@ from sim.headless import use_headless_rendering
 
 
 def snapshot(
-    can: Annotated[str, typer.Option(help="Which garbage can: o1 .. o5.")] = "o1",
+    can: Annotated[str, typer.Option(
+        help="Which garbage can: o1 .. o5, slide, pedal, or a can file (.yaml).")] = "o1",
     out: Annotated[Path, typer.Option(help="Where to write the PNG.")] = Path("frame.png"),
     seed: Annotated[int, typer.Option(help="Scene seed.")] = 0,
     opening: Annotated[
@@ -31,12 +32,14 @@ def snapshot(
     opening written on the image."""
     use_headless_rendering()
     from robot.snapshot import render_snapshot
-    from sim.scene import CANS
+    from sim.canfile import CanFileError, find_can
 
-    if can not in CANS:
-        raise user_error(f"unknown can {can!r}; known cans: {', '.join(sorted(CANS))}")
     try:
-        observation = render_snapshot(can, out, seed=seed, opening=opening)
+        spec = find_can(can)
+    except CanFileError as err:
+        raise user_error(str(err)) from None
+    try:
+        observation = render_snapshot(spec, out, seed=seed, opening=opening)
     except ValueError as err:
         raise user_error(str(err)) from None
     parts = ", ".join(sorted(observation.parts))

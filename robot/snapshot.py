@@ -14,6 +14,7 @@ import cv2
 import numpy as np
 
 from behaviours.perception import Observation, dark_region, observe_image
+from sim.scene import CanSpec
 
 SCALE = 2
 """The annotated PNG is this many times the camera frame's size (nearest-neighbour)."""
@@ -57,7 +58,7 @@ def _label(image: np.ndarray, text: str, origin: tuple[int, int],
     cv2.putText(image, text, (x, y), _FONT, size, colour, 1, cv2.LINE_AA)
 
 
-def render_snapshot(can: str, out: Path, seed: int = 0,
+def render_snapshot(can: str | CanSpec, out: Path, seed: int = 0,
                     opening: float | None = None) -> Observation:
     """Render ``can``'s head camera (opened ``opening`` m first, if given), perceive the frame
     and save it annotated as a PNG; user mistakes (unknown can, bad opening, a path that is

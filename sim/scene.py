@@ -1,4 +1,7 @@
-"""One parameterised MJCF generator for the five garbage-can scenes of thesis Fig. 5.2.
+"""One parameterised MJCF generator for garbage-can scenes (thesis Fig. 5.2 and beyond).
+
+Cans are data: each is a ``CanSpec`` read from a YAML file by ``sim.canfile`` (the five thesis
+cans and two new mechanisms ship in ``sim/cans/``); ``CANS`` holds the thesis's o1..o5.
 
 World frame: the robot stands at negative x and faces +x ("forward"), +y is its left, +z up.
 Every scene holds a table, one can whose front face lies in the plane x = 0, a yellow ball on
@@ -12,7 +15,11 @@ Mechanisms (all contacts inside a can are excluded; parts move only through thei
 - lift handle (o2, o4): a staple handle on the body's front face rides on a vertical slide
   geared to the lid hinge by an equality constraint (lid angle = gear x handle travel).
 - pull handle (o5): the same handle on a slide toward the robot; lifting it is blocked.
-Lids of handle cans are hinged at their back-top edge, so pushing their face presses them
+- slide lid (``slide``): a flat lid on a sideways slide, moved through a tab in front of its
+  front edge that is geared to it like a lever; sweeping the tab one way opens it.
+- pedal (``pedal``, thesis Fig. 4.1(d)): a foot plate low on the front, pressed down on a slide
+  geared to the lid hinge.
+Lids of handle and pedal cans are hinged at their back-top edge, so pushing their face presses them
 shut against the joint limit. Hinge and slide friction (``frictionloss``) plus damping keep
 every part where the robot left it. For chapter 4's continuous actions the hand can also keep
 hold of the lid or the handle at the point it touches (an inactive ``connect`` equality per

@@ -89,8 +89,17 @@ def test_opening_is_dark_height_scaled_by_the_marker():
     assert obs.opening == pytest.approx(0.040, abs=1e-9)
     image2 = _frame()
     cv2.rectangle(image2, (100, 150), (124, 159), RED, -1)  # 25 px long -> 2 mm per pixel
-    cv2.rectangle(image2, (90, 100), (159, 139), DARK, -1)
+    cv2.rectangle(image2, (78, 100), (147, 139), DARK, -1)  # centred on the marker, like a lid gap
     assert observe_image(image2, {"body": 0.05}).opening == pytest.approx(0.080, abs=1e-9)
+
+
+def test_a_dark_gap_beside_the_can_centre_is_measured_by_its_width():
+    """A sliding lid opens a gap beside the lid: off the body marker's centre line, its width
+    (not its height) is the opening."""
+    image = _frame()
+    cv2.rectangle(image, (100, 150), (149, 169), RED, -1)  # 1 mm per pixel, centre x = 124.5
+    cv2.rectangle(image, (150, 100), (179, 139), DARK, -1)  # 30 px wide, 40 px high, to the right
+    assert observe_image(image, {"body": 0.05}).opening == pytest.approx(0.030, abs=1e-9)
 
 
 def test_opening_area_is_the_dark_box_share_of_the_image():
@@ -137,7 +146,7 @@ def test_the_first_scale_marker_seen_scales_the_opening():
     cv2.rectangle(image, (90, 100), (159, 139), DARK, -1)  # 40 px high
     markers = {"body": 0.08, "lid": 0.05}
     assert observe_image(image, markers).opening == pytest.approx(0.080, abs=1e-9)
-    cv2.rectangle(image, (100, 150), (179, 169), RED, -1)  # body seen first: 80 px = 0.08 m
+    cv2.rectangle(image, (85, 150), (164, 169), RED, -1)  # body seen first: 80 px = 0.08 m
     assert observe_image(image, markers).opening == pytest.approx(0.040, abs=1e-9)
     assert observe_image(image, {"handle": 0.1}).opening == 0.0
 

@@ -28,14 +28,15 @@ from behaviours.skills import (
 from goalagent.eis.exceptions import ActionRefused, ManagementException
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 from goalagent.kb.terms import Atom, Struct
-from sim.scene import CANS
+from sim.canfile import CanFileError, find_can
 from sim.world import GarbageWorld
 
 CLOSED = 0.01
 """An opening (m) below this counts as closed."""
-CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm", "handle"))
+CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm", "handle"),
+                  ("sweep_right", "lid"), ("sweep_left", "lid"))
 """What the robot tries, in order, to close a can: press the lid down, press a lifted handle
-down, push a pulled handle back in (the first whose part the can has and that closes it)."""
+down, push a pulled handle back in, slide a sliding lid back (until the can is closed)."""
 
 
 def afford_percept(evidence: AffordanceEvidence) -> Struct:
@@ -70,11 +71,10 @@ class GarbageEnvironment(PythonEnvironment):
     # ------------------------------------------------------------------ life cycle
     def on_init(self, params: dict[str, object]) -> None:
         """Build the world: the can, the perception mode, the learners and the recorder."""
-        can = str(params.get("can", "o1"))
-        if can not in CANS:
-            raise ManagementException(
-                f"environment 'garbage': unknown can {can!r}; known cans: "
-                f"{', '.join(sorted(CANS))}")
+        try:
+            can = find_can(str(params.get("can", "o1")))
+        except CanFileError as error:
+            raise ManagementException(f"environment 'garbage': {error}") from None
         self.seed = int(params.get("seed", 0))
         self.delta = float(params.get("delta", 0.1))
         self.trials = int(params.get("trials", 5))
