@@ -16,11 +16,13 @@ from typing import Annotated, Any
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.beliefs import BeliefSaver, load_beliefs
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.events import EventKind
 from goalagent.extensions import (
     Extension,
     RunContext,
@@ -65,8 +67,9 @@ class _TracePrinter:
     def __init__(self) -> None:
         self.console = Console(highlight=False, soft_wrap=True)
 
-    def __call__(self, agent: str, kind: str, text: str) -> None:
-        self.console.print(f"[dim]{agent}[/] [cyan]{kind:>12}[/] {text}", markup=True)
+    def __call__(self, agent: str, kind: EventKind, text: str) -> None:
+        self.console.print(f"[dim]{escape(agent)}[/] [cyan]{kind:>12}[/] {escape(text)}",
+                           markup=True)
 
 
 def _language_run_options(

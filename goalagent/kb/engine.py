@@ -12,53 +12,25 @@ from __future__ import annotations
 
 import ctypes
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_int64, c_size_t, c_uint, c_void_p
 from fractions import Fraction
 from pathlib import Path
 
 from pyswip import core as _pyswip_core  # loads libswipl and runs PL_initialise once
 
-from goalagent.ast import Pos
+from goalagent.kb.errors import KBError, PrologRuntimeError, PrologSyntaxError
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [
     "Engine",
+    "define_foreign",
     "Record",
     "KBError",
     "PrologRuntimeError",
     "PrologSyntaxError",
     "get_engine",
 ]
-
-
-class KBError(Exception):
-    """Base of every error raised by goalagent.kb (user-facing, with a readable message);
-    ``pos`` is the source position of the offending program text, when known."""
-
-    def __init__(self, message: str, pos: Pos | None = None) -> None:
-        super().__init__(message)
-        self.message = message
-        self.pos = pos
-
-
-class PrologSyntaxError(KBError):
-    """SWI-Prolog's reader rejected a text; ``offset`` is the 0-based offending character."""
-
-    def __init__(self, message: str, offset: int) -> None:
-        super().__init__(message)
-        self.offset = offset
-
-    def __str__(self) -> str:
-        return f"{self.message} (at character {self.offset})"
-
-
-class PrologRuntimeError(KBError):
-    """A Prolog goal raised an exception; ``message`` is SWI's own wording, one line."""
-
-    def __init__(self, message: str, term: Term | None = None) -> None:
-        super().__init__(message)
-        self.term = term
 
 
 # --------------------------------------------------------------------------- C interface
@@ -113,6 +85,10 @@ PL_new_functor = _fn("PL_new_functor_sz", c_size_t, _atom, c_size_t)
 PL_new_atom = _fn("PL_new_atom_mbchars", _atom, c_int, c_size_t, c_char_p)
 PL_register_atom = _fn("PL_register_atom", None, _atom)
 PL_unregister_atom = _fn("PL_unregister_atom", None, _atom)
+PL_unify = _fn("PL_unify", c_int, _term, _term)
+PL_raise_exception = _fn("PL_raise_exception", c_int, _term)
+PL_register_foreign_in_module = _fn("PL_register_foreign_in_module", c_int, c_char_p,
+                                    c_char_p, c_int, c_void_p, c_int)
 PL_thread_self = _fn("PL_thread_self", c_int)
 PL_thread_attach_engine = _fn("PL_thread_attach_engine", c_int, c_void_p)
 
@@ -129,6 +105,10 @@ _PARSE_CACHE_MAX = 20_000
 _VAR_MARK = "$ga_var"
 
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
+_PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
+
+# A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
+_FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, _term, _term)
 
 
 # Output buffers for the getters: Prolog runs on one thread at a time and every value is
@@ -186,6 +166,8 @@ class Engine:
         self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
         self._dead_records: list[int] = []  # records of collected Record objects, to erase
         self._counter = 0
+        self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
+        self._python_errors: list[BaseException] = []  # raised inside foreign predicates
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
         loaded = self.call(
@@ -326,7 +308,12 @@ class Engine:
             finally:
                 PL_cut_query(qid)
             if record is not None:
-                raise self._runtime_error(record)
+                error = self._runtime_error(record)
+                if error.term == _PYTHON_ERROR and self._python_errors:
+                    python_error = self._python_errors[-1]
+                    self._python_errors.clear()
+                    raise python_error
+                raise error
             return answers
         finally:
             PL_discard_foreign_frame(fid)
@@ -549,6 +536,34 @@ def _copy(term: Term) -> Term:
     if isinstance(term, Struct):
         return Struct(term.name, tuple(_copy(arg) for arg in term.args))
     return term
+
+
+def define_foreign(engine: Engine, module: str, name: str,
+                   respond: Callable[[Term], Term | None]) -> None:
+    """Defines ``module:name(+Request, -Reply)``: Prolog's call converts Request to a Python
+    term, calls ``respond`` and unifies Reply with its answer (None: leaves Reply unbound).
+    A Python exception in ``respond`` leaves Prolog as the exception ``'$ga_python'`` and is
+    raised again where Python called Prolog (:meth:`Engine.solve`)."""
+
+    def foreign(request: int, reply: int) -> int:
+        try:
+            answer = respond(engine._get(request, [], False))
+            if answer is None:
+                return 1
+            t = PL_new_term_ref()
+            engine._put(t, answer, {})
+            return 1 if PL_unify(reply, t) else 0
+        except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
+            engine._python_errors.append(error)
+            t = PL_new_term_ref()
+            PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
+            return PL_raise_exception(t)
+
+    callback = _FOREIGN_2(foreign)
+    engine._foreign.append(callback)
+    if not PL_register_foreign_in_module(module.encode(), name.encode(), 2,
+                                         ctypes.cast(callback, c_void_p), 0):
+        raise KBError(f"cannot define the foreign predicate {module}:{name}/2")
 
 
 _engine: Engine | None = None

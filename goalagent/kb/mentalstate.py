@@ -5,12 +5,7 @@ or another agent leaks in): a belief module (knowledge + beliefs + percepts + me
 goal module (knowledge again + the goal bases). ``goal(φ)`` is evaluated against knowledge and
 ONE goal at a time (see mentalstate.pl). A rule's whole condition is compiled once into a
 clause of the belief module and evaluated in one Prolog call with the bindings passed in.
-
-A rule can also be compiled with its leading actions (:meth:`MentalState.compile_rule`:
-insert/delete/adopt/drop and user actions' pre/postconditions, blind commitment after each)
-into one clause shared by every agent, and consecutive such rules into one pass
-(:meth:`MentalState.compile_pass`); :meth:`MentalState.fire` / ``fire_pass`` apply them in
-one call and return :class:`Firings` (the action count at once, the bindings when read).
+The rules themselves run in the interpreter (``goalagent.kb.interpreter``, rules.pl).
 """
 
 from __future__ import annotations
@@ -22,8 +17,7 @@ from goalagent import ast
 from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get_engine
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
-__all__ = ["RULE_ACTIONS", "AgentDirectory", "CompiledCondition", "CompiledPass",
-           "CompiledRule", "Firings", "LazyBindings", "MentalState", "Problem", "instantiate"]
+__all__ = ["AgentDirectory", "CompiledCondition", "MentalState", "instantiate"]
 
 _WRAPPERS = {
     "bel": "$bel",
@@ -39,11 +33,6 @@ _TRUE, _FALSE = Atom("true"), Atom("false")
 # Condition body text -> clause name, shared by all agents: equal conditions use the same
 # predicate name in every agent module, so 10,000 agents do not create 10,000 functors.
 _condition_names: dict[str, str] = {}
-
-# Rule and pass clauses live in one module for all agents (they take the agent's belief
-# module as their first argument): key -> (clause name, the rule's variable names).
-_RULES = "ga_rules"
-_shared_rules: dict[str, tuple[str, tuple[str, ...]]] = {}
 
 
 class CompiledCondition:
@@ -63,155 +52,10 @@ class CompiledCondition:
     def __repr__(self) -> str:
         return f"CompiledCondition({self.text!r}, names={self.names!r})"
 
-
-class CompiledRule:
-    """A rule (its condition and the leading actions Prolog can do) compiled into one clause
-    (shared by every agent that reads the rule alike, see ``compile_rule/7``): one Prolog
-    call evaluates the condition and performs those actions."""
-
-    __slots__ = ("_state", "_pred", "_name", "names", "condition_names", "_index", "kind",
-                 "actions", "pending")
-
-    def __init__(self, state: MentalState, pred: int, name: str, names: tuple[str, ...],
-                 condition_names: tuple[str, ...], kind: str, actions: int,
-                 pending: bool = False) -> None:
-        self._state = state
-        self._pred = pred
-        self._name = name  # the clause's predicate name
-        self.condition_names = condition_names
-        self.names = names  # named variables: the condition's, then the actions' own
-        self._index = {name: i for i, name in enumerate(names)}
-        self.kind = kind  # if or forall
-        self.actions = actions  # how many leading actions the clause performs
-        self.pending = pending  # the last of them is left to Python (an environment action)
-
-    def __repr__(self) -> str:
-        return (f"CompiledRule({self.kind}, names={self.names!r}, actions={self.actions}, "
-                f"pending={self.pending})")
-
-
-class CompiledPass:
-    """Consecutive compiled rules (all their actions done in Prolog, no given bindings)
-    applied in order by one Prolog call: a module pass without a return to Python per
-    rule."""
-
-    __slots__ = ("_state", "_pred", "rules", "stop")
-
-    def __init__(self, state: MentalState, pred: int, rules: tuple[CompiledRule, ...],
-                 stop: bool) -> None:
-        self._state = state
-        self._pred = pred
-        self.rules = rules
-        self.stop = stop  # stop after the first rule that fires (linear order)
-
-    def __repr__(self) -> str:
-        return f"CompiledPass({len(self.rules)} rules, stop={self.stop})"
-
-
-class Firings:
-    """What one call of a compiled rule or pass did: how many actions it performed, which
-    rules fired with which bindings (kept in Prolog, a :class:`Record`, until someone asks:
-    most cycles nobody does), and the problems it met. Rules are numbered by their place
-    in the order tried."""
-
-    __slots__ = ("_record", "_names", "_given", "_nested", "actions", "problems")
-
-    def __init__(self, actions: int, record: Record, names: Sequence[tuple[str, ...]],
-                 given: Mapping[str, Term], nested: bool, problems: list[tuple[int, Problem]]
-                 ) -> None:
-        # record: k(Dones, Values[, Pending]); Dones has per firing its number of actions
-        # (for a pass, 0 ends a rule's firings), Values the values per rule (nested) or of
-        # the one rule, Pending the action left for Python (see pending).
-        self._record = record
-        self._names = names  # per rule: its condition's variables (the first values)
-        self._given = given
-        self._nested = nested
-        self.actions = actions
-        self.problems = problems
-
-    def __bool__(self) -> bool:
-        """True when a rule fired."""
-        return self.actions > 0
-
-    def pending(self) -> tuple[Term, Term, int] | None:
-        """The environment action a compiled rule left for Python, enabled and closed: (the
-        action, its postcondition instantiated by the precondition, the actionspec's index
-        in the program), or None."""
-        kept = self._record.value()
-        assert isinstance(kept, Struct)
-        found = kept.args[2]
-        if not isinstance(found, Struct):
-            return None
-        action, post, spec = found.args
-        return action, post, int(spec)  # type: ignore[arg-type]
-
-    def items(self) -> list[tuple[int, LazyBindings, int]]:
-        """Per firing, in order: the rule's place, its bindings, its number of actions."""
-        result = []
-        place = index = 0
-        kept = self._record.value()
-        assert isinstance(kept, Struct)
-        for done in kept.args[0]:  # type: ignore[union-attr]
-            if done == 0:
-                place, index = place + 1, 0
-            else:
-                result.append((place, LazyBindings(self, place, index), done))
-                index += 1
-        return result
-
-    def bindings(self, place: int, index: int) -> dict[str, Term]:
-        """The bindings of firing ``index`` of the rule at ``place``: the given bindings and
-        the condition's variables (as a condition's answers have them)."""
-        values = self._record.value().args[1]  # type: ignore[union-attr]
-        if self._nested:
-            values = values[place]  # type: ignore[index]
-        found = dict(zip(self._names[place], values[index], strict=False))  # type: ignore
-        if not self._given:
-            return found
-        # As a condition's answers: the given bindings it does not name, then its variables.
-        result = {name: value for name, value in self._given.items() if name not in found}
-        result.update(found)
-        return result
-
-
-class LazyBindings:
-    """The bindings of one firing of a compiled rule, read from Prolog on first use."""
-
-    __slots__ = ("_firings", "_place", "_index", "_value")
-
-    def __init__(self, firings: Firings, place: int, index: int) -> None:
-        self._firings = firings
-        self._place = place
-        self._index = index
-        self._value: dict[str, Term] | None = None
-
-    def resolve(self) -> dict[str, Term]:
-        """The bindings as Python values (converted once)."""
-        if self._value is None:
-            self._value = self._firings.bindings(self._place, self._index)
-        return self._value
-
-
-# What a rule clause performs itself: the built-in updates, ``do`` (a user action:
-# precondition, then postcondition; see declare_actions) and, last, ``env`` (a user action
-# for the environment: the clause checks its precondition, Python performs it and applies
-# its postcondition; see Firings.pending).
-RULE_ACTIONS = frozenset({"insert", "delete", "adopt", "drop", "do", "env"})
-
-# A problem met while applying a compiled rule: (kind, index, detail). Kinds: "action" (an
-# action raised an error: index of the action, message), "open" (a user action not closed
-# after its precondition: index of the action, the action term), "pre" (a precondition
-# raised an error: index of the actionspec, message), "condition" (None, message).
-Problem = tuple[str, int | None, Term]
-_PROBLEM_KINDS = {"w": "action", "o": "open", "p": "pre"}
-
-
-def _problem(warning: Struct) -> Problem:
-    """A warning term of mentalstate.pl (see warning/2) as a :data:`Problem`."""
-    if warning.name == "c":
-        return ("condition", None, warning.args[0])
-    index, detail = warning.args
-    return (_PROBLEM_KINDS[warning.name], int(index), detail)  # type: ignore[arg-type]
+    @property
+    def clause(self) -> str:
+        """The name of the condition's clause (the same in every agent for the same text)."""
+        return self._name
 
 
 def _literal_text(literal: ast.Literal) -> str:
@@ -334,9 +178,12 @@ class MentalState:
         self._b = Atom(f"ga_b{number}")
         self._g = Atom(f"ga_g{number}")
         self._closed = False
-        self._compiled: dict[str, CompiledCondition | CompiledRule | CompiledPass] = {}
+        self._compiled: dict[str, CompiledCondition] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
-        self._recheck = True  # beliefs or goals changed in a way updates did not check
+        # Prolog's "recheck" flag (see recheck/1 in mentalstate_updates.pl) as last seen:
+        # goals may be achieved in a way updates did not check (percepts, messages, ...).
+        self._recheck = True
+        self._run_pred: int | None = None
         self._has_percepts = False  # the percept base is not empty
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
@@ -355,6 +202,25 @@ class MentalState:
             raise KBError(f"{kind} clause `{_text_of(text)}`{where}: {message}", pos)
 
     # ------------------------------------------------------------------ plumbing
+
+    @property
+    def engine(self) -> Engine:
+        """The Prolog engine the state lives in."""
+        return self._engine
+
+    @property
+    def belief_module(self) -> Atom:
+        """The name of the belief module (rule clauses read texts with its operators)."""
+        return self._b
+
+    @property
+    def directives(self) -> str:
+        """The ``:-`` directives of knowledge and beliefs (they change how texts read)."""
+        return self._directives
+
+    def call(self, name: str, *args: Term | None) -> list[Any]:
+        """Runs ga_kb:name(args) once (it must succeed): for goalagent.kb's own modules."""
+        return self._call(name, *args)
 
     def _call(self, name: str, *args: Term | None) -> list[Any]:
         """Runs ga_kb:name(args) once (it must succeed); raises KBError when closed."""
@@ -409,121 +275,33 @@ class MentalState:
         self._compiled[text] = compiled
         return compiled
 
-    def compile_rule(self, kind: str, condition: CompiledCondition,
-                     actions: Sequence[tuple[str, ast.PrologText | str]]) -> CompiledRule:
-        """Compiles a rule (``kind`` if or forall) whose condition is ``condition`` and whose
-        actions start with ``actions`` (name in RULE_ACTIONS, formula) into one clause."""
-        if kind not in ("if", "forall"):
-            raise KBError(f"only if and forall rules compile into one clause, not {kind}")
-        if condition._state is not self:
-            raise KBError("this condition was compiled for another mental state")
-        for index, (name, _) in enumerate(actions):
-            if name not in RULE_ACTIONS:
-                raise KBError(f"{name} is not an action a rule clause performs")
-            if name == "env" and (index < len(actions) - 1 or kind != "if"):
-                raise KBError("an environment action can only end the actions of an if rule")
-        texts = ", ".join(f"{name}(({_text_of(formula)}\n))" for name, formula in actions)
-        text = f"'$rule'(({condition.text}\n), [{texts}])"
-        key = f"{kind}:{text}"
-        compiled = self._compiled.get(key)
-        if compiled is not None:
-            assert isinstance(compiled, CompiledRule)
-            return compiled
-        # One clause for every agent that reads the text alike (same directives: operators).
-        shared_key = f"{key}\0{self._directives}"
-        shared = _shared_rules.get(shared_key)
-        if shared is None:
-            name = self._engine.unique_name("$ga_r")
-            names = self._call("compile_rule", self._b, Atom(kind), Atom(name),
-                               Atom(condition._name), len(condition.names), text, None)[6]
-            assert isinstance(names, list)
-            shared = (name, tuple(str(item) for item in names))
-            _shared_rules[shared_key] = shared
-        name, names_tuple = shared
-        pred = self._engine.predicate(name, len(names_tuple) + 5, _RULES)
-        pending = bool(actions) and actions[-1][0] == "env"
-        rule = CompiledRule(self, pred, name, names_tuple, condition.names, kind, len(actions),
-                            pending)
-        self._compiled[key] = rule
-        return rule
-
-    def fire(self, rule: CompiledRule, bindings: Mapping[str, Term] | None = None) -> Firings:
-        """Applies a compiled rule in one Prolog call (see fire/9 in mentalstate.pl); what
-        it did (actions that raised an error are not enabled). A Prolog error in the
-        condition raises PrologRuntimeError before any action."""
-        if rule._state is not self:
-            raise KBError("this rule was compiled for another mental state")
-        if self._closed:
-            raise KBError(f"the mental state of {self.agent_name} is closed")
-        index = rule._index
-        arity = len(rule.names) + 1  # the belief module, then the rule's variables
-        inputs: list[tuple[int, Term | None]] = [(0, self._b),
-                                                 (arity, _TRUE if self._recheck else _FALSE)]
-        if bindings:
-            inputs.extend((index[name] + 1, value) for name, value in bindings.items()
-                          if name in index)
-        total, kept, warnings = self._engine.solve(
-            rule._pred, arity + 4, inputs, 1, outputs=(arity + 1, arity + 2, arity + 3),
-            keep=arity + 2)[0]
-        if total:
-            self._recheck = False
-        problems = [(0, _problem(w)) for w in warnings]  # type: ignore[union-attr, arg-type]
-        return Firings(total, kept, (rule.condition_names,), dict(bindings or {}),  # type: ignore
-                       False, problems)
-
     def declare_actions(self, specs: Sequence[ast.ActionSpec]) -> None:
-        """Makes the actionspecs known to rule clauses (their ``do`` actions): each spec's
-        precondition and postcondition, in program order (the first that applies wins)."""
+        """Makes the actionspecs known to the rule interpreter: each spec's precondition and
+        postcondition, in program order (the first that applies wins; see rules.pl)."""
         items = []
         for index, spec in enumerate(specs):
             head = format_term(Atom(spec.name))
             if spec.params:
                 head += "(" + ", ".join(param.text for param in spec.params) + ")"
             text = f"'$spec'({head}, ({spec.pre.text}\n), ({spec.post.text}\n))"
-            items.append(Struct("spec", (index, text)))
+            items.append(Struct("spec", (index, _TRUE if spec.internal else _FALSE, text)))
         self._call("declare_actions", self._b, items)
 
-    def compile_pass(self, rules: Sequence[CompiledRule], *, stop: bool) -> CompiledPass:
-        """Compiles consecutive rules into one pass (``stop``: after the first that fires)."""
-        for rule in rules:
-            if rule._state is not self:
-                raise KBError("this rule was compiled for another mental state")
-        key = f"pass:{stop}:{[rule._name for rule in rules]}"
-        compiled = self._compiled.get(key)
-        if compiled is not None:
-            assert isinstance(compiled, CompiledPass)
-            return compiled
-        name = _shared_rules.get(key, ("", ()))[0]
-        if not name:  # one clause for every agent (its rules are shared too)
-            name = self._engine.unique_name("$ga_p")
-            specs = [Struct("/", (Atom(rule._name), len(rule.names) + 5)) for rule in rules]
-            self._call("compile_pass", Atom(name), _TRUE if stop else _FALSE, specs)
-            _shared_rules[key] = (name, ())
-        pred = self._engine.predicate(name, 6, _RULES)
-        compiled = CompiledPass(self, pred, tuple(rules), stop)
-        self._compiled[key] = compiled
-        return compiled
-
-    def fire_pass(self, compiled: CompiledPass, order: Sequence[int] = ()) -> Firings:
-        """Applies a compiled pass in one Prolog call (see pass/7 in mentalstate.pl), its
-        rules in their order or in ``order`` (their indices); what it did (a rule whose
-        condition raised an error is not applicable)."""
-        if compiled._state is not self:
-            raise KBError("this pass was compiled for another mental state")
+    def run(self, environment: bool, listen: bool,
+            passes: list[Term]) -> tuple[int, Term, Record]:
+        """Runs compiled module passes in one call of the rule interpreter (run/8 in
+        rules.pl; see goalagent.kb.interpreter): the actions performed, the last pass's
+        s(Status, Actions) and the journal, kept in Prolog."""
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
-        total, kept, warnings = self._engine.solve(
-            compiled._pred, 6,
-            [(0, self._b), (1, list(order)), (2, _TRUE if self._recheck else _FALSE)],
-            1, outputs=(3, 4, 5), keep=4)[0]
-        rules = [compiled.rules[index] for index in order] if order else compiled.rules
-        problems = [(int(w.args[0]), _problem(w.args[1]))  # type: ignore[union-attr]
-                    for w in warnings]  # type: ignore[union-attr]
-        firings = Firings(total, kept, [rule.condition_names for rule in rules],  # type: ignore
-                          {}, True, problems)
-        if firings:
-            self._recheck = False
-        return firings
+        if self._run_pred is None:
+            self._run_pred = self._engine.predicate("run", 8, "ga_kb")
+        total, last, recheck, journal = self._engine.solve(
+            self._run_pred, 8, [(0, self._b), (1, _TRUE if environment else _FALSE),
+                                (2, _TRUE if listen else _FALSE), (3, passes)],
+            1, outputs=(4, 5, 6, 7), keep=7)[0]
+        self._recheck = recheck == "true"
+        return int(total), last, journal  # type: ignore[arg-type, return-value]
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
         """The error of the first literal SWI's reader rejects (with its position)."""
@@ -647,7 +425,7 @@ class MentalState:
         only when percepts, messages or goal bases changed since (updates check themselves)."""
         removed, self._achieved = self._achieved, []
         if self._recheck:
-            removed += self._call("blind_commitment", self._b, self._g, None)[2]
+            removed += self._call("check_goals", self._b, self._g, None)[2]
             self._recheck = False
         unique: list[list[Term]] = []
         for goal in removed:

@@ -1,5 +1,6 @@
-"""Rules compiled into one Prolog clause and module passes compiled into one call: the same
-GOAL semantics as the step-by-step path (which runs when a tracer is set), fewer calls."""
+"""The one rule interpreter: every rule runs compiled in Prolog, a cycle's modules in one
+call; listeners (the trace) observe that same path, so a run with and without them gives
+the same firings, bindings, actions, beliefs, goals, output and warnings."""
 
 from __future__ import annotations
 
@@ -14,7 +15,6 @@ from test_fuzz_programs import mutated
 import goalagent.kb.engine as engine_module
 from goalagent.agent import Agent, AgentError
 from goalagent.kb.engine import KBError
-from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term
 from goalagent.parser import GoalSyntaxError
 
@@ -22,7 +22,7 @@ REFERENCE = Path(__file__).resolve().parents[1] / "bench" / "reference_agent.goa
 
 
 def make(text: str, *, traced: bool = False, **kwargs) -> Agent:
-    """An agent on the fast path, or with a tracer (every rule and action step by step)."""
+    """An agent, with a tracer (its interpreter then tells every step) when ``traced``."""
     kwargs.setdefault("output", io.StringIO())
     warnings: list[str] = []
     kwargs.setdefault("warn", warnings.append)
@@ -65,7 +65,7 @@ main module { program [order=linearall] {
 
 
 @pytest.mark.parametrize("text", [COMBOS, REFERENCE.read_text()])
-def test_fast_path_and_traced_path_do_the_same(text: str) -> None:
+def test_runs_with_and_without_a_tracer_do_the_same(text: str) -> None:
     fast, traced = make(text), make(text, traced=True)
     try:
         assert history(fast, 25) == history(traced, 25)
@@ -197,82 +197,36 @@ def test_rules_of_a_module_with_parameters_get_their_bindings() -> None:
     assert agent.query("bel", "got(X, Y), z(Z)") == [{"X": 21, "Y": 42, "Z": 21}]
 
 
-def test_a_reference_cycle_is_one_prolog_call_per_module(monkeypatch) -> None:
-    """The event module (2 forall rules) and the main module (4 rules, linearall) each take
+def test_a_reference_cycle_is_one_prolog_call(monkeypatch) -> None:
+    """The event module (2 forall rules) and the main module (4 rules, linearall) run in
     one Prolog call; no other call happens in a cycle of the reference agent."""
     agent = make(REFERENCE.read_text())
     agent.run(3)
     calls = []
-    solve = agent.ms._engine.solve
+    solve = agent.ms.engine.solve
 
     def counting(*args, **kwargs):
         calls.append(args[0])
         return solve(*args, **kwargs)
 
-    monkeypatch.setattr(agent.ms._engine, "solve", counting)
+    monkeypatch.setattr(agent.ms.engine, "solve", counting)
     for _ in range(10):
         agent.step()
-    assert len(calls) == 2 * 10
+    assert len(calls) == 10
     assert agent.query("bel", "cycle(C)") == [{"C": 13}]
     agent.close()
 
 
-def test_unread_bindings_are_freed_in_prolog() -> None:
+def test_unread_journals_are_freed_in_prolog() -> None:
     agent = make(REFERENCE.read_text())
     agent.run(5)
-    engine = agent.ms._engine
+    engine = agent.ms.engine
     agent.run(6)  # the previous report's records are released, then erased at the next call
     assert len(engine._dead_records) <= 12
     agent.step()
     agent.query("bel", "true")
     assert engine._dead_records == []
     agent.close()
-
-
-def test_compiled_rules_belong_to_their_mental_state() -> None:
-    with MentalState("one", beliefs=[]) as one, MentalState("two", beliefs=[]) as two:
-        condition = one.compile(())
-        rule = one.compile_rule("if", condition, [("insert", "a")])
-        with pytest.raises(KBError, match="another mental state"):
-            two.fire(rule)
-        with pytest.raises(KBError, match="another mental state"):
-            two.compile_rule("if", condition, [("insert", "a")])
-        with pytest.raises(KBError, match="only if and forall"):
-            one.compile_rule("listall", condition, [("insert", "a")])
-        with pytest.raises(KBError, match="not an action"):
-            one.compile_rule("if", condition, [("print", "a")])
-        firings = one.fire(rule)
-        assert [(place, b.resolve(), done) for place, b, done in firings.items()] == [(0, {}, 1)]
-        assert firings.problems == [] and firings.actions == 1
-        assert one.query("bel", "a") == [{}]
-
-
-def test_a_compiled_pass_reports_each_rule_it_tried() -> None:
-    with MentalState("one", beliefs=["n(1)", "n(2)"]) as state:
-        state.declare_updates(["m(_)", "k"])
-        rules = [
-            state.compile_rule("forall", state.compile(_bel("n(X)")), [("insert", "m(X)")]),
-            state.compile_rule("if", state.compile(_bel("X is a + 1")), [("insert", "k")]),
-            state.compile_rule("if", state.compile(_bel("m(2)")), [("insert", "k")]),
-            state.compile_rule("if", state.compile(()), [("insert", "k")]),
-        ]
-        every = state.compile_pass(rules, stop=False)
-        firings = state.fire_pass(every)
-        assert [(place, b.resolve(), done) for place, b, done in firings.items()] == [
-            (0, {"X": 1}, 1), (0, {"X": 2}, 1), (2, {}, 1), (3, {}, 1)]
-        assert [(rule, kind) for rule, (kind, _, _) in firings.problems] == [(1, "condition")]
-        first = state.compile_pass(rules, stop=True)
-        firings = state.fire_pass(first, [3, 2, 1, 0])
-        assert [(place, done) for place, _, done in firings.items()] == [(0, 1)]
-        assert firings.actions == 1  # the rule tried first (index 3) fired: the pass stops
-
-
-def _bel(text: str) -> tuple:
-    """A condition of one bel literal."""
-    from goalagent import ast
-
-    pos = ast.Pos("<test>", 1, 1)
-    return (ast.MentalLiteral("bel", ast.PrologText(text, pos), pos),)
 
 
 def test_engine_records_convert_once() -> None:
@@ -306,7 +260,7 @@ main module [exit=nogoals] { program {
 """
 
 
-def test_user_actions_without_environment_run_in_the_rule_clause() -> None:
+def test_user_actions_without_environment_act_through_their_postconditions() -> None:
     fast, traced = make(STACKER), make(STACKER, traced=True)
     try:
         assert history(fast, 8) == history(traced, 8)
@@ -331,7 +285,7 @@ class Recorder:
         self.done.append(str(action))
 
 
-def test_with_an_environment_only_internal_actions_stay_in_prolog() -> None:
+def test_with_an_environment_only_internal_actions_skip_it() -> None:
     env = Recorder()
     agent = make(STACKER, io=env)
     agent.run(8)
@@ -391,23 +345,6 @@ def test_random_orders_in_one_pass_follow_the_seed(order: str) -> None:
             agent.close()
 
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "agents" / "examples"
-
-
-@pytest.mark.parametrize("name", ["hello_world", "listall_macros", "nested_rules",
-                                  "stack_builder", "user_modules", "script_printer"])
-def test_example_agents_run_alike_on_both_paths(name: str) -> None:
-    text = (EXAMPLES / f"{name}.goal").read_text()
-    fast, traced = make(text), make(text, traced=True)
-    try:
-        assert history(fast, 30) == history(traced, 30)
-        assert fast.output.getvalue() == traced.output.getvalue()
-        assert fast.test_warnings == traced.test_warnings  # type: ignore[attr-defined]
-    finally:
-        fast.close()
-        traced.close()
-
-
 def test_a_user_action_may_be_called_do() -> None:
     agent = make("""
         init module { beliefs { n(3). } }
@@ -421,8 +358,8 @@ def test_a_user_action_may_be_called_do() -> None:
 
 def _outcome(text: str, traced: bool) -> str:
     """Everything a run of a (possibly broken) program shows: load error, or per cycle the
-    fired rules and actions, then beliefs, goals, output and warnings (variable names left
-    out: they count differently on the two paths)."""
+    fired rules and actions, then beliefs, goals, output and warnings (the numbers of
+    fresh variables left out: listening converts more terms)."""
     try:
         agent = make(text, traced=traced)
     except (GoalSyntaxError, AgentError) as err:
@@ -448,47 +385,19 @@ def _outcome(text: str, traced: bool) -> str:
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(mutated())
-def test_mutated_programs_run_alike_on_both_paths(text: str) -> None:
+def test_mutated_programs_run_alike_with_and_without_a_tracer(text: str) -> None:
     assert _outcome(text, traced=False) == _outcome(text, traced=True)
 
 
 def test_environment_actions_checked_in_prolog_and_performed_by_python() -> None:
-    """move/2 goes to the environment: the rule clause checks its precondition, Python
-    sends it and applies the postcondition, then the rest of the combo (note@int) runs."""
+    """move/2 goes to the environment: the interpreter checks its precondition, Python
+    sends it, the postcondition follows, then the rest of the combo (note@int) runs."""
     fast_env, traced_env = Recorder(), Recorder()
     fast, traced = make(STACKER, io=fast_env), make(STACKER, io=traced_env, traced=True)
     try:
-        assert fast._rule_clauses == {}  # compiled on first use
         assert history(fast, 8) == history(traced, 8)
         assert fast_env.done == traced_env.done == ["move(b,c)", "move(a,b)"]
-        clause = next(c for c in fast._rule_clauses.values() if c is not None)
-        assert clause.pending and clause.actions == 1
+        assert fast.query("bel", "moved(X)") == [{"X": Atom("b")}, {"X": Atom("a")}]
     finally:
         fast.close()
         traced.close()
-
-
-@pytest.mark.parametrize(("name", "env", "params"), [
-    ("tower_builder", "towerworld", {"seed": 2}),
-    ("blocks_builder", "blocksworld", {"seed": 3}),
-    ("table_agent", "blocksworld", {"seed": 5}),
-    ("script_printer", "printer", {}),
-])
-def test_example_agents_with_environments_run_alike_on_both_paths(
-        name: str, env: str, params: dict) -> None:
-    from goalagent.mas import MultiAgentSystem
-
-    outcomes = []
-    for tracer in (None, lambda agent, kind, text: None):
-        output = io.StringIO()
-        system = MultiAgentSystem.for_agent_file(
-            EXAMPLES / f"{name}.goal", environment=env, env_params=params, output=output,
-            tracer=tracer, warn=lambda message: None)
-        try:
-            summaries = system.run(max_cycles=40)
-            agent = system.agents[0]
-            outcomes.append((summaries, agent.beliefs(), agent.goals(), output.getvalue()))
-        finally:
-            system.close()
-    assert outcomes[0] == outcomes[1]
-    assert outcomes[0][0][0].actions > 0

@@ -1,0 +1,54 @@
+"""Program checks made when an agent is loaded (and by ``goalagent check``): every action a
+rule performs is built in (with its arity), declared in an actionspec, or a module."""
+
+from __future__ import annotations
+
+from goalagent import ast
+from goalagent.parser import GoalSyntaxError
+
+# Built-in actions and their number of arguments (None: one formula, commas allowed).
+_BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
+                  "log": 1, "exit-module": 0}
+_UPDATES = frozenset({"insert", "delete", "adopt", "drop"})
+
+
+def validate_program(program: ast.AgentProgram) -> None:
+    """Every action in a rule must be built in, specified or a user module (with its arity);
+    raises ``GoalSyntaxError`` at the first one that is not."""
+    specs = {(spec.name, spec.arity) for spec in program.actionspecs}
+    modules = {(m.name, m.arity) for m in program.modules}
+    for module in program.modules:
+        for rule in ast.iter_rules(module.rules):
+            for action in rule.actions:
+                if isinstance(action, ast.SendAction):
+                    continue
+                key = (action.name, action.arity)
+                if action.builtin:
+                    expected = _BUILTIN_ARITY[action.name]
+                    if (expected is None and action.arity == 0) or (
+                        expected is not None and action.arity != expected
+                    ):
+                        raise GoalSyntaxError.at(
+                            action.pos, f"{action.name} takes "
+                            f"{'an argument' if expected is None else expected} argument(s), "
+                            f"not {action.arity}")
+                elif key not in specs and key not in modules:
+                    known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
+                    raise GoalSyntaxError.at(
+                        action.pos,
+                        f"unknown action {action.name}/{action.arity}: not built in, not in an "
+                        f"actionspec and not a module (known: {', '.join(known) or 'none'})",
+                    )
+
+
+def update_formulas(program: ast.AgentProgram) -> list[ast.PrologText]:
+    """Every formula the agent may insert or delete (so its predicates are dynamic)."""
+    formulas = list(program.goals) + [spec.post for spec in program.actionspecs]
+    for module in program.modules:
+        for rule in ast.iter_rules(module.rules):
+            for action in rule.actions:
+                if isinstance(action, ast.ActionCall) and action.builtin and (
+                    action.name in _UPDATES
+                ):
+                    formulas.extend(action.args)
+    return formulas

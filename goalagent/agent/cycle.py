@@ -1,0 +1,211 @@
+"""The reasoning cycle: one agent, its mental state in SWI-Prolog, its modules and actions.
+
+Each cycle: collect percepts and messages -> (init module, first cycle only) -> event
+module -> main module (or the module in focus) -> blind commitment. The modules of a cycle
+run in one call of the rule interpreter (see ``goalagent.agent.rules``); GOAL's semantics
+are in docs/goal-language.md. Environments and other agents are reached through
+``AgentIO`` and ``Postman``, so the agent knows nothing of EIS or scheduling.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import TextIO
+
+from goalagent import ast
+from goalagent.agent.actions import ActionFailed, AgentIO
+from goalagent.agent.checks import update_formulas, validate_program
+from goalagent.agent.events import (
+    Event,
+    Listener,
+    Tracer,
+    goal_event,
+    message_event,
+    percepts_event,
+)
+from goalagent.agent.messages import Postman
+from goalagent.agent.modules import Focus, leave_focus
+from goalagent.agent.problems import warning_text
+from goalagent.agent.reports import CycleReport, RunResult
+from goalagent.agent.rules import RuleApplication
+from goalagent.events import EventKind, ProblemKind
+from goalagent.kb.engine import KBError, get_engine
+from goalagent.kb.interpreter import Problem
+from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.terms import Term
+from goalagent.parser import parse_agent, parse_agent_file
+
+Bindings = dict[str, Term]
+
+
+class AgentError(Exception):
+    """A user error found when loading an agent (unknown action, bad clause, ...)."""
+
+
+class Agent:
+    """A GOAL agent: program + mental state + reasoning cycle."""
+
+    def __init__(
+        self,
+        program: ast.AgentProgram,
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+    ) -> None:
+        self.program = program
+        self.name = name or program.name
+        self.io = io
+        self.postman = postman
+        self.random = random.Random(seed)
+        get_engine().seed_random(seed)  # Prolog's random/1, random_float, roulette choices
+        self.output = output or sys.stdout
+        self.listeners: list[Listener] = []
+        if tracer is not None:
+            self.listen(lambda event: tracer(event.agent, event.kind, event.text))
+        self._warn = warn or (lambda message: print(message, file=sys.stderr))
+        self.cycle = 0
+        self.terminated = False
+        self.total_actions = 0
+        self.last_report: CycleReport | None = None
+        self.report = CycleReport(0)  # the cycle in progress (the last one between cycles)
+        self.focus: list[Focus] = []  # user modules the agent stays in, innermost last
+        validate_program(program)
+        try:
+            self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs)
+            self.ms.declare_updates(update_formulas(program))
+            for goal in program.goals:
+                self.ms.adopt(goal)
+            self._rules = RuleApplication(self)
+        except KBError as err:
+            pos = getattr(err, "pos", None)
+            text = str(err)
+            if pos is not None and not text.startswith(str(pos)):
+                text = f"{pos}: {text}"
+            raise AgentError(text if pos else f"{program.file}: {text}") from None
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_file(cls, path: str | Path, **kwargs) -> Agent:
+        """Load an agent from a `.goal` file (``GoalSyntaxError`` on a malformed one)."""
+        return cls(parse_agent_file(path), **kwargs)
+
+    @classmethod
+    def from_string(cls, text: str, file: str = "<string>", **kwargs) -> Agent:
+        """Load an agent from program text."""
+        return cls(parse_agent(text, file), **kwargs)
+
+    # ------------------------------------------------------------------ public API
+    def step(self) -> CycleReport:
+        """Run one reasoning cycle (the first one also runs the init module)."""
+        if self.terminated:
+            raise AgentError(f"agent {self.name} has terminated")
+        self.cycle += 1
+        self.report = CycleReport(self.cycle)
+        self._perceive()
+        program = self.program
+        modules: list[tuple[ast.Module, Bindings]] = []
+        for name in ("init", "event") if self.cycle == 1 else ("event",):
+            module = program.module(name)
+            if module is not None:
+                modules.append((module, {}))
+        focus = self.focus[-1] if self.focus else None
+        main = program.module("main")
+        if focus is not None:
+            modules.append((focus.module, focus.bindings))
+        elif main is not None:
+            modules.append((main, {}))
+        outcome = self._rules.run_modules(modules) if modules else None
+        if focus is not None:
+            assert outcome is not None
+            exit_option = focus.module.exit or "always"
+            if (outcome.exited or (exit_option == "nogoals" and not self.ms.goals())
+                    or (exit_option == "noaction" and outcome.last_actions == 0)):
+                leave_focus(self)
+        elif main is not None:
+            self._check_main_exit(main)
+        elif self.cycle > 1 or not program.module("init"):
+            self.terminated = True  # nothing left to do without a main module
+        self._blind_commitment()
+        self.last_report = self.report
+        return self.report
+
+    def run(self, max_cycles: int | None = None) -> RunResult:
+        """Cycle until the agent terminates or ``max_cycles`` cycles have run."""
+        while not self.terminated and (max_cycles is None or self.cycle < max_cycles):
+            self.step()
+        return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
+
+    def query(self, op: str, text: str) -> list[Bindings]:
+        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values."""
+        return self.ms.query(op, text)
+
+    def beliefs(self) -> list[Term]:
+        return self.ms.beliefs()
+
+    def goals(self) -> list[list[Term]]:
+        return self.ms.goals()
+
+    def close(self) -> None:
+        """Free the agent's Prolog module."""
+        self.ms.close()
+
+    def listen(self, listener: Listener) -> None:
+        """Tell ``listener`` every event from now on (the trace, an inspector)."""
+        self.listeners.append(listener)
+
+    def tell(self, event: Event) -> None:
+        """Tell the listeners an event."""
+        for listener in self.listeners:
+            listener(event)
+
+    def warn(self, message: str) -> None:
+        """A warning: kept in the cycle report and shown (``warning: agent NAME: ...``)."""
+        self.report.warnings.append(message)
+        self._warn(f"warning: agent {self.name}: {message}")
+
+    def log(self, message: str) -> None:
+        """A line where warnings go (``log/1``), not a warning."""
+        self._warn(message)
+
+    # ------------------------------------------------------------------ cycle parts
+    def _perceive(self) -> None:
+        percepts: list[Term] = []
+        if self.io is not None:
+            try:
+                percepts = self.io.percepts()
+            except ActionFailed as err:
+                self.warn(warning_text(Problem(ProblemKind.PERCEPTS_UNAVAILABLE, str(err)),
+                                       self.program))
+        self.ms.set_percepts(percepts)
+        self.report.percepts = percepts
+        if percepts and self.listeners:
+            self.tell(percepts_event(self.name, percepts))
+        if self.postman is not None:
+            messages = self.postman.collect(self.name)
+            for sender, mood, content in messages:
+                self.ms.add_received(sender, mood, content)
+                if self.listeners:
+                    self.tell(message_event(self.name, sender, mood, content))
+            self.report.messages = messages
+
+    def _check_main_exit(self, main: ast.Module) -> None:
+        exit_option = main.exit or "never"
+        if exit_option == "nogoals" and not self.ms.goals():
+            self.terminated = True
+        elif exit_option == "noaction" and not self.report.acted:
+            self.terminated = True
+        elif exit_option == "always":
+            self.terminated = True
+
+    def _blind_commitment(self) -> None:
+        for goal in self.ms.blind_commitment():
+            if self.listeners:
+                self.tell(goal_event(self.name, EventKind.GOAL_ACHIEVED, goal))

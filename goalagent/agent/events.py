@@ -1,0 +1,109 @@
+"""Events an agent tells its listeners (``--trace``, the inspector): what the one rule
+interpreter did, step by step, and what the cycle around it did. Each event carries its
+data (rule position, bindings in the program's variable names, the term concerned) and a
+line of text for people."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+from goalagent import ast
+from goalagent.agent.reports import describe, describe_firing
+from goalagent.events import EventKind
+from goalagent.kb.interpreter import Step
+from goalagent.kb.terms import Term, format_term
+
+_SHOWN_INSTANTIATIONS = 5  # a tried rule's line shows this many instantiations at most
+
+
+@dataclass(frozen=True)
+class Event:
+    """One thing that happened in an agent. ``module`` and ``pos`` locate the rule (rule
+    events); ``bindings`` has one entry per instantiation (RULE_TRIED) or the firing's;
+    ``term`` is the percept list, belief, goal or action concerned."""
+
+    kind: EventKind
+    agent: str
+    text: str
+    module: str | None = None
+    pos: ast.Pos | None = None
+    bindings: tuple[dict[str, Term], ...] = ()
+    term: Term | None = None
+
+
+Listener = Callable[[Event], None]
+
+
+class Tracer(Protocol):
+    """Receives trace events (``--trace``) as one line each: the agent, the kind of event
+    (formats as its name, e.g. ``fired``) and the text."""
+
+    def __call__(self, agent: str, kind: EventKind, text: str) -> None: ...
+
+
+def _shown(bindings: dict[str, Term]) -> str:
+    return ", ".join(f"{name}={format_term(value)}" for name, value in bindings.items())
+
+
+def _goal_text(goal: Term) -> str:
+    """A goal (its facts as a list, or a conjunction) as text."""
+    if isinstance(goal, list):
+        return ", ".join(format_term(fact) for fact in goal)
+    return format_term(goal)
+
+
+def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Event:
+    """The event for a step the interpreter told."""
+    kind, rule = step.kind, step.rule
+    module = rule.module if rule is not None else None
+    pos = rule.rule.pos if rule is not None else None
+    if kind is EventKind.RULE_TRIED:
+        assert rule is not None
+        count = len(step.bindings)
+        text = f"{module} {pos}: {count} instantiation(s)"
+        named = [f"[{_shown(b)}]" for b in step.bindings[:_SHOWN_INSTANTIATIONS] if b]
+        if named:
+            more = " ..." if count > _SHOWN_INSTANTIATIONS else ""
+            text += ": " + " ".join(named) + more
+    elif kind is EventKind.RULE_FIRED:
+        assert rule is not None
+        bindings = step.bindings[0]
+        actions = describe_firing(rule, bindings, step.done, step.terms)
+        text = f"{module} {pos} [{_shown(bindings)}] -> {' + '.join(actions) or '(block)'}"
+    elif kind is EventKind.ACTION_REFUSED:
+        assert rule is not None and step.action_index is not None
+        action = rule.rule.actions[step.action_index]
+        why = {"believed": "already believed", "exists": "already a goal",
+               "precondition": "no precondition holds"}.get(step.reason, step.reason)
+        text = f"{describe(action, step.bindings[0])} not enabled ({why}) at {action.pos}"
+    elif kind is EventKind.PRECONDITION_FAILED:
+        assert step.spec_index is not None
+        spec = program.actionspecs[step.spec_index]
+        text = f"{format_term(step.term)}: pre {{{spec.pre.text}}} does not hold"
+    elif kind in (EventKind.BELIEF_ADDED, EventKind.BELIEF_DELETED):
+        text = format_term(step.term)
+    else:  # a goal adopted, dropped or achieved
+        text = _goal_text(step.term)
+    return Event(kind, agent, text, module, pos, step.bindings, step.term)
+
+
+def percepts_event(agent: str, percepts: Sequence[Term]) -> Event:
+    return Event(EventKind.PERCEPTS, agent, ", ".join(format_term(p) for p in percepts),
+                 term=list(percepts))
+
+
+def message_event(agent: str, sender: str, mood: str, content: Term) -> Event:
+    return Event(EventKind.MESSAGE_RECEIVED, agent, f"{sender}: {mood}{format_term(content)}",
+                 term=content)
+
+
+def module_event(agent: str, kind: EventKind, module: ast.Module, description: str) -> Event:
+    """Entering (``description``: the call) or leaving a module."""
+    return Event(kind, agent, f"module {description}", module.name, module.pos)
+
+
+def goal_event(agent: str, kind: EventKind, goal: list[Term]) -> Event:
+    """A goal (its facts) adopted, dropped or achieved."""
+    return Event(kind, agent, _goal_text(goal), term=goal)

@@ -1,0 +1,39 @@
+"""Every warning an agent gives while it runs, worded in one place: problems the
+interpreter meets (Prolog errors in conditions, actions and preconditions, actions not
+closed) and those of the environment and messaging seams. The agent goes on after each."""
+
+from __future__ import annotations
+
+from goalagent import ast
+from goalagent.events import ProblemKind
+from goalagent.kb.interpreter import Problem
+from goalagent.kb.terms import format_term
+
+
+def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
+    """The warning for ``problem`` (the agent prefixes ``warning: agent NAME:``)."""
+    kind, detail = problem.kind, problem.detail
+    if kind is ProblemKind.CONDITION_ERROR:
+        assert problem.rule is not None
+        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: Prolog error "
+                f"in the condition: {detail}; the rule is not applicable")
+    if kind is ProblemKind.PRECONDITION_ERROR:
+        assert problem.spec_index is not None
+        spec = program.actionspecs[problem.spec_index]
+        return (f"precondition of {spec.name} at {spec.pos}: Prolog error: {detail}; the "
+                "action is not enabled")
+    if kind is ProblemKind.PERCEPTS_UNAVAILABLE:
+        return f"could not get percepts: {detail}"
+    assert problem.firing is not None and problem.action_index is not None
+    action = problem.firing.rule.rule.actions[problem.action_index]
+    if kind is ProblemKind.ACTION_NOT_CLOSED:
+        return (f"{action.pos}: action {format_term(problem.term)} is not closed after its "
+                "precondition; not performed")
+    if kind is ProblemKind.ENVIRONMENT_REFUSED:
+        return (f"{action.pos}: the environment could not perform "
+                f"{format_term(problem.term)}: {detail}")
+    if kind is ProblemKind.RECEIVER_UNBOUND:
+        return f"{action.pos}: the receiver of {detail} is not bound; not sent"
+    if kind is ProblemKind.DELIVERY_FAILED:
+        return f"{action.pos}: {detail}"
+    return f"{action.pos}: {action.name} failed: {detail}"

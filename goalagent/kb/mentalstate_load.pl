@@ -1,0 +1,240 @@
+
+		 /*******************************
+		 *      CREATING / LOADING      *
+		 *******************************/
+
+%!  new_agent(+B, +G) is det.
+%   Creates the belief module B and the goal module G (both based on system only).
+
+new_agent(B, G) :-
+    forall(member(M, [B, G]),
+           ( set_module(M:class(temporary)),
+             set_module(M:base(system)),
+             hide_operators(M),
+             forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
+                    dynamic(M:PI))
+           )),
+    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4)),
+    assertz(B:'$ga_gm'(G)),
+    recheck(B),
+    dynamic(G:('$gf'/2, '$goal'/2, '$top'/1, '$fwd'/1)),
+    assertz(G:'$top'(0)).
+
+%!  destroy(+B, +G) is det.
+destroy(B, G) :-
+    nb_delete(B),
+    '$destroy_module'(B),
+    '$destroy_module'(G).
+
+%!  load(+B, +G, +Items, -Result) is det.
+%   Items: list of k(Text) (knowledge) and b(Text) (belief) clauses, loaded in order.
+%   Result = ok or error(Index, Message) for the first clause that fails (0-based).
+
+load(B, G, Items, Result) :-
+    load_(Items, 0, B, G, Result).
+
+load_([], _, _, _, ok).
+load_([Item|Items], I, B, G, Result) :-
+    (   catch(load_item(Item, B, G), E, true)
+    ->  (   var(E)
+        ->  I1 is I + 1,
+            load_(Items, I1, B, G, Result)
+        ;   E = error(syntax_error(What), Context)
+        ->  syntax_message(What, Msg0),
+            arg(1, Item, Text),
+            error_offset(What, Context, Text, Offset),
+            format(string(Msg), "syntax error: ~w (at character ~w)", [Msg0, Offset]),
+            Result = error(I, Msg)
+        ;   error_message(E, Msg),
+            Result = error(I, Msg)
+        )
+    ;   Result = error(I, "directive failed")
+    ).
+
+load_item(Item, B, G) :-
+    Item =.. [Kind, Text],
+    read_text(Text, B, Term, _),
+    load_term(Term, Kind, B, G).
+
+load_term((:- Directive), Kind, B, G) :- !,
+    directive(Directive, Kind, B, G).
+load_term((Head --> Body), Kind, B, G) :- !,
+    dcg_translate_rule((Head --> Body), Clause),
+    load_term(Clause, Kind, B, G).
+load_term(Clause, Kind, B, G) :-
+    assertz(B:Clause),
+    clause_head(Clause, Head),
+    (   Kind == k
+    ->  assertz(G:Clause),
+        functor(Head, N, A),
+        (   B:'$kpred'(N/A)
+        ->  true
+        ;   assertz(B:'$kpred'(N/A))
+        )
+    ;   ensure_dynamic(G, Head)
+    ).
+
+clause_head((Head :- _), Head) :- !.
+clause_head(Head, Head).
+
+directive(dynamic(Spec), _, B, G) :- !,
+    dynamic(B:Spec),
+    dynamic(G:Spec).
+directive(discontiguous(_), _, _, _) :- !.
+directive(op(Priority, Type, Names), _, B, G) :- !,
+    forall(member(M, [B, G]),
+           ( qualify_op_names(Names, M, Qualified),
+             op(Priority, Type, Qualified) )).
+directive(Directive, Kind, B, G) :-
+    once(B:Directive),
+    (   Kind == k, load_directive(Directive)
+    ->  once(G:Directive)
+    ;   true
+    ).
+
+load_directive(use_module(_)).
+load_directive(use_module(_, _)).
+load_directive(ensure_loaded(_)).
+
+%   op/3 acts on the module named in the operator (default: user), so qualify every name.
+qualify_op_names(Names, M, Qualified) :-
+    (   is_list(Names)
+    ->  maplist(qualify_op_name(M), Names, Qualified)
+    ;   qualify_op_name(M, Names, Qualified)
+    ).
+
+qualify_op_name(_, Name, Name) :- Name = _:_, !.
+qualify_op_name(M, Name, M:Name).
+
+%!  ensure_dynamic(+Module, +Head) is det.
+%   Declares Head's predicate dynamic in Module unless it is defined there already.
+
+ensure_dynamic(M, Head) :-
+    (   current_predicate(_, M:Head)
+    ->  true
+    ;   predicate_property(M:Head, defined)
+    ->  true
+    ;   functor(Head, N, A),
+        dynamic(M:N/A)
+    ).
+
+%!  declare(+B, +G, +Formulas) is det.
+%   Every predicate in the conjunctions Formulas (also under not/1) becomes queryable
+%   (dynamic if undefined) in both modules.
+
+declare(B, G, Formulas) :-
+    forall(( member(Formula, Formulas),
+             catch(conjuncts(Formula, Lits), _, fail),
+             member(Lit, Lits),
+             positive(Lit, H),
+             fact_like(H) ),
+           ( ensure_dynamic(B, H), ensure_dynamic(G, H) )).
+
+positive(Lit, Lit) :- var(Lit), !.
+positive(not(Lit), Lit) :- !.
+positive(\+ Lit, Lit) :- !.
+positive(Lit, Lit).
+
+%!  declare_goal(+B, +G, +Facts) is det.
+%   As declare/3, and the predicates of Facts can be goal facts (forwarders in G).
+
+declare_goal(B, G, Facts) :-
+    forall(( member(F, Facts), fact_like(F) ),
+           ( ensure_dynamic(B, F), forwarder(G, F) )).
+
+fact_like(H) :-
+    callable(H),
+    \+ control(H).
+
+control((_, _)).
+control((_ ; _)).
+control((_ -> _)).
+control((_ *-> _)).
+control(\+ _).
+control(not(_)).
+control(true).
+control(_:_).
+
+%!  forwarder(+G, +Head) is det.
+%   Makes Head's predicate in G answer from the goal selected by '$ga_g'.
+
+forwarder(G, Head) :-
+    functor(Head, N, A),
+    (   G:'$fwd'(N/A)
+    ->  true
+    ;   predicate_property(G:Head, defined),
+        \+ predicate_property(G:Head, dynamic)
+    ->  true                        % a built-in: it can never be a goal fact
+    ;   functor(Gen, N, A),
+        dynamic(G:N/A),
+        assertz(G:(Gen :- b_getval('$ga_g', Id), '$gf'(Id, Gen))),
+        assertz(G:'$fwd'(N/A))
+    ).
+
+		 /*******************************
+		 *        CONDITIONS            *
+		 *******************************/
+
+%!  compile(+B, +G, +Name, +Text, -Names) is det.
+%   Text is a conjunction of '$bel'(Q), '$goal'(Q), '$agoal'(Q), '$goala'(Q),
+%   '$percept'(Q), true and \+ (...); asserts B:Name(Vars...) :- Body and returns the
+%   variable names in order of first appearance (= the arguments). Each goal literal becomes
+%   an auxiliary clause Name_I in G, called through the module name stored in B (a clause of
+%   one temporary module may not name another one).
+
+compile(B, G, Name, Text, Names) :-
+    read_text(Text, B, Cond, Bindings),
+    binding_names(Bindings, Names),
+    maplist(arg(2), Bindings, Vars),
+    translate(Cond, Name, Body, 0, _, Auxes, []),
+    forall(member(Aux, Auxes), assertz(G:Aux)),
+    Head =.. [Name|Vars],
+    assertz(B:(Head :- Body)).
+
+translate((A0, B0), Name, (A, B), N0, N, Aux0, Aux) :- !,
+    translate(A0, Name, A, N0, N1, Aux0, Aux1),
+    translate(B0, Name, B, N1, N, Aux1, Aux).
+translate(\+ A0, Name, \+ A, N0, N, Aux0, Aux) :- !,
+    translate(A0, Name, A, N0, N, Aux0, Aux).
+translate(true, _, true, N, N, Aux, Aux) :- !.
+translate('$bel'(Q0), _, Q, N, N, Aux, Aux) :- !,
+    local_cut(Q0, Q).
+translate('$goal'(Q), Name, Call, N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    N is N0 + 1.
+translate('$agoal'(Q), Name, (Call, \+ Q), N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    N is N0 + 1.
+translate('$goala'(Q), Name, (Call, LocalQ), N0, N, [Clause|Aux], Aux) :- !,
+    in_goal(Q, Name, N0, Call, Clause),
+    local_cut(Q, LocalQ),
+    N is N0 + 1.
+translate('$percept'(Q), _, Body, N, N, Aux, Aux) :-
+    percept_body(Q, Body).
+
+in_goal(Q, Name, I, ('$ga_gm'(G), G:AuxHead),
+        (AuxHead :- '$top'(Base), '$goal'(Base, Id), b_setval('$ga_g', Id), LocalQ)) :-
+    local_cut(Q, LocalQ),
+    format(atom(AuxName), '~w_~w', [Name, I]),
+    term_variables(Q, Vars),
+    AuxHead =.. [AuxName|Vars].
+
+%   A cut in a query cuts that query only, as if each literal were its own Prolog query.
+local_cut(Q, Local) :-
+    (   has_cut(Q)
+    ->  Local = call(Q)
+    ;   Local = Q
+    ).
+
+has_cut(Q) :- var(Q), !, fail.
+has_cut(!).
+has_cut((A, B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A ; B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A -> B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+has_cut((A *-> B)) :- ( has_cut(A) -> true ; has_cut(B) ).
+
+percept_body(Q, percept(Q)) :- var(Q), !.
+percept_body((A0, B0), (A, B)) :- !,
+    percept_body(A0, A),
+    percept_body(B0, B).
+percept_body(Q, percept(Q)).
