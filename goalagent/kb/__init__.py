@@ -2,22 +2,28 @@
 
 - ``engine.py``: the process's one SWI-Prolog (``get_engine()``): syntax checks with SWI's own
   reader (``check_clause``/``check_query`` -> variable names, ``PrologSyntaxError.offset``),
-  ``parse_term``, ``write`` and the Python <-> Prolog term conversion (raw C interface).
-- ``mentalstate.py`` + ``mentalstate.pl``: ``MentalState``, one agent's knowledge, beliefs,
+  ``parse_term``, ``write``, the Python <-> Prolog term conversion (raw C interface) and
+  foreign predicates (Prolog calling Python).
+- ``mentalstate.py`` + ``mentalstate*.pl``: ``MentalState``, one agent's knowledge, beliefs,
   goal bases, percepts and mailbox in two private Prolog modules.
+- ``interpreter.py`` + ``rules.pl``: the one rule interpreter; ``CompiledProgram`` compiles
+  a program's rules and runs module passes in one call, asking its ``Requests`` for what
+  only Python does.
+- ``errors.py``: ``KBError`` and its kinds.
 
 Typical use::
 
     state = MentalState("robot", knowledge=program.knowledge, beliefs=program.beliefs)
     state.declare_updates(formulas_of_all_inserts_deletes_posts_and_goals)
     state.adopt("on(a, b), on(b, table)")
-    rule = state.compile(rule.condition)          # once per rule
-    for answer in state.solutions(rule, {"X": Atom("a")}, limit=1):
+    condition = state.compile(rule.condition)     # once per condition
+    for answer in state.solutions(condition, {"X": Atom("a")}, limit=1):
         state.insert("not(on(X, Y)), on(X, table)", answer)
     state.blind_commitment()
-    # or, the condition and the leading actions in one call (see MentalState.compile_rule):
-    compiled = state.compile_rule("if", rule, [("insert", "done(X)")])
-    firings = state.fire(compiled)                # firings.actions, firings.items()
+    # or a whole program's rules, run by the interpreter (see goalagent.agent.rules):
+    code = CompiledProgram(state, program)
+    outcome = code.run([(code.code(program.module("main")), {})], requests,
+                       environment=False, listen=False)
     state.close()
 
 Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).
