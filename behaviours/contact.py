@@ -44,6 +44,7 @@ class PartContact:
         self.part = part
         self.dims = dims
         self.perception = perception if perception is not None else TruthPerception()
+        self._seen: float | None = None  # s_o after the last step: the world has not moved since
 
     @property
     def action_bounds(self) -> list[tuple[float, float]]:
@@ -55,11 +56,13 @@ class PartContact:
         for point in _approach(self.world, "extend_arm", self.part):
             self.world.move_arm_to(point)
         self.world.hold(self.part)
+        self._seen = None
         return self
 
     def finish(self) -> None:
         """Let go, back out in front of the can and go home; the part stays where it is."""
         self.world.release()
+        self._seen = None
         hand = self.world.effector_pos
         self.world.move_arm_to([min(hand[0], CLEAR_X), hand[1], hand[2]])
         self.world.home()
@@ -73,8 +76,10 @@ class PartContact:
         self.finish()
 
     def observe(self) -> float:
-        """s_o (eq. 4.19) as the perception sees it now."""
-        return self.perception.observe(self.world).opening_area
+        """s_o (eq. 4.19) as the perception sees it now (the last step's view, if any)."""
+        if self._seen is None:
+            self._seen = self.perception.observe(self.world).opening_area
+        return self._seen
 
     def step(self, action: np.ndarray) -> float:
         """Move the held part by ``action`` (m per dimension) and return the new s_o."""
@@ -91,4 +96,5 @@ class PartContact:
         delta[: self.dims] = move
         self.world.move_arm(*delta)
         self.world.relax()
+        self._seen = None
         return self.observe()

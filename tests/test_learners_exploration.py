@@ -14,6 +14,7 @@ from behaviours.learners.skill_acquisition import (
     candidate_actions,
     goal_action,
 )
+from behaviours.learners.theta_exploration import ThetaWorld, explore_theta
 from behaviours.learners.validation import ActionBounds
 
 STEP = 0.01
@@ -176,3 +177,32 @@ def test_skill_acquisition_stops_after_max_steps_when_effects_never_vanish() -> 
     world = Slider(gain=1.5, top=100.0)
     opening, _ = acquire_skills(trained_model(Slider(), 1), world, tau=1e-6, max_steps=4)
     assert not opening.terminated and len(opening.steps) == 4
+
+
+def test_theta_worlds_start_every_try_from_the_same_state() -> None:
+    world = ThetaWorld(lambda theta: 2.0 * theta, (0.0, 0.1), state=0.03)
+    assert world.action_bounds == [(pytest.approx(1e-4), 0.1)]  # lo < θ: lo is no action
+    assert world.step(np.array([0.05])) == pytest.approx(0.13)
+    assert world.observe() == 0.03 and world.step(np.array([0.01])) == pytest.approx(0.05)
+    with pytest.raises(ValueError, match=r"returned nan for theta=0\.0100"):
+        ThetaWorld(lambda theta: float("nan"), (0.0, 0.1), 0.0).step(np.array([0.01]))
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_active_theta_exploration_reads_e_max_off_the_forward_model(seed: int) -> None:
+    """A lid that opens 2.2 m per m of push up to 0.11 m: e_max ≥ δ = 0.1 at the top (6.8)."""
+    result = explore_theta(lambda t: min(0.11, 2.2 * t), bounds=(0.0, 0.1), state=0.0,
+                           random_state=seed)
+    assert 21 <= result.samples <= 100 and result.converged
+    assert np.allclose(result.effects, np.minimum(0.11, 2.2 * result.thetas))
+    assert np.all((result.thetas > 0.0) & (result.thetas <= 0.1))
+    grid = np.linspace(1e-4, 0.1, 101)[:, None]
+    predicted = result.forward_model.predict_effects([0.0], grid)
+    assert result.e_max == pytest.approx(predicted.max()) and result.e_max >= 0.1
+    assert result.theta_max == pytest.approx(grid[np.argmax(predicted), 0])
+    assert result.theta_max > 0.05
+
+
+def test_active_theta_exploration_of_a_useless_action_predicts_little() -> None:
+    result = explore_theta(lambda t: 0.0, bounds=(0.0, 0.1), state=0.0, random_state=0)
+    assert result.e_max < 0.05 and np.all(result.effects == 0.0)

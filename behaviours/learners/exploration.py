@@ -41,11 +41,12 @@ class ContinuousWorld(Protocol):
         ...
 
     def observe(self) -> float | Sequence[float]:
-        """The object state s_o now (a number or a vector)."""
+        """The object state s_o now (a number or a vector); asked at the start of every step."""
         ...
 
     def step(self, action: np.ndarray) -> float | Sequence[float]:
-        """Perform ``action`` (within the bounds) and return the next state s'_o."""
+        """Perform ``action`` (within the bounds) and return the state s'_o right after it
+        (a world that puts the object back between tries observes the start state again)."""
         ...
 
 
@@ -134,9 +135,9 @@ class ActiveExplorer(BaseEstimator):
         test = TDConvergence(self.window, self.tol)
         rows: dict[str, list] = {key: [] for key in (
             "states", "actions", "effects", "predictions", "rewards", "td_errors", "averaged")}
-        state = _state(world.observe(), "the world's state")
         converged_at = None
         for k in range(1, self.n_max + 1):
+            state = _state(world.observe(), "the world's state")  # step 4: observe s_o^k
             if self.mode == "active" and k > self.n_random:
                 unit = cacla.sample(state)  # 4.5
             else:
@@ -161,7 +162,6 @@ class ActiveExplorer(BaseEstimator):
                                ("td_errors", delta)):
                 rows[key].append(value)
             rows["averaged"].append(test.averages[-1] if test.averages else np.nan)
-            state = next_state
             if stop:
                 converged_at = k
                 break

@@ -77,13 +77,12 @@ def acquire_skills(
     for phase in PHASES:
         steps: list[SkillStep] = []
         terminated = False
-        state = _scalar_state(world.observe())
         for _ in range(limit):
+            state = _scalar_state(world.observe())
             action, goal = goal_action(model, state, candidates, maximise=phase == "maximise")
             next_state = _scalar_state(world.step(action.copy()))
             effect = next_state - state  # 4.20
             steps.append(SkillStep(state, tuple(float(x) for x in action), goal, effect))
-            state = next_state
             if abs(effect) < tau:  # 4.15
                 terminated = True
                 break
