@@ -27,7 +27,7 @@ from goalagent.eis.terms import (
 )
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.mentalstate import AgentDirectory
-from goalagent.kb.terms import Atom, Struct, Term
+from goalagent.kb.terms import Atom, Struct, Term, Var
 from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
 
 
@@ -80,11 +80,13 @@ class AgentSummary:
 
 def parse_parameter(text: str) -> Term:
     """An environment parameter value given as Prolog text (``--env-param k=v``); text that
-    is not a Prolog term is taken as an atom, so paths need no quotes."""
+    is not a Prolog term, or is a lone variable (``map=Banana``), is taken as an atom, so
+    paths and capitalised names need no quotes."""
     try:
-        return get_engine().parse_term(text)
+        term = get_engine().parse_term(text)
     except PrologSyntaxError:
         return Atom(text)
+    return Atom(text.strip()) if isinstance(term, Var) else term
 
 
 class MultiAgentSystem:

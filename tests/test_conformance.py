@@ -370,6 +370,12 @@ ENV_ARGS = {
     "blocks_builder.goal": ["--env", "blocksworld", "--env-param", f"state={SUSSMAN}"],
     "table_agent.goal": ["--env", "blocksworld"],
     "tower_builder.goal": ["--env", "towerworld", "--env-param", f"state={SUSSMAN}"],
+    "bw4t_robot.goal": ["--env", "bw4t", "--env-param", "map=TwoRooms",
+                        "--env-param", "ticks=20"],
+    "elevator_car.goal": ["--env", "elevator", "--env-param",
+                          "simulation='Three Person Elevator'", "--env-param", "floors=6",
+                          "--env-param", "cars=1", "--env-param", "timefactor=5"],
+    "hanoi_solver.goal": ["--env", "hanoi"],
 }
 RUNNABLE = sorted(p.name for p in EXAMPLES.glob("*.goal") if not p.name.startswith("team_")
                   and not p.name.startswith("coffee_")) + ["coffee.mas2g", "blocks_team.mas2g"]

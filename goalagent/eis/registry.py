@@ -3,11 +3,16 @@
 Built-in environments are registered lazily as import paths, so naming one costs nothing until
 it is loaded. Applications add theirs through an extension (``goalagent.extensions``): the
 robot application's ``garbage`` imports MuJoCo only when an agent asks for it.
+
+GOAL programs name their environment by its jar file (``env = "bw4t-client-3.8.0.jar"``,
+``use "ElevatorSim-1.3.2.jar" as environment``); ``_JARS`` maps the jar names of the
+environments goalagent has in Python to their registered names.
 """
 
 from __future__ import annotations
 
 import importlib
+import re
 import sys
 from collections.abc import Callable
 from typing import TypeVar, overload
@@ -22,6 +27,10 @@ _REGISTRY: dict[str, type[Environment] | str] = {
     "blocksworld": "goalagent.eis.envs.blocksworld:BlocksWorld",
     "towerworld": "goalagent.eis.envs.towerworld:TowerWorld",
     "printer": "goalagent.eis.envs.printer:Printer",
+    "bw4t": "goalagent.eis.envs.bw4t.environment:BW4T",
+    "bw4t-3.8": "goalagent.eis.envs.bw4t.environment:BW4TLegacy",
+    "elevator": "goalagent.eis.envs.elevator.environment:Elevator",
+    "hanoi": "goalagent.eis.envs.hanoi:Hanoi",
 }
 _FROM_EXTENSION: dict[str, Extension] = {}
 """Names an extension registered, with that extension (prepared before the first import)."""
@@ -87,6 +96,25 @@ def register_environment(name: str, target: E | str | None = None) -> object:
     return register
 
 
+# Jar file name (any folder, any case) -> registered name. BW4T before 3.9 and BW4T 2 sent
+# negated percepts, so their clients map to the legacy vocabulary.
+_JARS: list[tuple[re.Pattern[str], str]] = [
+    (re.compile(r"bw4t-client-3\.[0-8](\.\d+)?\b.*\.jar|bw4tclient\.jar"), "bw4t-3.8"),
+    (re.compile(r"bw4t-client-\d+(\.\d+)*\b.*\.jar|bw4t.*\.jar"), "bw4t"),
+    (re.compile(r"(elevatorsim|elevatorenv|elevator).*\.jar"), "elevator"),
+    (re.compile(r"hanoi.*\.jar"), "hanoi"),
+]
+
+
+def _jar_name(spec: str) -> str | None:
+    """The registered name for an environment jar file name, if goalagent has it."""
+    base = re.split(r"[/\\]", spec)[-1].lower()
+    for pattern, name in _JARS:
+        if pattern.fullmatch(base):
+            return name
+    return None
+
+
 def known_environments() -> list[str]:
     """The registered environment names (built in and from extensions), sorted."""
     _register_extensions()
@@ -124,6 +152,8 @@ def load_environment(spec: str) -> type[Environment]:
     """The environment class for a registered name or a ``package.module:Class`` path."""
     _register_extensions()
     entry = _REGISTRY.get(spec)
+    if entry is None and spec.lower().endswith(".jar") and _jar_name(spec) is not None:
+        return load_environment(str(_jar_name(spec)))
     if entry is None:
         if ":" not in spec:
             raise NoEnvironmentException(
