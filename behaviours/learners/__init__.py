@@ -1,5 +1,10 @@
 """Pure learners (thesis chapters 3–5): numpy / scikit-learn only, no MuJoCo, no agents.
 
+Chapter 3 and Appendix A (task learning with affordances): ``xcs`` (Wilson's accuracy-based
+classifier system XCS with Algorithm 2's action filter, and ``XCSClassifier``, its
+scikit-learn face), built from ``xcs_agent``, ``xcs_population``, ``xcs_discovery``,
+``xcs_params`` and ``xcs_persistence``.
+
 Chapter 4 (active affordance learning): ``network`` (the small tanh network), ``forward_model``
 (F_ψ, eq. 4.1–4.4), ``cacla`` (actor-critic and the TD-error stop test, eq. 4.5–4.11),
 ``exploration`` (Algorithm 3 and the random baseline over a ``ContinuousWorld``),

@@ -1,0 +1,410 @@
+"""XCS as an agent steps it: `act` on a state, then `reward` the action (thesis App. A).
+
+One `act` forms the match set [M] (covering the permitted actions no classifier advocates),
+the prediction array (eq. 3.8) and the action set [A]; in explore mode it then reinforces the
+previous step's action set [A]-1 with P = r-1 + gamma * max PA (eq. 7.2) and runs the niche GA
+there. `reward(r, done)` closes the step: on the last step of a trial [A] itself is reinforced
+with P = r (single-step problems are one-step trials). Exploit steps choose greedily and learn
+nothing; explore steps choose at random among the advocated actions, or, with
+``consistent_actions``, keep the previous action as App. A describes.
+
+`allowed` is Algorithm 2's action filter (eq. 3.10): both the choice and max PA in eq. 7.2 range
+over the allowed actions only, and covering makes sure every allowed action is advocated.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import reprlib
+from collections.abc import Iterable
+from dataclasses import dataclass
+from os import PathLike
+
+import numpy as np
+
+from . import xcs_persistence
+from .xcs_discovery import action_set_subsumption, cover, delete_from_population, run_ga
+from .xcs_params import DEFAULTS, Settings, check_parameters, make_generator
+from .xcs_population import (
+    ERROR,
+    EXPERIENCE,
+    FITNESS,
+    NUMEROSITY,
+    PREDICTION,
+    SET_SIZE,
+    TIME_STAMP,
+    Classifier,
+    Population,
+    bits_to_int,
+    int_to_words,
+    words_for,
+)
+
+MAX_COVERING_ROUNDS = 1000
+"""Covering repeats while deletion keeps removing advocates it just made; with N >= the number
+of actions it ends after a few rounds, this bound only turns a pathology into an error."""
+STATE_CACHE_SIZE = 1 << 16
+_sum, _all = np.add.reduce, np.logical_and.reduce
+"""The ufunc reductions themselves: ndarray.sum/.all add a Python-level call per use."""
+
+
+@dataclass
+class _Step:
+    """What one `act` left behind: its action set (rows), action, state (bit i is position
+    i) and mode."""
+
+    rows: np.ndarray
+    action: int
+    state: int
+    explore: bool
+    reward: float = 0.0
+
+
+class XCS:
+    """Wilson's XCS over binary states and ``n_actions`` integer actions (see module doc).
+
+    Parameters keep the names of Butz & Wilson (2001) and thesis Table 7.1; ``beta_p``,
+    ``beta_e``, ``beta_f`` (eq. 7.1, 7.4, 7.5) default to ``beta``. The state length is fixed
+    by the first state seen. Learned state: ``population_`` (the classifiers), ``time_`` (the
+    number of explore steps, the GA's clock), ``n_bits_``.
+    """
+
+    def __init__(self, n_actions: int, *, N: int = 400, beta: float = 0.2,
+                 beta_p: float | None = None, beta_e: float | None = None,
+                 beta_f: float | None = None, gamma: float = 0.71, alpha: float = 0.1,
+                 epsilon_0: float = 10.0, nu: float = 5.0, theta_ga: float = 25,
+                 chi: float = 0.8, mu: float = 0.04, theta_del: int = 20, delta: float = 0.1,
+                 theta_sub: int = 20, p_hash: float = 0.33, prediction_init: float = 10.0,
+                 error_init: float = 0.0, fitness_init: float = 0.01,
+                 ga_subsumption: bool = True, action_set_subsumption: bool = False,
+                 consistent_actions: bool = False, random_state: object = None) -> None:
+        self.n_actions = n_actions
+        self.N, self.beta, self.beta_p, self.beta_e, self.beta_f = N, beta, beta_p, beta_e, beta_f
+        self.gamma, self.alpha, self.epsilon_0, self.nu = gamma, alpha, epsilon_0, nu
+        self.theta_ga, self.chi, self.mu, self.theta_del = theta_ga, chi, mu, theta_del
+        self.delta, self.theta_sub, self.p_hash = delta, theta_sub, p_hash
+        self.prediction_init, self.error_init = prediction_init, error_init
+        self.fitness_init = fitness_init
+        self.ga_subsumption = ga_subsumption
+        self.action_set_subsumption = action_set_subsumption
+        self.consistent_actions = consistent_actions
+        self.random_state = random_state
+        check_parameters("XCS", n_actions, self.get_params())
+        self._settings = Settings.resolve(int(n_actions), self.get_params())
+        self._rng = make_generator(random_state)
+        settings = self._settings
+        self._accuracy_scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
+        self._accuracy_floor = self._accuracy_scale * settings.epsilon_0
+        self._all_actions = np.arange(int(n_actions))
+        self.population_: Population | None = None
+        self.n_bits_: int | None = None
+        self.time_ = 0
+        self._pending: _Step | None = None
+        self._previous: _Step | None = None
+        self._states: dict[object, tuple[np.ndarray, int]] = {}
+
+    def get_params(self) -> dict[str, object]:
+        """The keyword parameters as given (``n_actions`` apart)."""
+        return {name: getattr(self, name) for name in DEFAULTS}
+
+    # -- the agent-facing interface ------------------------------------------------------------
+
+    def act(self, state: object, explore: bool = True,
+            allowed: Iterable[int] | None = None) -> int:
+        """Choose an action for ``state`` (a "0101" string or a 0/1 sequence).
+
+        Explore: a random advocated action (or, with ``consistent_actions``, the previous one
+        while [A]-1 still matches); exploit: the best by eq. 3.9. ``allowed`` (action indices)
+        restricts the choice, eq. 7.2's max and covering to those actions.
+        """
+        if explore is not True and explore is not False and not isinstance(explore, np.bool_):
+            raise ValueError(f"explore must be True or False, got {explore!r}")
+        permitted = self._all_actions if allowed is None else self._permitted(allowed)
+        words, number = self._encode(state)
+        if self._pending is not None and self._pending.explore:
+            raise ValueError("act: the previous explore action has not been rewarded; "
+                             "call reward(r, done) first")
+        self._pending = None
+        previous, self._previous = self._previous, None
+        previous = self._compact_keeping(previous if explore else None)
+        if explore:
+            self.time_ += 1
+        match, actions, prediction = self._match_set(words, number, permitted)
+        # every permitted action is advocated now: covering saw to it
+        values = (prediction if allowed is None else prediction[permitted]).tolist()
+        if explore:
+            action = self._explore_action(permitted, previous, words)
+            action_set = match[actions == action]
+        else:
+            action = self._best_action(values, permitted)
+            action_set = match[:0]  # exploit steps learn nothing
+        if previous is not None:
+            self._reinforce(previous, previous.reward
+                            + self._settings.gamma * max(values))  # eq. 7.2
+        self._pending = _Step(action_set, action, number, bool(explore))
+        return action
+
+    def reward(self, r: float, done: bool) -> None:
+        """The reward of the action `act` just returned; ``done`` ends the trial."""
+        if type(r) is not float and (not isinstance(r, numbers.Real) or isinstance(r, bool)):
+            raise ValueError(f"r must be a finite number, got {r!r}")
+        if not math.isfinite(r):
+            raise ValueError(f"r must be a finite number, got {r!r}")
+        if done is not True and done is not False and not isinstance(done, np.bool_):
+            raise ValueError(f"done must be True or False, got {done!r}")
+        step, self._pending = self._pending, None
+        if step is None:
+            raise ValueError("reward: no action to reward; call act(state) first")
+        if not step.explore:
+            return
+        if done:
+            self._reinforce(step, float(r))
+        else:
+            step.reward = float(r)
+            self._previous = step
+
+    def end_trial(self) -> None:
+        """End a trial cut short (a step limit) without a terminal reward: the last action
+        set stays unreinforced, as in Butz & Wilson, and the next `act` starts a new trial."""
+        self._pending = None
+        self._previous = None
+
+    def prediction_array(self, state: object) -> np.ndarray:
+        """Eq. 3.8 for every action on ``state``: NaN where no classifier advocates it.
+        A query: nothing is covered or learned."""
+        if self.population_ is None:
+            self._encode(state, fix_length=False)
+            return np.full(int(self.n_actions), np.nan)
+        words, _ = self._encode(state)
+        match = self.population_.match(words)
+        return self._prediction_array(match, self.population_.action[match])[1]
+
+    def classifiers(self) -> list[Classifier]:
+        """Every macro-classifier as a `Classifier` record."""
+        return [] if self.population_ is None else self.population_.records()
+
+    @property
+    def macro_count(self) -> int:
+        """Number of macro-classifiers (distinct condition-action pairs) in the population."""
+        return 0 if self.population_ is None else self.population_.macro_count
+
+    @property
+    def micro_count(self) -> int:
+        """Sum of numerosities (what N bounds)."""
+        return 0 if self.population_ is None else self.population_.micro_count
+
+    def set_classifiers(self, classifiers: Iterable[Classifier | tuple], *,
+                        time: int | None = None) -> None:
+        """Replace the population (e.g. a hand-built one); ``time`` sets the GA clock
+        (default: the latest time stamp, or the current clock if later)."""
+        records = xcs_persistence.check_records(classifiers, int(self.n_actions), int(self.N))
+        if time is not None and (isinstance(time, bool) or not isinstance(time, int | np.integer)
+                                 or time < 0):
+            raise ValueError(f"time must be an integer >= 0, got {time!r}")
+        n_bits = len(records[0].condition) if records else self.n_bits_
+        population = None
+        if n_bits is not None:
+            population = Population(n_bits, int(self.N) + int(self.n_actions) + 2)
+            xcs_persistence.fill(population, records)
+        self.population_, self.n_bits_ = population, n_bits
+        self._states.clear()
+        latest = max((record.time_stamp for record in records), default=0)
+        self.time_ = int(time) if time is not None else max(self.time_, latest)
+        self.end_trial()
+
+    def save(self, path: str | PathLike[str]) -> None:
+        """Write parameters, population, clock and random state to ``path`` atomically."""
+        xcs_persistence.save(self, path)
+
+    @classmethod
+    def load(cls, path: str | PathLike[str]) -> XCS:
+        """A learner saved by `save`, continuing where it stopped (a new trial)."""
+        return xcs_persistence.load(cls, path)
+
+    # -- performance component -----------------------------------------------------------------
+
+    def _permitted(self, allowed: Iterable[int] | None) -> np.ndarray:
+        if allowed is None:
+            return self._all_actions
+        if isinstance(allowed, str | bytes) or not isinstance(allowed, Iterable):
+            raise ValueError(f"allowed must be a set of action indices, got {allowed!r}")
+        actions = list(allowed)
+        for action in actions:
+            if (isinstance(action, bool) or not isinstance(action, int | np.integer)
+                    or not 0 <= action < self._all_actions.size):
+                raise ValueError(f"allowed: {action!r} is not an action index "
+                                 f"0..{self._all_actions.size - 1}")
+        if not actions:
+            raise ValueError("allowed must hold at least one action")
+        return np.unique(np.array(actions, np.int64))
+
+    def _encode(self, state: object, fix_length: bool = True) -> tuple[np.ndarray, int]:
+        """Packed words and the integer (bit i = position i) of a state, checked against the
+        state length."""
+        key = state if isinstance(state, str | tuple) else None
+        if key is not None and key in self._states:
+            return self._states[key]
+        bits = self._state_bits(state)
+        if self.n_bits_ is None and fix_length:
+            self.n_bits_ = bits.size
+            self.population_ = Population(bits.size, int(self.N) + int(self.n_actions) + 2)
+        if self.n_bits_ is not None and bits.size != self.n_bits_:
+            raise ValueError(f"state must have {self.n_bits_} bits, got {bits.size}: "
+                             f"{reprlib.repr(state)}")
+        number = bits_to_int(bits)
+        encoded = (int_to_words(number, words_for(bits.size)), number)
+        if key is not None and self.n_bits_ is not None:
+            if len(self._states) >= STATE_CACHE_SIZE:
+                self._states.clear()
+            self._states[key] = encoded
+        return encoded
+
+    @staticmethod
+    def _state_bits(state: object) -> np.ndarray:
+        if isinstance(state, str):
+            bits = np.frombuffer(state.encode("utf-8"), np.uint8) - np.uint8(48)
+        else:
+            try:
+                array = np.asarray(state)
+            except (TypeError, ValueError):
+                array = np.asarray([None])
+            if array.ndim != 1 or array.dtype.kind not in "biuf":
+                raise ValueError(f"state must be a string or sequence of 0/1, got "
+                                 f"{reprlib.repr(state)}")
+            bits = array.astype(np.uint8) if np.isin(array, (0, 1)).all() else np.array([2])
+        if bits.size == 0 or bits.max() > 1:
+            raise ValueError(f"state must be a non-empty string or sequence of 0/1 bits, got "
+                             f"{reprlib.repr(state)}")
+        return bits
+
+    def _match_set(self, words: np.ndarray, state: int,
+                   permitted: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """[M] (rows), their actions and the prediction array, after covering every permitted
+        action that no matching classifier advocates."""
+        population, settings = self.population_, self._settings
+        for _ in range(MAX_COVERING_ROUNDS):
+            match = population.match(words)
+            actions = population.action[match]
+            weights, prediction = self._prediction_array(match, actions)
+            if permitted is self._all_actions and _all(weights):
+                return match, actions, prediction
+            missing = permitted[weights[permitted] == 0.0]  # fitness is always > 0
+            if missing.size == 0:
+                return match, actions, prediction
+            for action in missing:
+                cover(population, state, int(action), settings, self._rng, self.time_)
+                delete_from_population(population, settings, self._rng)
+        raise RuntimeError("XCS: covering kept being undone by deletion; N is too small")
+
+    def _prediction_array(self, match: np.ndarray,
+                          actions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates),
+        with the fitness sums it divides by."""
+        population, n = self.population_, self._settings.n_actions
+        stats = population.stats[:, match]
+        fitness = stats[FITNESS]
+        weights = np.bincount(actions, weights=fitness, minlength=n)
+        weighted = np.bincount(actions, weights=fitness * stats[PREDICTION], minlength=n)
+        if _all(weights):
+            return weights, weighted / weights
+        return weights, np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
+
+    def _best_action(self, values: list[float], permitted: np.ndarray) -> int:
+        """Eq. 3.9 over the permitted actions (``values``: their predictions), ties broken at
+        random."""
+        best = max(values)
+        ties = [index for index, value in enumerate(values) if value == best]
+        index = ties[0] if len(ties) == 1 else ties[int(self._rng.random() * len(ties))]
+        return int(permitted[index])
+
+    def _explore_action(self, permitted: np.ndarray, previous: _Step | None,
+                        words: np.ndarray) -> int:
+        """A random permitted action (all are advocated after covering); with consistent
+        actions (App. A) the previous action is kept with probability equal to the share (by
+        numerosity) of [A]-1 that still matches: always when all of it matches, never when
+        none does."""
+        if (self._settings.consistent_actions and previous is not None
+                and previous.action in permitted):
+            population = self.population_
+            rows = previous.rows[population.alive(previous.rows)]
+            numerosity = population.numerosity[rows]
+            if rows.size:
+                share = numerosity[population.matches(rows, words)].sum() / numerosity.sum()
+                if share >= 1.0 or self._rng.random() < share:
+                    return previous.action
+        return int(permitted[int(self._rng.random() * permitted.size)])
+
+    # -- reinforcement component ---------------------------------------------------------------
+
+    def _reinforce(self, step: _Step, payoff: float) -> None:
+        """UPDATE SET on the step's live action set with payoff P, then the GA there when
+        eq. 7.3 says the set's classifiers have waited long enough."""
+        population, settings = self.population_, self._settings
+        rows = step.rows
+        stats = population.stats[:, rows]
+        live = stats[NUMEROSITY] > 0
+        if not _all(live):
+            rows, stats = rows[live], stats[:, live]
+            if rows.size == 0:
+                return
+        self._update_set(stats, payoff)
+        population.stats[:, rows] = stats
+        if settings.action_set_subsumption:
+            action_set_subsumption(population, rows, settings, self._rng)
+            rows = rows[population.alive(rows)]
+            stats = population.stats[:, rows]
+        numerosity = stats[NUMEROSITY]
+        waited = self.time_ - stats[TIME_STAMP] @ numerosity / _sum(numerosity)
+        if waited > settings.theta_ga:  # eq. 7.3
+            population.stats[TIME_STAMP, rows] = self.time_
+            run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
+
+    def _update_set(self, stats: np.ndarray, payoff: float) -> None:
+        """On an action set's columns of `Population.stats`, in place: eq. 7.1 (prediction), 7.4
+        (error, against the updated prediction as in Butz & Wilson), the action-set size
+        estimate, then fitness by eq. 7.5-7.7. Prediction, error and set size average over a
+        classifier's first 1/beta updates (Wilson's MAM technique)."""
+        settings = self._settings
+        experience = stats[EXPERIENCE]
+        experience += 1.0
+        rate = 1.0 / experience
+        numerosity = stats[NUMEROSITY]
+        prediction, error, set_size = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
+        if settings.beta_p == settings.beta_e == settings.beta:
+            np.maximum(rate, settings.beta, out=rate)
+            rate_p = rate_e = rate
+        else:
+            rate_p = np.maximum(rate, settings.beta_p)
+            rate_e = np.maximum(rate, settings.beta_e)
+            np.maximum(rate, settings.beta, out=rate)
+        prediction += rate_p * (payoff - prediction)
+        miss = np.abs(payoff - prediction)
+        miss -= error
+        error += rate_e * miss
+        set_size += rate * (_sum(numerosity) - set_size)
+        # eq. 7.6 as (error * c) ** -nu with c = alpha ** (-1 / nu) / epsilon_0, clamped so
+        # that an error of 0 raises no warning; below epsilon_0 the accuracy is 1
+        accuracy = error * self._accuracy_scale
+        np.maximum(accuracy, self._accuracy_floor, out=accuracy)
+        accuracy **= -settings.nu
+        accuracy[error < settings.epsilon_0] = 1.0
+        accuracy *= numerosity
+        accuracy *= settings.beta_f / _sum(accuracy)  # beta_f * kappa', eq. 7.7
+        fitness = stats[FITNESS]
+        fitness *= 1.0 - settings.beta_f
+        fitness += accuracy  # eq. 7.5
+
+    def _compact_keeping(self, previous: _Step | None) -> _Step | None:
+        """Drop dead slots once they are half the population; remap [A]-1 if one is held."""
+        population = self.population_
+        if population is None:
+            return previous
+        live = population.macro_count
+        if population.size - live < max(32, live):
+            return previous
+        mapping = population.compact()
+        if previous is not None:
+            rows = mapping[previous.rows]
+            previous.rows = rows[rows >= 0]
+        return previous

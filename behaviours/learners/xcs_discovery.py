@@ -1,0 +1,166 @@
+"""Rule discovery in XCS: covering, the niche GA, subsumption and deletion.
+
+Follows Butz & Wilson, "An algorithmic description of XCS" (2001), procedure by procedure
+(GENERATE COVERING CLASSIFIER, RUN GA, SELECT OFFSPRING, APPLY CROSSOVER, APPLY MUTATION,
+DOES SUBSUME, DO ACTION SET SUBSUMPTION, INSERT IN / DELETE FROM POPULATION). Two choices
+where implementations differ, taken from Butz's XCSJava: an offspring starts from its parent's
+fitness per micro-classifier (F / numerosity), and the most general subsumer of an action set
+is drawn uniformly among equally general candidates.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+from .xcs_params import Settings
+from .xcs_population import Population, bits_to_int, more_general
+
+OFFSPRING_FITNESS_FACTOR = 0.1
+"""B&W: an offspring's fitness is a tenth of its parents' (it has not proven itself yet)."""
+
+
+def cover(population: Population, state: int, action: int, settings: Settings,
+          rng: np.random.Generator, time: int) -> int:
+    """Add a classifier for ``action`` whose condition matches the state (an integer, bit i
+    for position i), each position a # with probability p_hash; returns its row."""
+    specified = bits_to_int(rng.random(population.n_bits) >= settings.p_hash)
+    return population.add(specified, state & specified, action,
+                          prediction=settings.prediction_init, error=settings.error_init,
+                          fitness=settings.fitness_init, experience=0, numerosity=1,
+                          action_set_size=1.0, time_stamp=time)
+
+
+def delete_from_population(population: Population, settings: Settings,
+                           rng: np.random.Generator) -> None:
+    """Remove one micro-classifier when the population holds more than N of them."""
+    if population.micro_count > settings.N:
+        population.delete_one(rng.random(), settings.theta_del, settings.delta)
+
+
+def could_subsume(population: Population, row: int, settings: Settings) -> bool:
+    """Experienced (> theta_sub) and accurate (error < epsilon_0) enough to subsume."""
+    return bool(population.experience[row] > settings.theta_sub
+                and population.error[row] < settings.epsilon_0)
+
+
+def two_point_crossover(first: tuple[int, int], second: tuple[int, int], start: int,
+                        stop: int) -> tuple[tuple[int, int], tuple[int, int]]:
+    """Two (care, value) conditions with their positions [start, stop) exchanged."""
+    segment = ((1 << stop) - 1) ^ ((1 << start) - 1)
+    keep = ~segment
+    return ((first[0] & keep | second[0] & segment, first[1] & keep | second[1] & segment),
+            (second[0] & keep | first[0] & segment, second[1] & keep | first[1] & segment))
+
+
+def mutate_condition(condition: tuple[int, int], positions: Iterable[int],
+                     state: int) -> tuple[int, int]:
+    """Niche mutation of the given positions: each flips between # and the state's bit, so
+    the condition still matches the state."""
+    care, value = condition
+    for position in positions:
+        bit = 1 << int(position)
+        if care & bit:
+            care, value = care & ~bit, value & ~bit
+        else:
+            care, value = care | bit, value | (state & bit)
+    return care, value
+
+
+def mutate_action(action: int, draw: float, choice: float, settings: Settings) -> int:
+    """Another action, uniformly among the rest, when ``draw`` < mu (``choice`` in [0, 1)
+    picks it)."""
+    if settings.n_actions < 2 or draw >= settings.mu:
+        return action
+    other = int(choice * (settings.n_actions - 1))
+    return other + (other >= action)
+
+
+def _subsumer(population: Population, parents: list[int], condition: tuple[int, int],
+              action: int, settings: Settings) -> int:
+    """The first parent that DOES SUBSUME the offspring, or -1."""
+    for parent in parents:
+        care, value, parent_action = population.keys[parent]
+        if (parent_action == action and could_subsume(population, parent, settings)
+                and more_general((care, value), condition)):
+            return parent
+    return -1
+
+
+_DRAWS = 9
+"""Uniform draws per GA besides the 2 x L mutation draws: two roulette spins (0, 1), crossover
+or not (2), two crossover points (3, 4), whether each offspring's action mutates (5, 6) and to
+which action (7, 8)."""
+
+
+def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state: int,
+           settings: Settings, rng: np.random.Generator) -> None:
+    """Two offspring from the live action set ``rows`` with fitnesses ``fitness`` (eq. 7.3
+    already passed, time stamps already set): roulette-wheel selection of the parents,
+    two-point crossover with probability chi, niche mutation, GA subsumption by a parent or
+    insertion, then deletion down to N. All the GA's random numbers come from one draw."""
+    n_bits = population.n_bits
+    draws = rng.random(_DRAWS + 2 * n_bits)
+    cumulative = np.add.accumulate(fitness)
+    spins = cumulative.searchsorted(draws[:2] * cumulative[-1], side="right")
+    parents = rows[np.minimum(spins, rows.size - 1)].tolist()
+    prediction, error, fitness_, set_size, _, numerosity, stamp = (
+        population.stats[:, parents].tolist())
+    micro_fitness = [fitness_[0] / numerosity[0], fitness_[1] / numerosity[1]]
+    conditions = [population.keys[parent][:2] for parent in parents]
+    if draws[2] < settings.chi:
+        start, stop = sorted((int(draws[3] * (n_bits + 1)), int(draws[4] * (n_bits + 1))))
+        conditions = list(two_point_crossover(conditions[0], conditions[1], start, stop))
+        prediction = [(prediction[0] + prediction[1]) / 2] * 2
+        error = [(error[0] + error[1]) / 2] * 2
+        micro_fitness = [(micro_fitness[0] + micro_fitness[1]) / 2] * 2
+    mutations = (draws[_DRAWS:] < settings.mu).reshape(2, n_bits)
+    for child, parent in enumerate(parents):
+        condition = mutate_condition(conditions[child], mutations[child].nonzero()[0], state)
+        action = mutate_action(int(population.action[parent]), draws[5 + child],
+                               draws[7 + child], settings)
+        if settings.ga_subsumption:
+            subsumer = _subsumer(population, parents, condition, action, settings)
+            if subsumer >= 0:
+                population.numerosity[subsumer] += 1
+                population.micro_count += 1
+                continue
+        insert(population, condition, action, prediction=prediction[child],
+               error=error[child], fitness=OFFSPRING_FITNESS_FACTOR * micro_fitness[child],
+               action_set_size=set_size[child], time_stamp=int(stamp[child]))
+    for _ in parents:
+        delete_from_population(population, settings, rng)
+
+
+def insert(population: Population, condition: tuple[int, int], action: int, *,
+           prediction: float, error: float, fitness: float, action_set_size: float,
+           time_stamp: int) -> None:
+    """INSERT IN POPULATION: one more copy of an identical classifier, else a new one."""
+    row = population.find(condition[0], condition[1], action)
+    if row >= 0:
+        population.numerosity[row] += 1
+        population.micro_count += 1
+        return
+    population.add(condition[0], condition[1], action, prediction=prediction, error=error,
+                   fitness=fitness, experience=0, numerosity=1, action_set_size=action_set_size,
+                   time_stamp=time_stamp)
+
+
+def action_set_subsumption(population: Population, rows: np.ndarray, settings: Settings,
+                           rng: np.random.Generator) -> None:
+    """The most general classifier of [A] that could subsume absorbs every classifier of [A]
+    it is more general than (their numerosities move to it)."""
+    candidates = rows[(population.experience[rows] > settings.theta_sub)
+                      & (population.error[rows] < settings.epsilon_0)]
+    if candidates.size == 0:
+        return
+    specificity = population.specificity[candidates]
+    most_general = candidates[specificity == specificity.min()]
+    subsumer = int(most_general[rng.integers(most_general.size)])
+    general = population.keys[subsumer][:2]
+    for row in rows:
+        if row != subsumer and more_general(general, population.keys[row][:2]):
+            population.numerosity[subsumer] += population.numerosity[row]
+            population.micro_count += int(population.numerosity[row])
+            population.kill(int(row))
