@@ -206,9 +206,9 @@ def test_an_unused_learner_saves_and_loads(tmp_path):
     assert loaded.classifiers() == [] and loaded.n_actions == 3 and loaded.random_state is None
 
 
-def test_saving_into_a_missing_folder_is_a_value_error(tmp_path):
-    with pytest.raises(ValueError, match="path: folder"):
-        trained().save(tmp_path / "missing" / "xcs.json")
+def test_saving_into_a_missing_folder_creates_it(tmp_path):
+    trained().save(tmp_path / "new" / "xcs.json")
+    assert XCS.load(tmp_path / "new" / "xcs.json").classifiers() == trained().classifiers()
 
 
 def test_a_failed_save_leaves_the_old_file_and_no_temporary_file(tmp_path):
@@ -230,18 +230,21 @@ def corrupt(document: dict, change) -> dict:
 
 
 @pytest.mark.parametrize(("change", "message"), [
-    (lambda d: d.update(format="something-else"), "not an XCS file"),
-    (lambda d: d.update(version=99), "unsupported XCS file version 99"),
-    (lambda d: d["parameters"].pop("beta"), "parameters: expected exactly"),
-    (lambda d: d["parameters"].update(N=-1), "N must be"),
-    (lambda d: d.update(n_actions="two"), "n_actions must be"),
-    (lambda d: d["classifiers"][0].__setitem__(0, "01?#01"), r"classifiers\[0\]\.condition"),
-    (lambda d: d["classifiers"][0].__setitem__(4, -1.0), r"classifiers\[0\]\.fitness"),
-    (lambda d: d.update(classifiers={}), "classifiers"),
-    (lambda d: d.update(time=-5), "time must be"),
-    (lambda d: d.update(n_bits=7), "n_bits is 7"),
-    (lambda d: d["random_generator"].update(bit_generator="Nope"), "unknown bit generator"),
-    (lambda d: d["random_generator"].update(state="x"), "random_generator"),
+    (lambda d: d.update(format="something-else"), "not a goalagent learner file"),
+    (lambda d: d.update(version=99), "has version 99"),
+    (lambda d: d.update(kind="forward_model"), "holds a 'forward_model', not a 'xcs'"),
+    (lambda d: d["params"].pop("beta"), "params: expected exactly"),
+    (lambda d: d["params"].update(N=-1), "N must be"),
+    (lambda d: d["params"].update(n_actions="two"), "n_actions must be"),
+    (lambda d: d["state"]["classifiers"][0].__setitem__(0, "01?#01"),
+     r"classifiers\[0\]\.condition"),
+    (lambda d: d["state"]["classifiers"][0].__setitem__(4, -1.0), r"classifiers\[0\]\.fitness"),
+    (lambda d: d["state"].update(classifiers={}), "classifiers"),
+    (lambda d: d["state"].update(time=-5), "time must be"),
+    (lambda d: d["state"].update(n_bits=7), "n_bits is 7"),
+    (lambda d: d["state"]["random_generator"].update(bit_generator="Nope"),
+     "unknown bit generator"),
+    (lambda d: d["state"]["random_generator"].update(state="x"), "random_generator"),
 ])
 def test_corrupt_or_foreign_files_are_value_errors_naming_the_file(tmp_path, change, message):
     good = tmp_path / "good.json"

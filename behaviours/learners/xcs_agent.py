@@ -90,8 +90,9 @@ class XCS:
         self.action_set_subsumption = action_set_subsumption
         self.consistent_actions = consistent_actions
         self.random_state = random_state
-        check_parameters("XCS", n_actions, self.get_params())
-        self._settings = Settings.resolve(int(n_actions), self.get_params())
+        values = self.get_params()
+        check_parameters("XCS", n_actions, values)
+        self._settings = Settings.resolve(int(n_actions), values)
         self._rng = make_generator(random_state)
         settings = self._settings
         self._accuracy_scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
@@ -104,9 +105,9 @@ class XCS:
         self._previous: _Step | None = None
         self._states: dict[object, tuple[np.ndarray, int]] = {}
 
-    def get_params(self) -> dict[str, object]:
-        """The keyword parameters as given (``n_actions`` apart)."""
-        return {name: getattr(self, name) for name in DEFAULTS}
+    def get_params(self, deep: bool = True) -> dict[str, object]:
+        """The constructor's parameters as given (scikit-learn's convention)."""
+        return {"n_actions": self.n_actions, **{name: getattr(self, name) for name in DEFAULTS}}
 
     # -- the agent-facing interface ------------------------------------------------------------
 

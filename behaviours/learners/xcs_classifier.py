@@ -80,7 +80,8 @@ class XCSClassifier(ClassifierMixin, BaseEstimator):
     def predict(self, X: object) -> np.ndarray:
         """The class with the highest system prediction for each row (the most frequent
         training class where no classifier matches)."""
-        return self.classes_[self._best_actions(self._check_features(X))]
+        X = self._check_features(X)
+        return self.classes_[self._best_actions(X)]
 
     # -- helpers -------------------------------------------------------------------------------
 

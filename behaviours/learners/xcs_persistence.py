@@ -1,32 +1,29 @@
-"""Saving and loading an XCS learner: one versioned JSON document, written atomically.
+"""Saving and loading an XCS learner: a versioned learner file of kind ``xcs`` (``persist``).
 
-The document holds the parameters, the state length, the GA clock, the numpy bit generator's
-state (so a loaded learner draws the same random numbers the saved one would have) and every
-macro-classifier as ``[condition, action, prediction, error, fitness, experience, numerosity,
-action_set_size, time_stamp]``. Anything else — not JSON, another format or version, a field
-out of range — is a ValueError naming the file and the field.
+Its state holds the state length, the GA clock, the numpy bit generator's state (so a loaded
+learner draws the same random numbers the saved one would have) and every macro-classifier as
+``[condition, action, prediction, error, fitness, experience, numerosity, action_set_size,
+time_stamp]``. Anything else — not JSON, another format, version or kind, a field out of range —
+is a ValueError (`LearnerFileError`) naming the file and the field.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import os
-import tempfile
 from collections.abc import Iterable
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .persist import LearnerFileError, json_params, read_learner, write_learner
 from .xcs_params import DEFAULTS
 from .xcs_population import Classifier, Population, condition_masks
 
 if TYPE_CHECKING:
     from .xcs_agent import XCS
 
-FORMAT = "goalagent-xcs"
-VERSION = 1
+KIND = "xcs"
 BIT_GENERATORS = ("PCG64", "PCG64DXSM", "MT19937", "Philox", "SFC64")
 
 
@@ -105,85 +102,44 @@ def fill(population: Population, records: list[Classifier]) -> None:
 
 
 def save(xcs: XCS, path: str | os.PathLike[str]) -> None:
-    """Write ``xcs`` to ``path`` through a temporary file in the same folder and os.replace."""
-    target = Path(path)
-    if not target.parent.is_dir():
-        raise ValueError(f"path: folder {str(target.parent)!r} does not exist")
-    parameters = xcs.get_params()
-    if not (parameters["random_state"] is None or _is_integer(parameters["random_state"])):
-        parameters["random_state"] = None
-    elif parameters["random_state"] is not None:
-        parameters["random_state"] = int(parameters["random_state"])
-    document = {
-        "format": FORMAT, "version": VERSION, "n_actions": int(xcs.n_actions),
-        "parameters": parameters, "n_bits": xcs.n_bits_, "time": int(xcs.time_),
-        "random_generator": xcs._rng.bit_generator.state,
-        "classifiers": [list(record) for record in xcs.classifiers()],
-    }
-    text = json.dumps(document, allow_nan=False, default=_plain)
-    handle = tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=target.parent,
-                                         prefix=f".{target.name}.", suffix=".tmp", delete=False)
-    try:
-        with handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(handle.name, target)
-    except BaseException:
-        Path(handle.name).unlink(missing_ok=True)
-        raise
-
-
-def _plain(value: object) -> object:
-    """numpy scalars as Python numbers for JSON."""
-    if isinstance(value, np.generic):
-        return value.item()
-    raise TypeError(f"cannot save {type(value).__name__}")
+    """Write ``xcs`` to ``path`` atomically as a versioned learner file of kind ``xcs``."""
+    state = {"n_bits": xcs.n_bits_, "time": int(xcs.time_),
+             "random_generator": xcs._rng.bit_generator.state,
+             "classifiers": [list(record) for record in xcs.classifiers()]}
+    write_learner(path, KIND, json_params(xcs), state)
 
 
 def load(cls: type[XCS], path: str | os.PathLike[str]) -> XCS:
     """Read a learner written by `save`; any defect is a ValueError naming ``path``."""
+    params, state = read_learner(path, KIND)
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ValueError(f"path: cannot read XCS file {str(path)!r}: {error}") from None
-    try:
-        document = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not an XCS file (not JSON: {error})") from None
-    try:
-        return _restore(cls, document)
+        return _restore(cls, params, state)
     except ValueError as error:
-        raise ValueError(f"{path}: {error}") from None
+        raise LearnerFileError(f"XCS file {str(path)!r}: {error}") from None
 
 
-def _restore(cls: type[XCS], document: object) -> XCS:
-    if not isinstance(document, dict) or document.get("format") != FORMAT:
-        raise ValueError(f"not an XCS file (format is not {FORMAT!r})")
-    if document.get("version") != VERSION:
-        raise ValueError(f"unsupported XCS file version {document.get('version')!r} "
-                         f"(this build reads version {VERSION})")
-    parameters = document.get("parameters")
-    if not isinstance(parameters, dict) or set(parameters) != set(DEFAULTS):
-        raise ValueError("parameters: expected exactly " + ", ".join(DEFAULTS))
-    xcs = cls(document.get("n_actions"), **parameters)
-    classifiers = document.get("classifiers")
+def _restore(cls: type[XCS], params: dict, state: dict) -> XCS:
+    expected = {"n_actions", *DEFAULTS}
+    if set(params) != expected:
+        raise ValueError("params: expected exactly " + ", ".join(sorted(expected)))
+    xcs = cls(**params)
+    classifiers = state.get("classifiers")
     if not isinstance(classifiers, list):
         raise ValueError("classifiers: expected a list")
-    n_bits = document.get("n_bits")
+    n_bits = state.get("n_bits")
     if n_bits is not None and (not _is_integer(n_bits) or n_bits < 1):
         raise ValueError(f"n_bits must be null or an integer >= 1, got {n_bits!r}")
     records = check_records(classifiers, int(xcs.n_actions), int(xcs.N))
     if records and len(records[0].condition) != n_bits:
         raise ValueError(f"n_bits is {n_bits!r} but conditions have {len(records[0].condition)}")
-    time = document.get("time")
+    time = state.get("time")
     if not _is_integer(time) or time < 0:
         raise ValueError(f"time must be an integer >= 0, got {time!r}")
     xcs.set_classifiers(records, time=time)
     if n_bits is not None and xcs.n_bits_ is None:
         xcs.n_bits_ = n_bits
         xcs.population_ = Population(n_bits, int(xcs.N) + int(xcs.n_actions) + 2)
-    xcs._rng = _generator(document.get("random_generator"))
+    xcs._rng = _generator(state.get("random_generator"))
     return xcs
 
 
