@@ -9,6 +9,11 @@ measures each effect (the change of opening, eq. 5.3) through a plain callable, 
 the prediction; ``verify_effect`` turns the observed effect into ``afford(..., 1, 1, 1)``
 or ``afford(..., 1, 0, 0)`` (§6.3.3).
 
+Active mode (chapter 4) explores θ with Algorithm 3 instead: a forward model F(s, θ) learns
+the effect while CACLA chooses the next θ, the loop stops when the averaged TD error settles
+(eq. 4.10) or after ``active_n_max`` tries, and e_max, θ_max are read off F (6.8, 6.13); the
+verdict is then the same r1/r2 evidence (``behaviours.learners.theta_exploration``).
+
 Results are plain Python data (``AffordanceEvidence``): turning them into an agent's percepts
 is the robot application's job (``robot/envs/garbage.py``), so this layer knows no agent.
 ``learn`` knows nothing of agents or MuJoCo: it explores any ``effect(θ) -> float``.
@@ -28,6 +33,7 @@ import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
+from behaviours.learners.theta_exploration import explore_theta
 from behaviours.models import LinearEffectModel, ModelStore, check_bounds
 
 if TYPE_CHECKING:
@@ -36,9 +42,10 @@ if TYPE_CHECKING:
 
 LEARNING_MODES = ("random", "active", "transfer")
 _LATER_MODES = {
-    "active": "comes with the active-learning issue (thesis chapter 4)",
     "transfer": "comes with the transfer-learning issue (thesis chapter 5)",
 }
+ACTIVE_N_MAX = 100
+"""N_s of Algorithm 3 for one action parameter (thesis §4.6.1: 100 steps for 1-D actions)."""
 EffectFn = Callable[[float], float]
 
 
@@ -121,7 +128,7 @@ class LearnResult:
     theta_max: float  # eq. 6.13
     e_max: float  # eq. 6.8
     samples: int  # how many actions the exploration performed
-    settled: bool  # whether eq. 5.19 stopped it (else n_max did)
+    settled: bool  # whether eq. 5.19 (random) or 4.10 (active) stopped it, else the limit
     model: LinearEffectModel
 
 
@@ -135,10 +142,11 @@ def verify_effect(
 
 
 def _check_mode(mode: str) -> None:
-    """Accept "random"; refuse the later modes and unknown names with a clear error."""
+    """Accept "random" and "active"; refuse later modes and unknown names with a clear error."""
     if mode in _LATER_MODES:
         raise LearningModeUnavailable(
-            f"learning mode {mode!r} {_LATER_MODES[mode]}; only mode 'random' is available now"
+            f"learning mode {mode!r} {_LATER_MODES[mode]}; the modes available now are "
+            "'random' and 'active'"
         )
     if mode not in LEARNING_MODES:
         modes = ", ".join(LEARNING_MODES)
@@ -169,11 +177,17 @@ def learn(
     settle_tol: float = 1e-4,
     r1: float = 0.3,
     r2: float = 0.05,
+    active_n_max: int = ACTIVE_N_MAX,
+    start_state: float = 0.0,
 ) -> LearnResult:
     """Learn Ĥ for (obj, action) in ``mode`` and report the affordance evidence (§6.3.4).
 
-    ``key`` names the model in ``store`` (normally (can, part, action); default (obj, action));
-    a stored model under the same key is replaced by the new one and the store is saved.
+    ``random``: uniform θ, Ĥ a line refitted after every sample until it settles or ``n_max``.
+    ``active``: Algorithm 3 from ``start_state`` (the opening every try starts from) for at
+    most ``active_n_max`` tries; e_max and θ_max come from its forward model (6.8, 6.13), and
+    the line fitted to the same samples is what the store keeps. ``key`` names the model in
+    ``store`` (normally (can, part, action); default (obj, action)); a stored model under the
+    same key is replaced by the new one and the store is saved.
     """
     _check_mode(mode)
     for value, what in ((obj, "obj"), (action, "action"), (effect_name, "effect_name")):
@@ -182,24 +196,32 @@ def learn(
         raise ValueError(f"delta must be a finite number (metres), got {delta!r}")
     if not (isinstance(r1, (int, float)) and isinstance(r2, (int, float)) and 0 < r2 < r1 < 1):
         raise ValueError(f"reliabilities must satisfy 0 < r2 < r1 < 1, got r1={r1!r} r2={r2!r}")
-    explorer = RandomExplorer(
-        bounds=bounds,
-        n_max=n_max,
-        n_min=n_min,
-        settle_tol=settle_tol,
-        random_state=random_state,
-    )
-    model = explorer.explore(effect_fn)
-    theta_max, e_max = model.maximum(explorer.bounds)
+    if mode == "active":
+        outcome = explore_theta(effect_fn, bounds=check_bounds(bounds), state=start_state,
+                                n_max=active_n_max, random_state=random_state)
+        model = LinearEffectModel().fit(outcome.thetas, outcome.effects)
+        theta_max, e_max = outcome.theta_max, outcome.e_max
+        samples, settled = outcome.samples, outcome.converged
+    else:
+        explorer = RandomExplorer(
+            bounds=bounds,
+            n_max=n_max,
+            n_min=n_min,
+            settle_tol=settle_tol,
+            random_state=random_state,
+        )
+        model = explorer.explore(effect_fn)
+        theta_max, e_max = model.maximum(explorer.bounds)
+        samples, settled = explorer.n_samples_, explorer.settled_
     reliability = r1 if e_max >= delta else r2
     if store is not None:
-        store.put(tuple(key) if key is not None else (obj, action), explorer.bounds, model)
+        store.put(tuple(key) if key is not None else (obj, action), check_bounds(bounds), model)
     return LearnResult(
         evidence=AffordanceEvidence(obj, action, effect_name, 0, 0, reliability),
         theta_max=theta_max,
         e_max=e_max,
-        samples=explorer.n_samples_,
-        settled=explorer.settled_,
+        samples=samples,
+        settled=settled,
         model=model,
     )
 
@@ -245,6 +267,7 @@ def learn_in_world(
     _check_mode(mode)
     check_skill(world, action, part, THETA_BOUNDS.get(action, (0.0, 0.0))[1])
     start = world.opening()
+    seen = perception.observe(world).opening if perception is not None else start
 
     def effect(theta: float) -> float:
         world.set_opening(start)
@@ -263,6 +286,7 @@ def learn_in_world(
             random_state=random_state,
             store=store,
             key=(world.can, part, action),
+            start_state=seen,
             **options,
         )
     finally:

@@ -43,7 +43,6 @@ def test_percepts_describe_the_scene(tmp_path: Path):
 @pytest.mark.parametrize(("action", "args", "why"), [
     ("extend_arm", ("handle", 0.05), "has no part 'handle'"),
     ("extend_arm", ("lid", 0.2), "out of bounds"),
-    ("learn", ("lid", "extend_arm", "opened", "active"), "active-learning issue"),
     ("learn", ("lid", "wiggle", "opened", "random"), "unknown action type"),
     ("drop", ("ball",), "does not hold the ball"),
     ("grasp", ("cup",), "only the ball"),
@@ -62,7 +61,9 @@ def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path):
     env = environment(tmp_path, can="o1")
     act(env, "grasp", "ball")
     act(env, "learn", "lid", "sweep_left", "opened", "random")
-    assert "afford(lid,sweep_left,opened,0,0,0.05)" in percepts(env)
+    seen = percepts(env)
+    assert "afford(lid,sweep_left,opened,0,0,0.05)" in seen
+    assert any(p.startswith("exploration(lid,sweep_left,random,") for p in seen)
     act(env, "learn", "lid", "extend_arm", "opened", "random")
     seen = percepts(env)
     assert "afford(lid,extend_arm,opened,0,0,0.3)" in seen
@@ -77,6 +78,19 @@ def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path):
     seen = percepts(env)
     assert "disposed(1)" in seen and "opened" not in seen and "in_can(ball)" not in seen
     assert Path(tmp_path / "models.json").exists()
+    env.kill()
+
+
+def test_active_learning_reports_the_same_percepts_and_how_many_tries(tmp_path: Path):
+    env = environment(tmp_path, can="o1", active_n_max=40)
+    act(env, "learn", "lid", "extend_arm", "opened", "active")
+    seen = percepts(env)
+    assert "afford(lid,extend_arm,opened,0,0,0.3)" in seen
+    assert any(p.startswith("model(lid,extend_arm,") for p in seen)
+    (tries,) = [p for p in seen if p.startswith("exploration(lid,extend_arm,active,")]
+    assert 21 <= int(tries.rstrip(")").split(",")[-1]) <= 40
+    act(env, "apply", "lid", "extend_arm")
+    assert "afford(lid,extend_arm,opened,1,1,1)" in percepts(env)
     env.kill()
 
 

@@ -123,9 +123,7 @@ def test_samples_stay_in_the_bounds_and_are_seeded() -> None:
     assert not np.array_equal(first.model.theta_, other.model.theta_)
 
 
-@pytest.mark.parametrize(
-    ("mode", "issue"), [("active", "active-learning"), ("transfer", "transfer-learning")]
-)
+@pytest.mark.parametrize(("mode", "issue"), [("transfer", "transfer-learning")])
 def test_later_modes_are_refused_clearly(mode: str, issue: str) -> None:
     calls = []
     with pytest.raises(LearningModeUnavailable, match=f"comes with the {issue}"):

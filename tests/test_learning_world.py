@@ -66,17 +66,32 @@ def test_refusals_leave_the_world_untouched(world: GarbageWorld) -> None:
     before = world.state()
     with pytest.raises(SkillError, match="no part 'handle'"):
         learn_in_world(world, part="handle", action="lift_up", delta=DELTA, n_max=5, random_state=0)
-    with pytest.raises(LearningModeUnavailable, match="active-learning issue"):
+    with pytest.raises(ValueError, match="unknown learning mode 'curious'"):
         learn_in_world(
             world,
             part="lid",
             action="extend_arm",
-            mode="active",
+            mode="curious",
             delta=DELTA,
             n_max=5,
             random_state=0,
         )
     assert world.state() == before
+
+
+def test_active_learning_finds_the_push_and_rejects_the_sweep(world: GarbageWorld) -> None:
+    """Algorithm 3 over θ: at least N + 1 = 21 tries, e_max from the forward model (6.8)."""
+    world.reset("o1", seed=0)
+    push = learn_in_world(world, part="lid", action="extend_arm", mode="active", delta=DELTA,
+                          n_max=5, random_state=0)
+    assert push.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 0, 0, 0.3)
+    assert push.e_max >= DELTA and push.theta_max > 0.05
+    assert 21 <= push.samples <= 100 and push.settled
+    assert push.model.n_samples_ == push.samples  # the store keeps the line through them
+    sweep = learn_in_world(world, part="lid", action="sweep_left", mode="active", delta=DELTA,
+                           n_max=5, random_state=0, active_n_max=30)
+    assert sweep.evidence.rel == 0.05 and sweep.e_max < DELTA and sweep.samples <= 30
+    assert world.opening() < 1e-3  # every try started from, and ended at, the closed can
 
 
 class DoubledOpening:

@@ -14,7 +14,12 @@ import os
 from collections.abc import Iterable
 from pathlib import Path
 
-from behaviours.learning import AffordanceBehaviours, AffordanceEvidence, LearningModeUnavailable
+from behaviours.learning import (
+    ACTIVE_N_MAX,
+    AffordanceBehaviours,
+    AffordanceEvidence,
+    LearningModeUnavailable,
+)
 from behaviours.models import ModelStore
 from behaviours.perception import Observation, make_perception
 from behaviours.skills import (
@@ -66,6 +71,7 @@ class GarbageEnvironment(PythonEnvironment):
         "trials": int,
         "models": str,
         "n_max": int,
+        "active_n_max": int,
     }
 
     # ------------------------------------------------------------------ life cycle
@@ -91,6 +97,7 @@ class GarbageEnvironment(PythonEnvironment):
         self.behaviours = AffordanceBehaviours(
             self.world, delta=self.delta, n_max=int(params.get("n_max", 10)), seed=self.seed,
             store=store, perception=self.perception,
+            active_n_max=int(params.get("active_n_max", ACTIVE_N_MAX)),
         )
         self.disposed = 0
         self._events: list[PerceptLike] = []
@@ -226,7 +233,8 @@ class GarbageEnvironment(PythonEnvironment):
     @action("learn")
     def learn(self, entity: str, part: str, action_type: str, effect: str, mode: str) -> None:
         """Learn what ``action_type`` on ``part`` does to ``effect`` (§6.3.4); the verdict comes
-        back as ``afford(Part, Act, Eff, 0, 0, r1|r2)`` and ``model(Part, Act, ThetaMax, EMax)``."""
+        back as ``afford(Part, Act, Eff, 0, 0, r1|r2)``, ``model(Part, Act, ThetaMax, EMax)``
+        and ``exploration(Part, Act, Mode, N)`` (how many exploratory actions it took)."""
         self._affordance_request(part, action_type)
         if effect != "opened":
             raise ActionRefused(f"learn: only the effect 'opened' can be measured, not {effect!r}")
@@ -239,6 +247,8 @@ class GarbageEnvironment(PythonEnvironment):
         self._events.append(Struct("model", (Atom(part), Atom(action_type),
                                              round(result.theta_max, 4),
                                              round(result.e_max, 4))))
+        self._events.append(Struct("exploration", (Atom(part), Atom(action_type), Atom(mode),
+                                                   result.samples)))
 
     @action("apply")
     def apply(self, entity: str, part: str, action_type: str) -> None:
