@@ -81,6 +81,7 @@ class Task(Protocol):
 
     def reset(self, trial: int) -> View: ...
     def perform(self, action: int) -> tuple[Outcome, View]: ...
+    def view(self) -> View: ...
 
 
 def _view(state: ObjectState) -> View:
@@ -98,6 +99,10 @@ class NavigationTask:
         """Drive ``world`` and perceive it with ``perception``."""
         self.world, self.perception, self.exchange_after = world, perception, exchange_after
         self.state = perception.observe(world)
+
+    def view(self) -> View:
+        """What the robot perceived after its last action."""
+        return _view(self.state)
 
     def reset(self, trial: int) -> View:
         """Start trial ``trial`` (0-based): the boxes are exchanged from ``exchange_after`` on."""
@@ -131,6 +136,10 @@ class StackingTask:
         """Drive ``world`` and perceive it with ``perception``."""
         self.world, self.perception = world, perception
         self.state = perception.observe(world)
+
+    def view(self) -> View:
+        """What the robot perceived after its last action."""
+        return _view(self.state)
 
     def reset(self, trial: int) -> View:
         """Start a trial: the lift up and empty, every object back with the operator."""
@@ -170,11 +179,15 @@ class SearchTask:
         """Start a trial from the resting pose, the target where this trial has it."""
         self.world.place_target(self.places[int(trial >= self.move_after)])
         self.world.rest()
+        return self.view()
+
+    def view(self) -> View:
+        """What the head camera sees now."""
         return View(self.perception.observe(self.world), None)
 
     def perform(self, action: int) -> tuple[Outcome, View]:
         """Turn the head one step (reset past the boundary) and reward what the centre sees."""
         self.world.look(self.names[self.actions[action]].removeprefix("look_"))
-        bits = self.perception.observe(self.world)
-        found = centre_seen(bits)
-        return Outcome(search_reward(bits), found, found), View(bits, None)
+        view = self.view()
+        found = centre_seen(view.bits)
+        return Outcome(search_reward(view.bits), found, found), view

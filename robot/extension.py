@@ -18,7 +18,10 @@ from sim.headless import use_headless_rendering
 
 EXTENSION = Extension(
     name="robot",
-    environments={"garbage": "robot.envs.garbage:GarbageEnvironment"},
+    environments={"garbage": "robot.envs.garbage:GarbageEnvironment",
+                  "navigation": "robot.envs.navigation:NavigationEnvironment",
+                  "stacking": "robot.envs.stacking:StackingEnvironment",
+                  "search": "robot.envs.search:SearchEnvironment"},
     add_commands=add_commands,
     run_options=(PLOT_OPTION,),
     run_hooks=(AffordanceReport,),
