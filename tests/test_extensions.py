@@ -36,7 +36,11 @@ def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
 
 def test_the_robot_extension_is_found_by_its_entry_point():
     (robot,) = [e for e in installed_extensions() if e.name == "robot"]
-    assert robot.environments == {"garbage": "robot.envs.garbage:GarbageEnvironment"}
+    assert robot.environments == {
+        "garbage": "robot.envs.garbage:GarbageEnvironment",
+        "navigation": "robot.envs.navigation:NavigationEnvironment",
+        "stacking": "robot.envs.stacking:StackingEnvironment",
+        "search": "robot.envs.search:SearchEnvironment"}
     assert [p.indicator for p in robot.saved_predicates] == ["afford/6"]
     assert load_environment("garbage").__module__ == "robot.envs.garbage"
 
