@@ -42,7 +42,8 @@ if TYPE_CHECKING:
 
 LEARNING_MODES = ("random", "active", "transfer")
 _LATER_MODES = {
-    "transfer": "comes with the transfer-learning issue (thesis chapter 5)",
+    "transfer": "is the whole-object behaviour behaviours.part_learning.learn_by_transfer "
+                "(Algorithm 6), not an exploration of one pair's Ĥ",
 }
 ACTIVE_N_MAX = 100
 """N_s of Algorithm 3 for one action parameter (thesis §4.6.1: 100 steps for 1-D actions)."""
@@ -349,6 +350,10 @@ class AffordanceBehaviours:
         )
         self._theta[(self.world.can, part, action)] = result.theta_max
         return result
+
+    def remember(self, part: str, action: str, theta: float) -> None:
+        """Use θ for (part, action) on this can from now on (e.g. what transfer found)."""
+        self._theta[(self.world.can, part, action)] = theta
 
     def theta_for(self, part: str, action: str) -> float:
         """θ_max learned on this can in this run, else from the store, else the largest θ.

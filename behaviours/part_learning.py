@@ -6,13 +6,23 @@ gives the parts' Table 5.1 descriptors, ``above`` relations and the opening s_o 
 thesis's lid is closed before every try, §5.6.1), runs the motor skill and measures the part's
 displacement (eq. 5.15) and the opening before and after, as the perception sees them. It
 counts every action it performs.
+
+``learn_by_transfer`` is the ``learn(..., transfer)`` behaviour: Algorithm 6 on the can against
+the known-object database, with afford/model evidence for every pair it tried, after which the
+can joins the database.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 
+import numpy as np
+
+from behaviours.learners.known_objects import KnownObject, KnownObjectDatabase
 from behaviours.learners.protocol import ObjectView, Outcome
+from behaviours.learners.transfer import TransferLearner
+from behaviours.learning import AffordanceEvidence
 from behaviours.perception import Perception, part_displacement
 from behaviours.skills import THETA_BOUNDS, perform_skill
 from sim.world import GarbageWorld
@@ -54,3 +64,73 @@ class CanUnderTest:
     def restore(self) -> None:
         """Leave the can as learning found it."""
         self.world.set_opening(self.initial_opening)
+
+
+@dataclass(frozen=True)
+class PairReport:
+    """What a transfer run found about one (part, action) pair it tried (§6.3.3-6.3.4).
+
+    ``evidence`` is afford(Part, Act, Eff, 1, 1, 1) for the pair whose action reached the goal,
+    else afford(Part, Act, Eff, 0, 0, r1 | r2) by the pair's own model's e_max (6.10, 6.11,
+    6.14); ``theta_max`` and ``e_max`` (6.13, 6.8) are read off ĥ(ĝ(θ)) over Θ.
+    """
+
+    evidence: AffordanceEvidence
+    theta_max: float
+    e_max: float
+    actions: int  # how many of the run's actions were on this pair
+
+
+@dataclass(frozen=True)
+class TransferResult:
+    """A transfer run on a simulated can: the learner, one report per pair tried."""
+
+    learner: TransferLearner
+    reports: tuple[PairReport, ...]
+
+    @property
+    def actions(self) -> int:
+        """Physical actions taken (N of Table 5.4)."""
+        return self.learner.n_actions_
+
+
+def _pair_report(learner: TransferLearner, pair: tuple[str, str], effect_name: str,
+                 delta: float, r1: float, r2: float) -> PairReport:
+    """The evidence and (θ_max, e_max) of one pair the learner tried."""
+    model = learner.models_[pair]
+    low, high = learner.bounds_[pair[1]]
+    ends = model.predict([high, low + (high - low) * 1e-3])
+    theta_max = high if ends[0] >= ends[1] else low + (high - low) * 1e-3
+    e_max = float(max(ends))
+    found = learner.functional_
+    if found is not None and (found.part, found.action) == pair:
+        evidence = AffordanceEvidence(pair[0], pair[1], effect_name, 1, 1, 1)
+        theta_max = found.theta
+    else:
+        evidence = AffordanceEvidence(pair[0], pair[1], effect_name, 0, 0,
+                                      r1 if e_max >= delta else r2)
+    actions = sum((t.part, t.action) == pair for t in learner.trials_)
+    return PairReport(evidence, float(theta_max), e_max, actions)
+
+
+def learn_by_transfer(world: GarbageWorld, perception: Perception,
+                      database: KnownObjectDatabase, *, delta: float = 0.1,
+                      effect_name: str = "opened",
+                      random_state: int | np.random.RandomState | None = None,
+                      r1: float = 0.3, r2: float = 0.05) -> TransferResult:
+    """Algorithm 6 on the can against ``database``, then remember the can in it.
+
+    The can is left as learning found it; the database gets (or replaces) the entry named
+    after the can, so the next can may transfer from this one.
+    """
+    can = CanUnderTest(world, perception)
+    try:
+        learner = TransferLearner(database=list(database), goal=delta,
+                                  random_state=random_state).fit(can)
+    finally:
+        can.restore()
+    database.add(KnownObject.learned(world.can, learner,
+                                     extra={"can_file": world.spec.source}))
+    tried = list(dict.fromkeys((t.part, t.action) for t in learner.trials_))
+    reports = tuple(_pair_report(learner, pair, effect_name, delta, r1, r2) for pair in tried)
+    return TransferResult(learner, reports)

@@ -188,7 +188,7 @@ class PartBasedLearner(BaseEstimator):
     """
 
     def __init__(self, n: int = 5, n_min: int = 3, settle_tol: float = 1e-4,
-                 min_displacement: float = 0.01, goal: float = 0.1, delta1: float = 0.02,
+                 min_displacement: float = 0.01, goal: float = 0.1, delta1: float = 0.03,
                  delta2: float = 0.002, max_checks: int = 3,
                  random_state: int | np.random.RandomState | None = None) -> None:
         self.n = n

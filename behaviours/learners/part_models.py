@@ -158,11 +158,13 @@ class OpeningGoal:
 
     Reached when s_o >= s_o^g: §5.6.2 counts 0.14 m as achieving 0.1 m, like eq. 6.9 ("opened
     wide enough"). Selection (5.10, 5.11) aims at s_o^g + δ1 and accepts predictions within δ1
-    of that, so a model's small error does not leave the object just short of the goal.
+    of that, so a model's small error does not leave the object just short of the goal: with
+    δ1 = 0.02, o1's saturating lid (0.11 m from θ = 0.05 on) made one seed in eight transfer a
+    θ* that opened o3 to 0.098 m; with 0.03 all eight opened it with one action.
     """
 
     goal: float = 0.1
-    delta1: float = 0.02
+    delta1: float = 0.03
 
     def __post_init__(self) -> None:
         if not (isinstance(self.goal, (int, float)) and math.isfinite(self.goal)):

@@ -80,7 +80,7 @@ class TransferLearner(PartBasedLearner):
 
     def __init__(self, database: Iterable[KnownObject] = (), n: int = 5, n_min: int = 3,
                  settle_tol: float = 1e-4, min_displacement: float = 0.01, goal: float = 0.1,
-                 delta1: float = 0.02, delta2: float = 0.002, max_checks: int = 3,
+                 delta1: float = 0.03, delta2: float = 0.002, max_checks: int = 3,
                  consistency_tol: float = 0.01, n_neighbors: int = 3,
                  max_distance: float = 1.0, weights: Sequence[float] = DEFAULT_WEIGHTS,
                  random_state: int | np.random.RandomState | None = None) -> None:

@@ -14,13 +14,18 @@ import os
 from collections.abc import Iterable
 from pathlib import Path
 
+import numpy as np
+
+from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
 from behaviours.learning import (
     ACTIVE_N_MAX,
+    LEARNING_MODES,
     AffordanceBehaviours,
     AffordanceEvidence,
     LearningModeUnavailable,
 )
 from behaviours.models import ModelStore
+from behaviours.part_learning import learn_by_transfer
 from behaviours.perception import Observation, make_perception
 from behaviours.skills import (
     THETA_BOUNDS,
@@ -56,6 +61,11 @@ def default_model_path() -> Path:
     return cache / "goalagent" / "affordance-models.json"
 
 
+def default_objects_path() -> Path:
+    """Where the known-object database (chapter 5) is kept unless ``objects`` says otherwise."""
+    return default_model_path().with_name("known-objects.json")
+
+
 class GarbageEnvironment(PythonEnvironment):
     """One robot (entity ``robot``) in front of one garbage can."""
 
@@ -70,6 +80,8 @@ class GarbageEnvironment(PythonEnvironment):
         "delta": float,
         "trials": int,
         "models": str,
+        "objects": str,
+        "learning": str,
         "n_max": int,
         "active_n_max": int,
     }
@@ -99,6 +111,17 @@ class GarbageEnvironment(PythonEnvironment):
             store=store, perception=self.perception,
             active_n_max=int(params.get("active_n_max", ACTIVE_N_MAX)),
         )
+        try:
+            self.objects = KnownObjectDatabase(
+                Path(str(params.get("objects") or default_objects_path())))
+        except DatabaseError as error:
+            raise ManagementException(f"environment 'garbage': {error}") from None
+        self._transfer_rng = np.random.RandomState(self.seed)
+        self.learning = str(params.get("learning", "random"))
+        if self.learning not in LEARNING_MODES:
+            raise ManagementException(f"environment 'garbage': unknown learning mode "
+                                      f"{self.learning!r}; the modes are "
+                                      f"{', '.join(LEARNING_MODES)}")
         self.disposed = 0
         self._events: list[PerceptLike] = []
         self._observation: Observation | None = None
@@ -119,7 +142,8 @@ class GarbageEnvironment(PythonEnvironment):
         """The scene as perceived this cycle, plus what the last action reported once."""
         seen = self.observe()
         state = self.world.state()
-        result: list[PerceptLike] = [("trials", self.trials), ("disposed", self.disposed)]
+        result: list[PerceptLike] = [("trials", self.trials), ("disposed", self.disposed),
+                                     ("learning_mode", Atom(self.learning))]
         for name, part in sorted(seen.parts.items()):
             result.append(("obs", Atom(name)))
             result.append(("part", Atom(name), round(part.area, 6),
@@ -231,24 +255,55 @@ class GarbageEnvironment(PythonEnvironment):
                                 f"{', '.join(THETA_BOUNDS)}")
 
     @action("learn")
-    def learn(self, entity: str, part: str, action_type: str, effect: str, mode: str) -> None:
-        """Learn what ``action_type`` on ``part`` does to ``effect`` (§6.3.4); the verdict comes
-        back as ``afford(Part, Act, Eff, 0, 0, r1|r2)``, ``model(Part, Act, ThetaMax, EMax)``
-        and ``exploration(Part, Act, Mode, N)`` (how many exploratory actions it took)."""
-        self._affordance_request(part, action_type)
+    def learn(self, entity: str, first: str, second: str, effect: str = "",
+              mode: str = "") -> None:
+        """``learn(Part, Act, Eff, Mode)`` learns what ``Act`` on ``Part`` does to ``Eff``
+        (§6.3.4); the verdict comes back as ``afford(Part, Act, Eff, 0, 0, r1|r2)``,
+        ``model(Part, Act, ThetaMax, EMax)`` and ``exploration(Part, Act, Mode, N)`` (how many
+        exploratory actions it took). Mode ``transfer`` (either form, also the whole-object
+        ``learn(Eff, transfer)``) runs Algorithm 6 against the known objects instead and reports
+        the three for every pair it tried."""
+        if not effect and not mode:
+            effect, mode = first, second
+            if mode != "transfer":
+                raise ActionRefused(f"learn({effect}, {mode}): the whole-object form needs mode "
+                                    "'transfer'; learn(Part, Act, Eff, Mode) learns one pair")
+        elif not mode:
+            raise ActionRefused("learn takes (Part, Act, Eff, Mode) or (Eff, transfer)")
+        else:
+            self._affordance_request(first, second)
         if effect != "opened":
             raise ActionRefused(f"learn: only the effect 'opened' can be measured, not {effect!r}")
+        if mode == "transfer":
+            self._learn_by_transfer(effect)
+            return
         try:
-            result = self.behaviours.learn(part, action_type, effect, mode)
+            result = self.behaviours.learn(first, second, effect, mode)
         except LearningModeUnavailable as error:
             raise ActionRefused(str(error)) from None
         self._changed()
         self._events.append(afford_percept(result.evidence))
-        self._events.append(Struct("model", (Atom(part), Atom(action_type),
+        self._events.append(Struct("model", (Atom(first), Atom(second),
                                              round(result.theta_max, 4),
                                              round(result.e_max, 4))))
-        self._events.append(Struct("exploration", (Atom(part), Atom(action_type), Atom(mode),
+        self._events.append(Struct("exploration", (Atom(first), Atom(second), Atom(mode),
                                                    result.samples)))
+
+    def _learn_by_transfer(self, effect: str) -> None:
+        """Algorithm 6 on this can; afford/model percepts for every pair tried (§5.5.4)."""
+        result = learn_by_transfer(self.world, self.perception, self.objects, delta=self.delta,
+                                   effect_name=effect, random_state=self._transfer_rng)
+        self._changed()
+        for report in result.reports:
+            evidence = report.evidence
+            if evidence.suc:
+                self.behaviours.remember(evidence.obj, evidence.act, report.theta_max)
+            self._events.append(afford_percept(evidence))
+            self._events.append(Struct("model", (Atom(evidence.obj), Atom(evidence.act),
+                                                 round(report.theta_max, 4),
+                                                 round(report.e_max, 4))))
+            self._events.append(Struct("exploration", (Atom(evidence.obj), Atom(evidence.act),
+                                                       Atom("transfer"), report.actions)))
 
     @action("apply")
     def apply(self, entity: str, part: str, action_type: str) -> None:
