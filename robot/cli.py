@@ -17,6 +17,7 @@ from typing import Annotated
 import typer
 
 from goalagent.console import err_console, user_error
+from robot.objects import objects_app
 from sim.headless import use_headless_rendering
 
 
@@ -58,4 +59,6 @@ def add_commands(app: typer.Typer) -> None:
     for command in COMMANDS:
         app.command()(command)
         robot.command()(command)
+    app.add_typer(objects_app())
+    robot.add_typer(objects_app())
     app.add_typer(robot)

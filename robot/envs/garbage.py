@@ -10,7 +10,6 @@ not available) raises ``ActionRefused`` before the world is touched.
 from __future__ import annotations
 
 import contextlib
-import os
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -38,6 +37,7 @@ from behaviours.skills import (
 from goalagent.eis.exceptions import ActionRefused, ManagementException
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
 from goalagent.kb.terms import Atom, Struct
+from robot.paths import default_model_path, default_objects_path
 from sim.canfile import CanFileError, find_can
 from sim.world import GarbageWorld
 
@@ -53,17 +53,6 @@ def afford_percept(evidence: AffordanceEvidence) -> Struct:
     """The percept ``afford(Obj, Act, Eff, Tot, Suc, Rel)`` (eq. 6.1) for what a behaviour found."""
     return Struct("afford", (Atom(evidence.obj), Atom(evidence.act), Atom(evidence.eff),
                              evidence.tot, evidence.suc, evidence.rel))
-
-
-def default_model_path() -> Path:
-    """Where learned effect models are kept between runs unless ``models`` says otherwise."""
-    cache = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
-    return cache / "goalagent" / "affordance-models.json"
-
-
-def default_objects_path() -> Path:
-    """Where the known-object database (chapter 5) is kept unless ``objects`` says otherwise."""
-    return default_model_path().with_name("known-objects.json")
 
 
 class GarbageEnvironment(PythonEnvironment):
