@@ -124,11 +124,9 @@ def test_samples_stay_in_the_bounds_and_are_seeded() -> None:
 
 
 def test_transfer_is_refused_as_the_whole_object_behaviour() -> None:
-    reason = "is the whole-object behaviour"
-    mode = "transfer"
     calls = []
-    with pytest.raises(LearningModeUnavailable, match=reason):
-        run(lambda t: calls.append(t) or 0.0, mode=mode)
+    with pytest.raises(LearningModeUnavailable, match="is the whole-object behaviour"):
+        run(lambda t: calls.append(t) or 0.0, mode="transfer")
     assert calls == []  # refused before touching the world
     assert issubclass(LearningModeUnavailable, NotImplementedError)
 

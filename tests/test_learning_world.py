@@ -141,7 +141,7 @@ def test_behaviours_learn_apply_and_carry_theta_to_another_can(
     assert later.theta_for("lid", "extend_arm") == learned.theta_max  # o1's model
     failed = later.apply("lid", "extend_arm")
     assert failed.evidence == AffordanceEvidence("lid", "extend_arm", "opened", 1, 0, 0)
-    with pytest.raises(LearningModeUnavailable, match="transfer-learning issue"):
+    with pytest.raises(LearningModeUnavailable, match="whole-object behaviour"):
         later.learn("handle", "lift_up", mode="transfer")
 
 
