@@ -80,15 +80,6 @@ class RenderedWorld:
             if calm >= 20:
                 return
 
-    def touching(self, bodies_a: set[int], bodies_b: set[int]) -> bool:
-        """True if any geom of a body in ``bodies_a`` touches one of a body in ``bodies_b``."""
-        m, d = self.model, self.data
-        for c in d.contact[: d.ncon]:
-            b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
-            if (b1 in bodies_a and b2 in bodies_b) or (b2 in bodies_a and b1 in bodies_b):
-                return True
-        return False
-
     # ----------------------------------------------------------------- camera
     def render(self, camera: str) -> np.ndarray:
         """RGB frame (H, W, 3) uint8 of ``camera`` as the world is now."""

@@ -160,6 +160,8 @@ class NavigationWorld(RenderedWorld):
         m = self.model
         self._robot = m.body("robot").id
         self._boxes = {name: m.body(f"box_{name}").id for name in BOX_COLOUR}
+        self._is_box = np.zeros(m.nbody, dtype=bool)  # body id -> is it a box
+        self._is_box[list(self._boxes.values())] = True
         self._walk = [m.joint("walk_x").qposadr[0], m.joint("walk_y").qposadr[0]]
         self._fall = m.joint("fall_z").qposadr[0]
         self.exchanged = exchanged
@@ -231,15 +233,16 @@ class NavigationWorld(RenderedWorld):
 
     def blocked(self, heading: np.ndarray) -> bool:
         """True if a box touches the robot on its side facing ``heading`` (x, y unit vector)."""
-        m, d = self.model, self.data
-        boxes = set(self._boxes.values())
-        for c in d.contact[: d.ncon]:
-            b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
-            if {b1, b2} & boxes and self._robot in (b1, b2):
-                normal = c.frame[:2] if b1 == self._robot else -c.frame[:2]  # robot -> box
-                if float(normal @ heading) > 0.5:
-                    return True
-        return False
+        n = self.data.ncon
+        if n == 0:
+            return False
+        contacts = self.data.contact
+        body1 = self.model.geom_bodyid[contacts.geom1[:n]]
+        body2 = self.model.geom_bodyid[contacts.geom2[:n]]
+        along = contacts.frame[:n, :2] @ heading  # contact normals point from geom1 to geom2
+        ahead = (((body1 == self._robot) & self._is_box[body2] & (along > 0.5))
+                 | ((body2 == self._robot) & self._is_box[body1] & (along < -0.5)))
+        return bool(ahead.any())
 
     # ---------------------------------------------------------------- truth
     @staticmethod

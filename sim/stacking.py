@@ -55,8 +55,10 @@ BAR_Z = 0.17
 PUSH_STROKE = 0.34
 """How far (m) the bar moves ahead in a push: far enough to tip an object over the edge."""
 PUSH_FORCE = 30.0
-PUSH_SPEED = 0.3
-"""Speed (m/s) of the pusher's set-point."""
+PUSH_SPEED = 0.4
+"""Speed (m/s) of the pusher's set-point on the way out."""
+RETURN_SPEED = 1.0
+"""Speed (m/s) of the pusher coming back and of the torso squatting or standing up."""
 PLACE_X = ROBOT_X + TORSO_HALF[0] + 0.035
 """x (m) of the near face of an object the operator puts in front of the robot."""
 CAMERA_HEIGHT = 0.50
@@ -225,10 +227,10 @@ class StackingWorld(RenderedWorld):
         lift then sinks until the stack's top is level with the table again."""
         if pose not in self.POSES:
             raise ValueError(f"unknown pose {pose!r}; use stand or squat")
-        self._ramp(0, -SQUAT_DROP if pose == "squat" else 0.0)
+        self._ramp(0, -SQUAT_DROP if pose == "squat" else 0.0, RETURN_SPEED)
         self._ramp(1, PUSH_STROKE)
-        self._ramp(1, 0.0)
-        self._ramp(0, 0.0)
+        self._ramp(1, 0.0, RETURN_SPEED)
+        self._ramp(0, 0.0, RETURN_SPEED)
         self.settle(1000)
         if self.in_front is not None and not self._on_table(self.in_front):
             self.in_front = None
@@ -244,7 +246,7 @@ class StackingWorld(RenderedWorld):
         for i in range(1, n + 1):
             self.data.ctrl[actuator] = start + (target - start) * i / n
             self.step()
-        self.step(150)
+        self.step(50)
 
     # ---------------------------------------------------------------- truth
     @staticmethod
