@@ -206,3 +206,20 @@ def test_active_theta_exploration_reads_e_max_off_the_forward_model(seed: int) -
 def test_active_theta_exploration_of_a_useless_action_predicts_little() -> None:
     result = explore_theta(lambda t: 0.0, bounds=(0.0, 0.1), state=0.0, random_state=0)
     assert result.e_max < 0.05 and np.all(result.effects == 0.0)
+
+
+def test_running_on_past_convergence_keeps_the_run_and_its_stop_step() -> None:
+    stopped = ActiveExplorer(n_max=80, random_state=4).explore(Slider()).history_
+    whole = ActiveExplorer(n_max=80, random_state=4, stop=False).explore(Slider()).history_
+    assert stopped.converged_at is not None and whole.converged_at == stopped.converged_at
+    assert whole.steps == 80 > stopped.steps == stopped.converged_at
+    assert np.array_equal(whole.actions[: stopped.steps], stopped.actions)
+    assert np.array_equal(whole.td_errors[: stopped.steps], stopped.td_errors)
+    ran_on = ActiveExplorer(n_max=80, random_state=4, stop=False).explore(Slider())
+    stop_here = ActiveExplorer(n_max=80, random_state=4).explore(Slider())
+    grid = np.array([[0.05, a] for a in np.linspace(-0.01, 0.01, 5)])
+    assert np.array_equal(ran_on.stopped_model_.predict(grid),
+                          stop_here.forward_model_.predict(grid))
+    assert stop_here.stopped_model_ is stop_here.forward_model_
+    assert not np.array_equal(ran_on.forward_model_.predict(grid),
+                              ran_on.stopped_model_.predict(grid))

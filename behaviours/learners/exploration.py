@@ -14,6 +14,7 @@ curves (Figs 4.6–4.9) are comparable.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
@@ -80,6 +81,8 @@ class ActiveExplorer(BaseEstimator):
         sigma, gamma, alpha, zeta, beta: σ (0.2), γ (0.9), α (0.3), ζ (0.3), β (0.3).
         n_hidden, init_scale: hidden tanh units (10) and initial weight range (0.3).
         random_state: seeds the networks, the exploration noise and the random actions.
+        stop: end at the first step where (4.10) holds (Algorithm 3). False runs all n_max
+            steps and still records that step: the same run up to it, and the whole curve.
     """
 
     def __init__(
@@ -97,6 +100,7 @@ class ActiveExplorer(BaseEstimator):
         n_hidden: int = 10,
         init_scale: float = 0.3,
         random_state: int | np.random.RandomState | None = None,
+        stop: bool = True,
     ) -> None:
         self.mode = mode
         self.n_max = n_max
@@ -111,6 +115,7 @@ class ActiveExplorer(BaseEstimator):
         self.n_hidden = n_hidden
         self.init_scale = init_scale
         self.random_state = random_state
+        self.stop = stop
 
     def _check_params(self) -> None:
         if self.mode not in EXPLORATION_MODES:
@@ -122,7 +127,9 @@ class ActiveExplorer(BaseEstimator):
             raise ValueError(f"n_random must be a whole number >= 0, got {self.n_random!r}")
 
     def explore(self, world: ContinuousWorld) -> ActiveExplorer:
-        """Run the loop on ``world``; sets forward_model_, cacla_, history_, converged_."""
+        """Run the loop on ``world``; sets forward_model_, cacla_, history_, converged_, and
+        stopped_model_: F as Algorithm 3 returns it (at the step (4.10) held, else at n_max),
+        which differs from forward_model_ only when ``stop`` is False."""
         self._check_params()
         bounds = ActionBounds(world.action_bounds)
         rng = check_random_state(self.random_state)
@@ -156,16 +163,20 @@ class ActiveExplorer(BaseEstimator):
             model.partial_fit(inputs, effect[None, :])  # 4.4
             cacla.partial_fit(state[None, :], unit[None, :], [reward], next_state[None, :])
             delta = cacla.td_errors_[-1]
-            stop = test.update(delta)
+            stop = test.update(delta)  # (4.10)
             for key, value in (("states", state), ("actions", action), ("effects", effect),
                                ("predictions", predicted), ("rewards", reward),
                                ("td_errors", delta)):
                 rows[key].append(value)
             rows["averaged"].append(test.averages[-1] if test.averages else np.nan)
-            if stop:
+            if stop and converged_at is None:
                 converged_at = k
-                break
+                if self.stop:
+                    break
+                self.stopped_model_ = copy.deepcopy(model)
         self.forward_model_ = model
+        if self.stop or converged_at is None:
+            self.stopped_model_ = model
         self.cacla_ = cacla
         self.history_ = ExplorationHistory(
             **{key: np.asarray(value, dtype=float) for key, value in rows.items()},
