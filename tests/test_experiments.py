@@ -45,8 +45,10 @@ class Trail:
 
 
 def run(can: str, seed: int, models: Path, beliefs: Path | None = None,
-        trials: int = 5) -> tuple[MultiAgentSystem, Trail]:
-    params = {"can": Atom(can), "seed": seed, "models": str(models), "trials": trials}
+        trials: int = 5, learning: str = "random",
+        active_n_max: int = 100) -> tuple[MultiAgentSystem, Trail]:
+    params = {"can": Atom(can), "seed": seed, "models": str(models), "trials": trials,
+              "learning": Atom(learning), "active_n_max": active_n_max}
     system = MultiAgentSystem.from_mas_file(MAS, env_params=params, seed=seed,
                                             output=io.StringIO(), warn=lambda message: None)
     (agent,) = system.agents
@@ -61,22 +63,54 @@ def table(agent: Agent) -> dict[tuple[str, str], tuple[int, int, float]]:
     return {(a.obj, a.act): (a.tot, a.suc, a.rel) for a in affordances(agent)}
 
 
+def check_experiment_1(system: MultiAgentSystem, trail: Trail) -> None:
+    """§6.4.2, Experiment 1: learning in trial 1 only, then the lid pushed open five times."""
+    (agent,) = system.agents
+    assert agent.terminated, "the agent did not finish its five trials"
+    assert agent.query("bel", "disposed(5)")
+    assert trail.trials_with("learn(") == {1}
+    assert trail.trials_with("apply(lid,extend_arm)") == {1, 2, 3, 4, 5}
+    rows = table(agent)
+    assert rows[("lid", "extend_arm")] == (5, 5, 1.0)
+    for (obj, act), (_, _, rel) in rows.items():
+        if (obj, act) != ("lid", "extend_arm"):
+            assert rel < TAU, (obj, act, rel)
+    tried = {text.split(",")[1] for _, text in trail.actions if text.startswith("learn(")}
+    assert all(rows[("lid", act)][2] < TAU for act in tried - {"extend_arm"})
+
+
+def check_experiment_2(system: MultiAgentSystem, trail: Trail) -> None:
+    """§6.4.2, Experiment 2: the lid fails on o2, learning moves on to the handle."""
+    (agent,) = system.agents
+    assert agent.terminated and agent.query("bel", "disposed(5)")
+    rows = table(agent)
+    # the lid affordance decays through failures (eq. 6.3) until it is not reliable ...
+    tot, suc, rel = rows[("lid", "extend_arm")]
+    assert suc == 5 and tot >= 9 and rel < TAU
+    failures = [t for t, text in trail.actions if text.startswith("apply(lid,extend_arm)")]
+    assert len(failures) == 4 and set(failures) == {1}
+    # ... learning restarts on the lid, is abandoned, and moves to the handle
+    learned = trail.parts_learned()
+    assert "lid" in learned and "handle" in learned
+    assert learned.index("handle") > max(i for i, p in enumerate(learned) if p == "lid")
+    assert all(rel < TAU for (obj, _), (_, _, rel) in rows.items() if obj == "lid")
+    assert rows[("handle", "lift_up")][2] == 1.0
+    assert trail.trials_with("learn(") == {1}
+
+
+def exploratory_actions(system: MultiAgentSystem) -> int:
+    """The agent's own count of the exploratory actions its learning took."""
+    (agent,) = system.agents
+    (answer,) = agent.query("bel", "exploratory_actions(T)")
+    return int(answer["T"])
+
+
 @pytest.mark.parametrize("seed", SEEDS)
 def test_experiment_1_learns_in_trial_one_and_then_uses_the_lid(tmp_path: Path, seed: int):
     system, trail = run("o1", seed, tmp_path / "models.json")
     try:
-        (agent,) = system.agents
-        assert agent.terminated, "the agent did not finish its five trials"
-        assert agent.query("bel", "disposed(5)")
-        assert trail.trials_with("learn(") == {1}
-        assert trail.trials_with("apply(lid,extend_arm)") == {1, 2, 3, 4, 5}
-        rows = table(agent)
-        assert rows[("lid", "extend_arm")] == (5, 5, 1.0)
-        for (obj, act), (_, _, rel) in rows.items():
-            if (obj, act) != ("lid", "extend_arm"):
-                assert rel < TAU, (obj, act, rel)
-        tried = {text.split(",")[1] for _, text in trail.actions if text.startswith("learn(")}
-        assert all(rows[("lid", act)][2] < TAU for act in tried - {"extend_arm"})
+        check_experiment_1(system, trail)
+        assert exploratory_actions(system) >= 4 * len(trail.parts_learned())  # n_min = 4
     finally:
         system.close()
 
@@ -91,21 +125,27 @@ def test_experiment_2_relearns_on_the_handle_after_the_lid_fails(tmp_path: Path,
 
     system, trail = run("o2", seed, models, beliefs=saved)
     try:
-        (agent,) = system.agents
-        assert agent.terminated and agent.query("bel", "disposed(5)")
-        rows = table(agent)
-        # the lid affordance decays through failures (eq. 6.3) until it is not reliable ...
-        tot, suc, rel = rows[("lid", "extend_arm")]
-        assert suc == 5 and tot >= 9 and rel < TAU
-        failures = [t for t, text in trail.actions if text.startswith("apply(lid,extend_arm)")]
-        assert len(failures) == 4 and set(failures) == {1}
-        # ... learning restarts on the lid, is abandoned, and moves to the handle
-        learned = trail.parts_learned()
-        assert "lid" in learned and "handle" in learned
-        assert learned.index("handle") > max(i for i, p in enumerate(learned) if p == "lid")
-        assert all(rel < TAU for (obj, _), (_, _, rel) in rows.items() if obj == "lid")
-        assert rows[("handle", "lift_up")][2] == 1.0
-        assert trail.trials_with("learn(") == {1}
+        check_experiment_2(system, trail)
+    finally:
+        system.close()
+
+
+def test_both_experiments_end_the_same_when_the_agent_learns_actively(tmp_path: Path):
+    """learning=active: Algorithm 3 explores each θ (at most 25 tries here, at least 21)."""
+    models = tmp_path / "models.json"
+    first, trail = run("o1", 0, models, learning="active", active_n_max=25)
+    try:
+        check_experiment_1(first, trail)
+        learns = len(trail.parts_learned())
+        assert 21 * learns <= exploratory_actions(first) <= 25 * learns
+        assert all(",active)" in text for _, text in trail.actions if text.startswith("learn("))
+        saved = tmp_path / "exp1.pl"
+        save_beliefs(first.agents, [AFFORD], saved)
+    finally:
+        first.close()
+    system, trail = run("o2", 0, models, beliefs=saved, learning="active", active_n_max=25)
+    try:
+        check_experiment_2(system, trail)
     finally:
         system.close()
 
