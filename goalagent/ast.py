@@ -1,4 +1,7 @@
-"""Immutable program objects for `.goal` and `.mas2g` files, each with its source position.
+"""Immutable program objects for GOAL's files, each with its source position: one agent
+program (``AgentProgram``) whether it was written in the single-file format (`.goal`) or in
+GOAL 6's multi-file format (`.mod2g` modules, `.act2g` action specifications and `.pl` files
+named by an agent definition of a `.mas2g`), the `.mas2g` system, and `.test2g` tests.
 
 Prolog fragments (clauses, queries, postconditions, terms) are kept as ``PrologText``: the
 exact source text, already checked by SWI-Prolog's own reader, plus where it starts. The
@@ -37,7 +40,7 @@ class PrologText:
         return self.text
 
 
-MentalOp = TypingLiteral["bel", "goal", "a-goal", "goal-a", "percept", "true"]
+MentalOp = TypingLiteral["bel", "goal", "a-goal", "goal-a", "percept", "true", "done"]
 
 
 @dataclass(frozen=True)
@@ -72,8 +75,11 @@ class Macro:
 
 
 BUILTIN_ACTIONS = frozenset(
-    {"insert", "delete", "adopt", "drop", "print", "log", "exit-module", "send", "sendonce"}
+    {"insert", "delete", "adopt", "drop", "print", "log", "exit-module", "send", "sendonce",
+     "sleep"}
 )
+# GOAL 7's built-in actions goalagent does not have (a program using one is told so).
+UNSUPPORTED_ACTIONS = frozenset({"starttimer", "canceltimer", "subscribe", "unsubscribe"})
 
 Mood = TypingLiteral[":", "!", "?"]
 
@@ -154,7 +160,9 @@ OrderOption = TypingLiteral["linear", "linearall", "random", "randomall"]
 
 @dataclass(frozen=True)
 class Module:
-    """A module: ``init``, ``main``, ``event`` or a user module ``name(Params)``."""
+    """A module: ``init``, ``main``, ``event`` or a user module ``name(Params)``. A module
+    file (`.mod2g`) used as an agent's init, main or event module is named after that role;
+    ``declared`` keeps the name its file gives it."""
 
     name: str
     kind: TypingLiteral["init", "main", "event", "user"]
@@ -168,6 +176,7 @@ class Module:
     beliefs: tuple[PrologText, ...] = ()
     goals: tuple[PrologText, ...] = ()
     actionspecs: tuple[ActionSpec, ...] = ()
+    declared: str | None = None
 
     @property
     def arity(self) -> int:
@@ -208,9 +217,47 @@ class AgentFile:
 
 
 @dataclass(frozen=True)
+class UseClause:
+    """``use ref as case.`` (or ``use ref.``, or the newest dialect's ``use ref for
+    decisions.``) of GOAL 6+: the file ``ref`` names (a dotted path or a quoted file name,
+    as written) and how it is used (None when the clause does not say)."""
+
+    ref: str
+    case: str | None
+    pos: Pos
+    quoted: bool = False
+
+
+@dataclass(frozen=True)
+class PerceptRule:
+    """The newest dialect's percept handling in an agent definition: ``add p/1.`` (percepts
+    of p/1 become beliefs), ``replace p/1.`` (the beliefs of p/1 are the current percepts)
+    or ``update p/1.`` (replaced when the environment sends p/1 percepts)."""
+
+    how: TypingLiteral["add", "replace", "update"]
+    name: str
+    arity: int
+    pos: Pos
+
+
+@dataclass(frozen=True)
+class AgentDefinition:
+    """``define name as agent { use m as main module. ... }`` in a GOAL 6+ `.mas2g`: the
+    module files of the agent's roles (init, main, event) and, in the newest dialect, its
+    percept rules."""
+
+    name: str
+    pos: Pos
+    uses: tuple[UseClause, ...]
+    percept_rules: tuple[PerceptRule, ...] = ()
+
+
+@dataclass(frozen=True)
 class LaunchRule:
-    """``launch name : agentfile.`` or ``when [type=T, max=N]@env do launch name : file.``;
-    a name ``*`` takes the entity's name."""
+    """``launch name : agentfile.``, ``when [type=T, max=N]@env do launch name : file.``
+    (GOAL 4/5) or ``launch a with name = n, number = 2.``, ``when type = T launch a with
+    max = N.`` (GOAL 6+); a name ``*`` takes the entity's name. Instructions of one
+    ``when`` rule share ``group``: they are launched together on one entity."""
 
     agent_name: str
     agentfile: str
@@ -219,11 +266,15 @@ class LaunchRule:
     entity_type: str | None = None
     max: int | None = None
     number: int = 1
+    entity_name: str | None = None
+    group: int = 0
 
 
 @dataclass(frozen=True)
 class MasProgram:
-    """A parsed `.mas2g` file."""
+    """A parsed `.mas2g` file: the environment (a registered name, ``module:Class`` or a
+    GOAL jar file name) with its init parameters, the agents (GOAL 4/5 agent files or GOAL
+    6+ agent definitions) and the launch policy."""
 
     file: str
     environment: str | None
@@ -231,6 +282,12 @@ class MasProgram:
     agentfiles: tuple[AgentFile, ...]
     launches: tuple[LaunchRule, ...]
     pos: Pos
+    definitions: tuple[AgentDefinition, ...] = ()
+    env_pos: Pos | None = None
+
+    def agent_names(self) -> list[str]:
+        """The names launch rules may refer to: agent files' and agent definitions'."""
+        return [a.name for a in self.agentfiles] + [d.name for d in self.definitions]
 
 
 def iter_rules(rules: Iterable[Rule]) -> Iterator[Rule]:
@@ -239,3 +296,69 @@ def iter_rules(rules: Iterable[Rule]) -> Iterator[Rule]:
         yield rule
         if rule.rules:
             yield from iter_rules(rule.rules)
+
+
+# ----------------------------------------------------------------------------- tests
+
+
+@dataclass(frozen=True)
+class TestCondition:
+    """A temporal test condition over the states an agent passes through: ``eventually
+    C``, ``always C``, ``never C``, ``atend C`` (the last state) or ``C leadsto D`` (after
+    a state where C holds, D holds in that one or a later one). ``text`` as written."""
+
+    kind: TypingLiteral["eventually", "always", "never", "atend", "leadsto"]
+    condition: Condition
+    pos: Pos
+    text: str
+    then: Condition | None = None
+
+
+@dataclass(frozen=True)
+class ModuleTest:
+    """``test m with pre{C} in{conditions} post{D}``: while module ``m`` runs, C holds
+    when it starts, the conditions hold over its run, D holds when it ends."""
+
+    module: str
+    pos: Pos
+    pre: Condition | None = None
+    conditions: tuple[TestCondition, ...] = ()
+    post: Condition | None = None
+
+
+@dataclass(frozen=True)
+class TestStep:
+    """What a test makes an agent do: ``do a [until C].`` (run a module or perform an
+    action, the main module until C holds or the agent stops), GOAL 5's ``assert C.`` and
+    ``evaluate { conditions } in do a [until C].``."""
+
+    kind: TypingLiteral["do", "assert", "evaluate"]
+    pos: Pos
+    target: str = ""
+    action: Action | None = None
+    until: Condition | None = None
+    condition: Condition | None = None
+    conditions: tuple[TestCondition, ...] = ()
+    message: str | None = None
+
+
+@dataclass(frozen=True)
+class AgentTest:
+    """The steps a test makes the agent called ``agent`` take."""
+
+    agent: str
+    pos: Pos
+    steps: tuple[TestStep, ...]
+
+
+@dataclass(frozen=True)
+class TestProgram:
+    """A parsed `.test2g` file: the system it runs (a `.mas2g`), a time limit in seconds,
+    the module tests and the agents' steps."""
+
+    file: str
+    mas: str
+    mas_pos: Pos
+    timeout: float | None
+    module_tests: tuple[ModuleTest, ...]
+    agent_tests: tuple[AgentTest, ...]

@@ -33,7 +33,16 @@ from goalagent.extensions import (
 from goalagent.kb.engine import KBError
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
-from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
+from goalagent.parser import (
+    GoalSyntaxError,
+    load_agents,
+    load_module_as_agent,
+    parse_action_file,
+    parse_agent_file,
+    parse_mas_file,
+    parse_prolog_file,
+    parse_test_file,
+)
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 
@@ -185,20 +194,40 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise typer.Exit(code=1)
 
 
+def _programs_to_check(path: Path) -> list:
+    """The agent programs a file holds or names: a system's agents (any GOAL version), a
+    module file as its own agent, a test's system; action and Prolog files are only read."""
+    if path.suffix == ".mas2g":
+        return list(load_agents(parse_mas_file(path)).values())
+    if path.suffix == ".test2g":
+        return list(load_agents(parse_mas_file(parse_test_file(path).mas)).values())
+    if path.suffix == ".mod2g":
+        try:
+            return [load_module_as_agent(path)]
+        except GoalSyntaxError as err:
+            try:  # a GOAL 5 module file is written in the single-file syntax
+                return [parse_agent_file(path)]
+            except GoalSyntaxError:
+                raise err from None
+    if path.suffix == ".act2g":
+        parse_action_file(path)
+        return []
+    if path.suffix == ".pl":
+        parse_prolog_file(path)
+        return []
+    return [parse_agent_file(path)]
+
+
 def check(
-    paths: Annotated[list[Path], typer.Argument(help=".goal and .mas2g files to check.")],
+    paths: Annotated[list[Path], typer.Argument(help="Program files to check: .goal, "
+                                                ".mas2g, .mod2g, .act2g, .pl, .test2g.")],
 ) -> None:
-    """Parse and validate programs: syntax, undefined actions and modules, macros; singleton
-    variables are reported as warnings."""
+    """Parse and validate programs: syntax, undefined actions and modules, macros, the files
+    GOAL 6+ programs use; singleton variables are reported as warnings."""
     failed = False
     for path in paths:
         try:
-            if path.suffix == ".mas2g":
-                mas = parse_mas_file(path)
-                programs = [parse_agent_file(path.parent / f.path) for f in mas.agentfiles]
-            else:
-                programs = [parse_agent_file(path)]
-            for program in programs:
+            for program in _programs_to_check(path):
                 validate_program(program)
                 for warning in program.warnings:
                     err_console.print(warning, markup=False)

@@ -28,7 +28,7 @@ from goalagent.eis.terms import (
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.mentalstate import AgentDirectory
 from goalagent.kb.terms import Atom, Struct, Term, Var
-from goalagent.parser import GoalSyntaxError, parse_agent_file, parse_mas_file
+from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
 
 
 class EntityIO:
@@ -123,30 +123,30 @@ class MultiAgentSystem:
         env_params: Mapping[str, Term] | None = None,
         **kwargs,
     ) -> MultiAgentSystem:
-        """Parse a `.mas2g` file, start its environment and launch its agents."""
+        """Parse a `.mas2g` file (any GOAL version), start its environment and launch its
+        agents (GOAL 4/5 agent files or GOAL 6+ agent definitions)."""
         mas = parse_mas_file(path)
-        base = Path(path).parent
-        programs = {}
-        for agentfile in mas.agentfiles:
-            programs[agentfile.name] = (parse_agent_file(base / agentfile.path), agentfile)
+        programs = load_agents(mas)
+        numbers = {agentfile.name: agentfile.number for agentfile in mas.agentfiles}
         params = {key: get_engine().parse_term(value.text) for key, value in mas.env_init}
         params.update(env_params or {})
-        environment = _make_environment(mas.environment, mas.pos) if mas.environment else None
+        environment = (_make_environment(mas.environment, mas.env_pos or mas.pos)
+                       if mas.environment else None)
         system = cls(environment, **kwargs)
-        for name, (program, _) in programs.items():
-            system._programs[name] = program
+        system._programs.update(programs)
         for rule in mas.launches:
             if rule.on_entity:
                 system._entity_launches.append(rule)
             else:
-                number = programs[rule.agentfile][1].number
+                number = rule.number if rule.number != 1 else numbers.get(rule.agentfile, 1)
                 for index in range(number):
                     name = rule.agent_name if number == 1 else f"{rule.agent_name}{index + 1}"
-                    system.launch(name, programs[rule.agentfile][0])
+                    system.launch(name, programs[rule.agentfile])
         if not mas.launches:
-            for name, (program, agentfile) in programs.items():
-                for index in range(agentfile.number):
-                    system.launch(name if agentfile.number == 1 else f"{name}{index + 1}", program)
+            for name, program in programs.items():
+                number = numbers.get(name, 1)
+                for index in range(number):
+                    system.launch(name if number == 1 else f"{name}{index + 1}", program)
         system._start_environment(params)
         return system
 
@@ -198,21 +198,32 @@ class MultiAgentSystem:
 
     # ------------------------------------------------------------------ EIS listener
     def handle_new_entity(self, entity: str, type: str) -> None:
-        """Launch rules ``when [type=T, max=N]@env do launch ...`` and plain agents waiting
-        for a body: the first agent without an entity gets this one."""
+        """Launch rules ``when [type=T, max=N]@env do launch ...`` / ``when type = T launch
+        a, b.`` (the first rule whose entity condition fits and that may still launch: all
+        its agents on this entity) and plain agents waiting for a body: the first agent
+        without an entity gets this one."""
         if entity not in self.environment.free_entities():
             return
+        groups: dict[int, list[int]] = {}
         for index, rule in enumerate(self._entity_launches):
-            if rule.entity_type not in (None, type):
+            groups.setdefault(rule.group, []).append(index)
+        for indices in groups.values():
+            first = self._entity_launches[indices[0]]
+            if first.entity_type not in (None, type) or first.entity_name not in (None, entity):
                 continue
-            launched = self._launched_per_rule.get(index, 0)
-            if rule.max is not None and launched >= rule.max:
+            ready = [index for index in indices
+                     if self._entity_launches[index].max is None
+                     or self._launched_per_rule.get(index, 0) < self._entity_launches[index].max]
+            if not ready:
                 continue
-            self._launched_per_rule[index] = launched + 1
-            name = entity if rule.agent_name == "*" else rule.agent_name
-            if any(agent.name == name for agent in self.agents):
-                name = f"{name}{launched + 1}"
-            self.launch(name, self._programs[rule.agentfile], entity)
+            for index in ready:
+                rule = self._entity_launches[index]
+                launched = self._launched_per_rule.get(index, 0)
+                self._launched_per_rule[index] = launched + 1
+                name = entity if rule.agent_name == "*" else rule.agent_name
+                if any(agent.name == name for agent in self.agents):
+                    name = f"{name}{launched + 1}"
+                self.launch(name, self._programs[rule.agentfile], entity)
             return
         for agent in self.agents:
             if not self.environment.associated_entities(agent.name):

@@ -107,7 +107,7 @@ def test_agents_cannot_see_each_others_beliefs(tmp_path: Path) -> None:
 
 
 def test_launch_of_an_unknown_agent_file_is_a_located_error(tmp_path: Path) -> None:
-    with pytest.raises(GoalSyntaxError, match="unknown agent file 'nobody'"):
+    with pytest.raises(GoalSyntaxError, match="unknown agent 'nobody'"):
         system(tmp_path, """
             agentfiles { "counter.goal" [name = c]. }
             launchpolicy {

@@ -8,7 +8,7 @@ from goalagent.parser import GoalSyntaxError
 
 # Built-in actions and their number of arguments (None: one formula, commas allowed).
 _BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
-                  "log": 1, "exit-module": 0}
+                  "log": 1, "exit-module": 0, "sleep": 1}
 _UPDATES = frozenset({"insert", "delete", "adopt", "drop"})
 
 
@@ -19,6 +19,7 @@ def validate_program(program: ast.AgentProgram) -> None:
     modules = {(m.name, m.arity) for m in program.modules}
     for module in program.modules:
         for rule in ast.iter_rules(module.rules):
+            _check_condition(rule.condition)
             for action in rule.actions:
                 if isinstance(action, ast.SendAction):
                     continue
@@ -33,12 +34,26 @@ def validate_program(program: ast.AgentProgram) -> None:
                             f"{'an argument' if expected is None else expected} argument(s), "
                             f"not {action.arity}")
                 elif key not in specs and key not in modules:
+                    if action.name in ast.UNSUPPORTED_ACTIONS:
+                        raise GoalSyntaxError.at(action.pos, f"{action.name} is a built-in "
+                                                 "action of GOAL 7 that goalagent does not "
+                                                 "support yet")
                     known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
                     raise GoalSyntaxError.at(
                         action.pos,
                         f"unknown action {action.name}/{action.arity}: not built in, not in an "
                         f"actionspec and not a module (known: {', '.join(known) or 'none'})",
                     )
+
+
+def _check_condition(condition: ast.Condition) -> None:
+    """``done(Action)`` belongs to tests, not to a rule's condition."""
+    for literal in condition:
+        if isinstance(literal, ast.NotLiteral):
+            _check_condition(literal.condition)
+        elif literal.op == "done":
+            raise GoalSyntaxError.at(literal.pos, "done(...) is a test condition (.test2g); "
+                                     "a rule's condition cannot use it")
 
 
 def update_formulas(program: ast.AgentProgram) -> list[ast.PrologText]:

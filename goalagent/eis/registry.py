@@ -103,6 +103,9 @@ _JARS: list[tuple[re.Pattern[str], str]] = [
     (re.compile(r"bw4t-client-\d+(\.\d+)*\b.*\.jar|bw4t.*\.jar"), "bw4t"),
     (re.compile(r"(elevatorsim|elevatorenv|elevator).*\.jar"), "elevator"),
     (re.compile(r"hanoi.*\.jar"), "hanoi"),
+    (re.compile(r"blocksworld.*\.jar"), "blocksworld"),
+    (re.compile(r"tower.*\.jar"), "towerworld"),
+    (re.compile(r"helloworldenvironment.*\.jar"), "printer"),
 ]
 
 

@@ -103,7 +103,7 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
 %   Actions: insert(F), delete(F), adopt(F), drop(F); do(Action, Open) for a user action
 %   (Open = true: record its closed form in the journal); print(T), log(T);
 %   send(Once, Mood, Receiver, Content); module(Index, Args) (a call of the program's
-%   module Index); exit_module.
+%   module Index); exit_module; sleep(Millis) (GOAL 6+, performed without waiting).
 
 compile_rule(B, Name, Id, Kind0, c(CondName, CondNames), Text) :-
     read_text(Text, B, '$rule'(Given, Values, Body), Bindings),
@@ -254,6 +254,7 @@ action(module(Index, Args), K, Firing, Ctx, called) :-
     journal_position(Ctx, K, Entries, Position),
     '$ga_py'(call(Firing, K, Index, Args, Entries, Position), true).
 action(exit_module, _, _, _, exit).
+action(sleep(_), _, _, _, done).          % agents take turns: nothing to wait for
 
 %   A user action: the first actionspec whose head unifies and whose precondition holds
 %   (see declare_actions/2); its precondition's bindings do not flow into the rule. It

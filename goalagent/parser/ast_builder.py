@@ -1,10 +1,10 @@
-"""The AST builder: the `.goal`, condition and `.mas2g` parts composed into one lark
-``Transformer``, and ``build`` (source text -> tree -> AST objects) for every file kind.
+"""The AST builder: the parts for `.goal` sections, conditions, GOAL 6+ module and action
+files, `.mas2g` and `.test2g` files composed into one lark ``Transformer``, and ``build``
+(source text -> tree -> AST objects) for every file kind.
 
-One transformer serves all three start rules of ``grammar.lark`` because `.goal` files
-``#import`` Prolog files and the parts share the Prolog-text checks. GOAL 6's multi-file
-format (.mod2g / .act2g / .mas2g with ``use ... as ...``) adds its start rules to the
-grammar and its part here, next to the others.
+One transformer serves every start rule of ``grammar.lark`` because the file kinds share
+conditions, rules and actions (a `.test2g` holds conditions, a `.mod2g` rules) and the
+Prolog-text checks; `.goal` files ``#import`` Prolog files and GOAL 5 module files.
 """
 
 from __future__ import annotations
@@ -17,10 +17,12 @@ from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.goal_sections import GoalParts
 from goalagent.parser.grammar import parse_tree
 from goalagent.parser.mas_sections import MasParts
+from goalagent.parser.module_sections import ModuleParts
 from goalagent.parser.source import Source, read_program_file
+from goalagent.parser.test_sections import TestParts
 
 
-class AstBuilder(GoalParts, ConditionParts, MasParts):
+class AstBuilder(GoalParts, ConditionParts, ModuleParts, MasParts, TestParts):
     """Turns the lark tree of one file into ``goalagent.ast`` objects, checking every Prolog
     fragment with SWI-Prolog's reader. (Each part applies lark's ``v_args`` itself: lark
     wraps only the methods a class defines, not inherited ones.)"""
@@ -28,15 +30,28 @@ class AstBuilder(GoalParts, ConditionParts, MasParts):
     def _import_prolog_file(self, path: Path) -> tuple[ast.PrologText, ...]:
         """The clauses of a Prolog file named by ``#import``."""
         clauses, _ = build(read_program_file(path), str(path), "prolog_file")
-        return clauses
+        return clauses  # type: ignore[return-value]
+
+    def _import_module_file(self, path: Path, pos: ast.Pos) -> list[ast.Module]:
+        """The modules of a GOAL 5 module file named by ``#import`` (single-file syntax)."""
+        (_, items), _ = build(read_program_file(path), str(path), "agent")  # type: ignore[misc]
+        modules = [item for item in items if isinstance(item, ast.Module)]
+        if not modules:
+            raise GoalSyntaxError.at(pos, f"#import {path.name}: the file has no module")
+        return modules
 
 
-def build(text: str, file: str, start: str) -> tuple[object, AstBuilder]:
-    """The AST objects of ``text`` read from start rule ``start`` (agent, mas or
-    prolog_file), and the builder (it keeps the macros it met)."""
+def build(text: str, file: str, start: str, *, plain_beliefs: bool = False,
+          split_facts: bool = True) -> tuple[object, AstBuilder]:
+    """The AST objects of ``text`` read from start rule ``start`` (agent, mas, prolog_file,
+    module_file, action_file or test_file), and the builder (it keeps the macros it met).
+    ``plain_beliefs``: bare literals in conditions are belief queries (newest dialect);
+    ``split_facts``: a Prolog file's ``a, b.`` is two facts (not in a goals file)."""
     source = Source(text, file)
     tree = parse_tree(source, start)
     builder = AstBuilder(source)
+    builder.plain_beliefs = plain_beliefs
+    builder.split_facts = split_facts
     try:
         return builder.transform(tree), builder
     except Exception as err:  # lark wraps errors raised inside callbacks

@@ -35,6 +35,7 @@ class BuilderBase(Transformer):
         super().__init__()
         self.source = source
         self.engine = get_engine()
+        self.split_facts = True  # `a, b.` in a Prolog file is two facts (not for goal files)
 
     # --- helpers ------------------------------------------------------------------------
     def _pos(self, meta) -> ast.Pos:
@@ -116,7 +117,7 @@ class BuilderBase(Transformer):
         return self.check(children[0], clause=True)
 
     def prolog_file(self, meta, children):
-        return self._facts(children)
+        return self._facts(children) if self.split_facts else tuple(children)
 
     # --- options --------------------------------------------------------------------------
     def option(self, meta, children):

@@ -1,6 +1,9 @@
-"""Mental state conditions and ``#define`` macros: the literals of a rule's condition, with
-each macro call expanded into the macro's condition (arguments substituted, its other
-variables renamed apart)."""
+"""Mental state conditions and macros (``#define`` in `.goal` files, ``define m(X) as MSC.``
+in `.mod2g` files): the literals of a rule's condition, with each macro call expanded into
+the macro's condition (arguments substituted, its other variables renamed apart). GOAL 6's
+``(Sender).sent!(φ)`` reads the mailbox; ``done(Action)`` (tests only) is kept as a literal
+of its own; the newest dialect's bare literals (``p(X)`` for ``bel(p(X))``) are read as
+belief queries when the builder's ``plain_beliefs`` is set."""
 
 from __future__ import annotations
 
@@ -34,8 +37,16 @@ class ConditionParts(BuilderBase):
         self.macros: dict[tuple[str, int], ast.Macro] = {}
         self.macro_list: list[ast.Macro] = []
         self._fresh_suffixes = itertools.count(1)
+        self.plain_beliefs = False  # the newest dialect: p(X) in a condition is bel(p(X))
 
     def macro(self, meta, children):
+        return self._define_macro(children)
+
+    def macro_def(self, meta, children):
+        return self._define_macro(children)
+
+    def _define_macro(self, children) -> ast.Macro:
+        """``#define name(Params) MSC.`` or ``define name(Params) as MSC.``."""
         name = children[1]
         params = next((c for c in children[2:] if isinstance(c, tuple) and c and
                        isinstance(c[0], ast.PrologText)), ())
@@ -83,10 +94,32 @@ class ConditionParts(BuilderBase):
     def true_(self, meta, children):
         return ast.MentalLiteral("true", None, self._pos(meta))
 
+    def done_(self, meta, children):
+        """``done(Action)``: the action was just performed (a test condition)."""
+        return ast.MentalLiteral("done", self.check(children[1]), self._pos(meta))
+
+    def sender(self, meta, children):
+        token = children[0]
+        text = str(token)
+        if token.type == "SENT_FROM":
+            text = text.strip()[1:].split(")")[0].strip()
+        return text
+
+    def sent(self, meta, children):
+        """``(S).sent!(φ)``: a message in the mailbox, as ``bel(received(S, imp(φ)))``."""
+        sender, content = children[0], children[-1]
+        mood = next((str(c) for c in children[2:-1] if getattr(c, "type", "") == "MOOD"), ":")
+        wrapped = {"!": f"imp(({content.text}\n))", "?": f"int(({content.text}\n))"}.get(
+            mood, f"({content.text}\n)")
+        query = ast.PrologText(f"received({sender}, {wrapped})", content.pos)
+        return ast.MentalLiteral("bel", self.check(query), self._pos(meta))
+
     def macro_call(self, meta, children):
         name = str(children[0])
         args: tuple[ast.PrologText, ...] = children[1] if len(children) > 1 else ()
         macro = self.macros.get((name, len(args)))
+        if macro is None and self.plain_beliefs:
+            return ast.MentalLiteral("bel", self.check(self._text(meta)), self._pos(meta))
         if macro is None:
             raise GoalSyntaxError.at(
                 self._pos(meta),

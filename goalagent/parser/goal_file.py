@@ -20,8 +20,7 @@ from goalagent.parser.variables import variable_occurrences
 def parse_agent(text: str, file: str = "<string>") -> ast.AgentProgram:
     """Parse the text of a `.goal` agent program."""
     (name, items), builder = build(text, file, "agent")  # type: ignore[misc]
-    program = _program_from_items(name, items, file, builder)
-    return _with_singleton_warnings(program)
+    return _program_from_items(name, items, file, builder)
 
 
 def parse_agent_file(path: str | Path) -> ast.AgentProgram:
@@ -42,7 +41,13 @@ def _program_from_items(name: str | None, items: list, file: str,
                 raise GoalSyntaxError.at(item.pos, f"there is already a {item.name} module")
             modules.append(item)
         elif isinstance(item, ParsedSection):
-            if item.kind == "program":
+            if item.kind == "modules":
+                for module in item.items:
+                    if module.kind != "user" and any(m.name == module.name for m in modules):
+                        raise GoalSyntaxError.at(item.pos, f"the imported {module.name} "
+                                                 "module: there is already one")
+                    modules.append(module)
+            elif item.kind == "program":
                 top_program = item
             else:
                 top[item.kind].extend(item.items)
@@ -52,6 +57,15 @@ def _program_from_items(name: str | None, items: list, file: str,
                                      "a program section outside modules and a main module")
         modules.append(ast.Module("main", "main", top_program.pos, rules=top_program.items,
                                   order=top_program.options.get("order")))
+    return finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+
+
+def finish_program(name: str, file: str, modules: list[ast.Module], macros: list[ast.Macro],
+                   top: dict[str, list]) -> ast.AgentProgram:
+    """The agent program of ``modules`` (whatever format they were read from) with what is
+    global to the agent gathered from them and ``top`` (knowledge, beliefs, goals and
+    actionspecs written outside modules), ``@env`` overrides marked and singleton variables
+    warned about."""
     everything = [top, *({"knowledge": list(m.knowledge), "beliefs": list(m.beliefs),
                           "goals": list(m.goals), "actionspecs": list(m.actionspecs)}
                          for m in modules)]
@@ -60,16 +74,17 @@ def _program_from_items(name: str | None, items: list, file: str,
                   if spec.name in ast.BUILTIN_ACTIONS}
     if overriding:
         modules = [replace(m, rules=_mark_overrides(m.rules, overriding)) for m in modules]
-    return ast.AgentProgram(
-        name=name or Path(file).stem,
+    program = ast.AgentProgram(
+        name=name,
         file=file,
         modules=tuple(modules),
-        macros=tuple(builder.macro_list),
+        macros=tuple(macros),
         knowledge=gathered["knowledge"],
         beliefs=gathered["beliefs"],
         goals=gathered["goals"],
         actionspecs=gathered["actionspecs"],
     )
+    return _with_singleton_warnings(program)
 
 
 def _mark_overrides(rules: tuple[ast.Rule, ...],

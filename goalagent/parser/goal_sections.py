@@ -10,6 +10,7 @@ from lark import Token, v_args
 from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase, ParsedSection
 from goalagent.parser.errors import GoalSyntaxError
+from goalagent.parser.mas_sections import reference_path
 
 LIBRARY = Path(__file__).resolve().parents[1] / "lib"  # Prolog libraries #import finds by name
 
@@ -17,9 +18,19 @@ _MODULE_OPTIONS = {
     "exit": ("always", "never", "nogoals", "noaction"),
     "focus": ("none", "new", "select", "filter"),
 }
-_PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive")}
+_PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive",
+                              "linearrandom", "linearallrandom")}
+_ORDER_NAMES = {"linearrandom": "random", "linearallrandom": "randomall"}  # GOAL 6's names
 _MOODS = ("!", "?", ":")
 _CONJUNCTION_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
+
+
+def program_options(options: dict[str, str]) -> dict[str, str]:
+    """Program options with GOAL 6's order names (linearrandom, ...) as the runtime knows
+    them (random, ...)."""
+    if "order" in options:
+        options = {**options, "order": _ORDER_NAMES.get(options["order"], options["order"])}
+    return options
 
 
 @v_args(meta=True)
@@ -29,10 +40,23 @@ class GoalParts(BuilderBase):
 
     # --- sections -------------------------------------------------------------------------
     def knowledge(self, meta, children):
-        return ParsedSection("knowledge", self._facts(children[1:]), self._pos(meta))
+        return ParsedSection("knowledge", self._clauses(children[1:]), self._pos(meta))
 
     def beliefs(self, meta, children):
-        return ParsedSection("beliefs", self._facts(children[1:]), self._pos(meta))
+        return ParsedSection("beliefs", self._clauses(children[1:]), self._pos(meta))
+
+    def _clauses(self, items) -> tuple[ast.PrologText, ...]:
+        """A section's clauses, those of ``#import``ed Prolog files in their place."""
+        clauses: list[ast.PrologText] = []
+        for item in items:
+            if isinstance(item, ParsedSection):
+                if item.kind != "knowledge":
+                    raise GoalSyntaxError.at(item.pos, "only Prolog files can be #imported "
+                                             "inside knowledge or beliefs")
+                clauses.extend(item.items)
+            else:
+                clauses.extend(self._facts([item]))
+        return tuple(clauses)
 
     def goals(self, meta, children):
         return ParsedSection("goals", tuple(children[1:]), self._pos(meta))
@@ -40,9 +64,8 @@ class GoalParts(BuilderBase):
     def program(self, meta, children):
         options = next((c for c in children if isinstance(c, list)), None)
         rules = tuple(c for c in children if isinstance(c, ast.Rule))
-        return ParsedSection(
-            "program", rules, self._pos(meta), self._options(options, _PROGRAM_OPTIONS)
-        )
+        return ParsedSection("program", rules, self._pos(meta), program_options(
+            self._options(options, _PROGRAM_OPTIONS)))
 
     def actionspecs(self, meta, children):
         return ParsedSection("actionspecs", tuple(children[1:]), self._pos(meta))
@@ -73,20 +96,25 @@ class GoalParts(BuilderBase):
                               environment)
 
     def import_(self, meta, children):
-        """``#import "file.pl".``: the file's clauses become knowledge (GOAL 5)."""
-        name = str(self.engine.parse_term(str(children[1])))
+        """``#import "file.pl".``: the file's clauses become knowledge; ``#import
+        "file.mod2g".``: the modules of a GOAL 5 module file join the program. A name
+        without an extension is a Prolog file, as GOAL 5 reads it."""
+        name = reference_path(str(children[1])[1:-1])
         pos = self._token_pos(children[1])
-        if not name.endswith(".pl"):
-            raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: only Prolog (.pl) files "
-                                     "can be imported; put modules in this file")
+        suffix = Path(name).suffix
+        if suffix not in (".pl", ".mod2g", ".goal"):
+            name += ".pl"
         path = Path(self.source.file).parent / name
         if not path.exists() and (LIBRARY / name).exists():
             path = LIBRARY / name  # a library shipped with goalagent, e.g. affordance.pl
         if not path.exists():
             raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: no such file next to "
                                      "this program nor in goalagent's Prolog libraries")
-        clauses = self._import_prolog_file(path)  # type: ignore[attr-defined]
-        return ParsedSection("knowledge", clauses, pos)
+        if path.suffix == ".pl":
+            clauses = self._import_prolog_file(path)  # type: ignore[attr-defined]
+            return ParsedSection("knowledge", clauses, pos)
+        modules = self._import_module_file(path, pos)  # type: ignore[attr-defined]
+        return ParsedSection("modules", modules, pos)
 
     # --- actions ---------------------------------------------------------------------------
     def combo(self, meta, children):
@@ -119,8 +147,12 @@ class GoalParts(BuilderBase):
                               if token.type == "VAR" else ())
 
     def send(self, meta, children):
-        receiver, keyword, content = children[0], children[1], children[2]
+        """``R.send(:φ)`` (GOAL 4/5: the mood starts the content) or ``R.send:(φ)`` (GOAL
+        6: the mood follows the keyword)."""
+        receiver, keyword, content = children[0], children[1], children[-1]
         mood, message = self._mood(content)
+        if len(children) == 4:
+            mood = str(children[2])
         return ast.SendAction(str(keyword) == "sendonce", receiver, mood, message,
                               self._pos(meta))
 
@@ -189,6 +221,9 @@ class GoalParts(BuilderBase):
         for item in children[1:]:
             if isinstance(item, ast.Macro):
                 continue
+            if item.kind == "modules":
+                raise GoalSyntaxError.at(item.pos, "#import of a module file belongs outside "
+                                         "modules, next to them")
             if item.kind == "program":
                 if seen_program:
                     raise GoalSyntaxError.at(item.pos, f"module {name} has two program sections")

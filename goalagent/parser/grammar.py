@@ -22,7 +22,7 @@ def _grammar() -> Lark:
         grammar,
         parser="lalr",
         lexer="contextual",
-        start=["agent", "mas", "prolog_file"],
+        start=["agent", "mas", "prolog_file", "module_file", "action_file", "test_file"],
         propagate_positions=True,
         maybe_placeholders=False,
     )

@@ -1,5 +1,6 @@
-"""`.mas2g` multi-agent system files: the environment with its init parameters, the agent
-files and the launch policy."""
+"""`.mas2g` multi-agent system files of every GOAL version: the environment with its init
+parameters, the agents (GOAL 4/5 agent files, GOAL 6+ agent definitions) and the launch
+policy. The agents' programs are loaded by ``goalagent.parser.agents``."""
 
 from __future__ import annotations
 
@@ -16,31 +17,50 @@ from goalagent.parser.source import read_program_file
 def parse_mas(text: str, file: str = "<string>") -> ast.MasProgram:
     """Parse the text of a `.mas2g` multi-agent system file."""
     sections, _ = build(text, file, "mas")
-    environment = None
-    env_init: tuple[tuple[str, ast.PrologText], ...] = ()
+    environment: str | None = None
+    env_pos: ast.Pos | None = None
+    env_init: list[tuple[str, ast.PrologText]] = []
     agentfiles: list[ast.AgentFile] = []
+    definitions: list[ast.AgentDefinition] = []
     launches: list[ast.LaunchRule] = []
-    for kind, items, _ in sections:  # type: ignore[attr-defined]
-        if kind == "environment":
-            for key, value, key_pos in items:
+    for section in sections:  # type: ignore[attr-defined]
+        if isinstance(section, ast.AgentDefinition):
+            definitions.append(section)
+            continue
+        kind = section[0]
+        if kind == "use":
+            _, use, pairs, pos = section
+            if environment is not None:
+                raise GoalSyntaxError.at(pos, "a second environment; a system has one")
+            environment, env_pos = use.ref, use.pos
+            env_init.extend((key, value) for key, value, _ in pairs)
+        elif kind == "environment":
+            for key, value, key_pos in section[1]:
                 if key == "env":
                     environment = str(get_engine().parse_term(value.text))
+                    env_pos = key_pos
                 elif key == "init":
-                    env_init = _init_pairs(value)
+                    env_init.extend(_init_pairs(value))
                 else:
                     raise GoalSyntaxError.at(key_pos, f"unknown environment key {key!r} "
                                              "(env, init)")
         elif kind == "agentfiles":
-            agentfiles.extend(items)
+            agentfiles.extend(section[1])
         else:
-            launches.extend(items)
-    known = {a.name for a in agentfiles}
+            launches.extend(section[1])
+    names = [a.name for a in agentfiles] + [d.name for d in definitions]
+    for name in names:
+        if names.count(name) > 1:
+            where = next(a.pos for a in (*agentfiles, *definitions) if a.name == name)
+            raise GoalSyntaxError.at(where, f"there are two agents called {name}")
     for rule in launches:
-        if rule.agentfile not in known:
-            raise GoalSyntaxError.at(rule.pos, f"launch refers to unknown agent file "
-                                     f"{rule.agentfile!r}; known: {', '.join(sorted(known))}")
-    first = sections[0][2] if sections else ast.Pos(file, 1, 1)  # type: ignore[index]
-    return ast.MasProgram(file, environment, env_init, tuple(agentfiles), tuple(launches), first)
+        if rule.agentfile not in names:
+            raise GoalSyntaxError.at(rule.pos, f"launch refers to unknown agent "
+                                     f"{rule.agentfile!r} (no agent file or definition has "
+                                     f"that name); known: {', '.join(sorted(names))}")
+    first = ast.Pos(file, 1, 1)
+    return ast.MasProgram(file, environment, tuple(env_init), tuple(agentfiles),
+                          tuple(launches), first, tuple(definitions), env_pos)
 
 
 def parse_mas_file(path: str | Path) -> ast.MasProgram:
@@ -49,7 +69,8 @@ def parse_mas_file(path: str | Path) -> ast.MasProgram:
 
 
 def _init_pairs(value: ast.PrologText) -> tuple[tuple[str, ast.PrologText], ...]:
-    """``[key = value, ...]`` as (key, value text) pairs, each value kept as Prolog text."""
+    """``[key = value, ...]`` as (key, value text) pairs, each value kept as Prolog text;
+    a key written with a capital (``Floors = 10``) is that name, not a variable."""
     term = get_engine().parse_term(value.text)
     if not isinstance(term, list):
         raise GoalSyntaxError.at(value.pos, "init must be a list [key = value, ...]")

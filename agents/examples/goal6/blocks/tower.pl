@@ -1,0 +1,1 @@
+on(a, b), on(b, c), on(c, table).

@@ -1,0 +1,1 @@
+:- dynamic started/1, done/1, skipped/1.

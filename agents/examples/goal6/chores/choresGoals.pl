@@ -1,0 +1,3 @@
+done(dishes).
+done(laundry).
+done(ironing).

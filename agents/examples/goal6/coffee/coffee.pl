@@ -1,0 +1,4 @@
+% What each product needs (knowledge of both machines).
+requires(coffee, water).
+requires(coffee, grounds).
+requires(grounds, beans).

@@ -1,0 +1,2 @@
+have(beans).
+canMake(grinder, [grounds]).
