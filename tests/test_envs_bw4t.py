@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from goalagent.eis import ActException, Action, ActionRefused, ManagementException
-from goalagent.eis.envs.bw4t.environment import BW4T, BW4TLegacy
+from goalagent.eis.envs.bw4t.environment import BW4T, BW4T2, BW4T38
 from goalagent.eis.envs.bw4t.mapfile import load_map, parse_map, shipped_maps
 from goalagent.eis.envs.bw4t.world import World
 from goalagent.mas import MultiAgentSystem
@@ -190,7 +190,7 @@ def test_player_percept_lists_the_other_agents_entities() -> None:
 
 
 def test_legacy_versions_negate_percepts_that_stop() -> None:
-    env = running(BW4TLegacy)
+    env = running(BW4T38)
     look(env)
     act(env, "goTo", "RoomA")
     until(env, "in('RoomA')")
@@ -201,6 +201,24 @@ def test_legacy_versions_negate_percepts_that_stop() -> None:
     assert not named(look(env), "not")
     assert running(version="3.9").filter.legacy is False
     assert running(version="2").filter.legacy is True
+
+
+def test_before_3_8_4_at_block_names_the_closest_block_only() -> None:
+    def in_reach(env: BW4T) -> set[str]:
+        """The atBlock facts true at the end, kept up to date from the (negated) percepts."""
+        look(env)
+        act(env, "goTo", 5.0, 3.0)  # in RoomA, within reach of the red and the blue block
+        true: set[str] = set()
+        for cycle in until(env, "state(arrived)") + [look(env)]:
+            for percept in named(cycle, "atBlock", "not"):
+                if percept.startswith("not(atBlock("):
+                    true.discard(percept[4:-1])
+                elif percept.startswith("atBlock("):
+                    true.add(percept)
+        return true
+
+    assert in_reach(running(BW4T38)) == {"atBlock(12)", "atBlock(13)"}
+    assert len(in_reach(running(BW4T2))) == 1
 
 
 # ---- actions -------------------------------------------------------------------------------

@@ -28,7 +28,8 @@ _REGISTRY: dict[str, type[Environment] | str] = {
     "towerworld": "goalagent.eis.envs.towerworld:TowerWorld",
     "printer": "goalagent.eis.envs.printer:Printer",
     "bw4t": "goalagent.eis.envs.bw4t.environment:BW4T",
-    "bw4t-3.8": "goalagent.eis.envs.bw4t.environment:BW4TLegacy",
+    "bw4t-3.8": "goalagent.eis.envs.bw4t.environment:BW4T38",
+    "bw4t-2": "goalagent.eis.envs.bw4t.environment:BW4T2",
     "elevator": "goalagent.eis.envs.elevator.environment:Elevator",
     "hanoi": "goalagent.eis.envs.hanoi:Hanoi",
 }
@@ -96,10 +97,11 @@ def register_environment(name: str, target: E | str | None = None) -> object:
     return register
 
 
-# Jar file name (any folder, any case) -> registered name. BW4T before 3.9 and BW4T 2 sent
-# negated percepts, so their clients map to the legacy vocabulary.
+# Jar file name (any folder, any case) -> registered name, first match. BW4T's vocabulary
+# changed in 3.8.4 and 3.9 (see goalagent/eis/envs/README.md); BW4T 2's is that of 3.8.0.
 _JARS: list[tuple[re.Pattern[str], str]] = [
-    (re.compile(r"bw4t-client-3\.[0-8](\.\d+)?\b.*\.jar|bw4tclient\.jar"), "bw4t-3.8"),
+    (re.compile(r"bw4t-client-3\.8\.[4-9]\b.*\.jar"), "bw4t-3.8"),
+    (re.compile(r"bw4t-client-3\.[0-8](\.\d+)?\b.*\.jar|bw4tclient\.jar"), "bw4t-2"),
     (re.compile(r"bw4t-client-\d+(\.\d+)*\b.*\.jar|bw4t.*\.jar"), "bw4t"),
     (re.compile(r"(elevatorsim|elevatorenv|elevator).*\.jar"), "elevator"),
     (re.compile(r"hanoi.*\.jar"), "hanoi"),

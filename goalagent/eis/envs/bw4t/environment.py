@@ -3,9 +3,10 @@
 Entities ``Bot_1`` ... (type ``bot``, ``agentcount`` of them) and ``Human_1`` ... (type
 ``human``, ``humancount``), named and typed as BW4T's server names them. Percepts, their
 timing and actions follow BW4T's ``RobotEntity`` (see ``goalagent/eis/envs/README.md``);
-``version`` chooses between BW4T 3.9+ (the default) and the BW4T 3.8 / BW4T 2 vocabulary, in
-which ``in``, ``atBlock``, ``holding``, ``player``, ``occupied`` and ``bumped`` are sent when
-they become true and as ``not(...)`` when they stop being true.
+``version`` chooses the vocabulary: BW4T 3.9+ (the default); 3.8.4 to 3.8.7, in which ``in``,
+``atBlock``, ``holding``, ``player``, ``occupied`` and ``bumped`` are sent when they become
+true and as ``not(...)`` when they stop being true; and before 3.8.4 (BW4T 2 too), where
+moreover ``atBlock`` names only the closest block in reach and ``pickUp`` takes no argument.
 
 Refused actions (``ActionRefused``) leave the world as it was; where BW4T would silently do
 nothing (``pickUp`` of a block out of reach) the agent is told why instead.
@@ -42,7 +43,7 @@ KNOWN_PARAMETERS = {
     "seed": "seed of the map's random parts when the map gives none",
     "ticks": "simulated ticks per round of agent cycles",
     "collision": "robots bump into each other",
-    "version": "BW4T version whose percepts to send (3.8 and older: negated percepts)",
+    "version": "BW4T version whose vocabulary to use (3.10, 3.8.4, 3.8.0)",
     "snapshots": "directory for one PNG snapshot per round",
     **{key: "accepted and ignored (network, GUI, real-time speed)" for key in ACCEPTED_AND_IGNORED},
 }
@@ -54,14 +55,12 @@ NO_Y = float("nan")
 _NEGATED_IN_LEGACY = frozenset({"in", "atBlock", "holding", "player", "occupied", "bumped"})
 
 
-def _legacy(version: str) -> bool:
-    """True for BW4T versions before 3.9 (``2``, ``3.8.5``)."""
-    parts = []
-    for part in version.split(".")[:2]:
-        if not part.isdigit():
-            raise ManagementException(f"bw4t: version must look like 3.10 or 3.8, got {version!r}")
-        parts.append(int(part))
-    return tuple(parts) < (3, 9)
+def _version(version: str) -> tuple[int, ...]:
+    """``3.8.5`` as (3, 8, 5); a missing part counts as 0."""
+    parts = version.split(".")[:3]
+    if not all(part.isdigit() for part in parts):
+        raise ManagementException(f"bw4t: version must look like 3.10 or 3.8.5, got {version!r}")
+    return tuple(int(part) for part in parts) + (0,) * (3 - len(parts))
 
 
 class BW4T(PythonEnvironment):
@@ -83,7 +82,9 @@ class BW4T(PythonEnvironment):
         self.ticks_per_round = int_param(self.name, params, "ticks", 4, minimum=1, maximum=1000)
         collision = bool_param(self.name, params, "collision", False)
         self.version = text_param(self.name, params, "version", self.default_version)
-        self.filter = PerceptFilter(legacy=_legacy(self.version))
+        version = _version(self.version)
+        self.filter = PerceptFilter(legacy=version < (3, 9))
+        self.closest_block_only = version < (3, 8, 4)
         self.world = World(load_map(self.map_name), seed, bots, humans, collision)
         self.robots = {robot.name: robot for robot in self.world.robots}
         self.clock = RoundClock()
@@ -146,8 +147,7 @@ class BW4T(PythonEnvironment):
              lambda: [(r.id, float(r.size), float(r.size)) for r in world.robots]),
             ("position", f.ON_CHANGE, lambda: self._positions(robot, zone, visible)),
             ("at", f.ON_CHANGE, lambda: [(at.name,)] if at is not None else []),
-            ("atBlock", f.ALWAYS,
-             lambda: [(b.id,) for b in world.blocks if robot.can_pick_up(b)]),
+            ("atBlock", f.ALWAYS, lambda: self._at_blocks(robot)),
             ("in", f.ALWAYS, lambda: [(room.name,)] if room is not None else []),
             ("location", f.ON_CHANGE, lambda: [(robot.x, robot.y)]),
             ("place", f.ONCE, lambda: [(z.name,) for z in world.zones]),
@@ -174,6 +174,13 @@ class BW4T(PythonEnvironment):
              lambda: [(o.name,) for o in robot.obstacles] if robot.collided else []),
             ("oldTargetUnreachable", f.ON_CHANGE, lambda: [(robot.id, int(robot.unreachable))]),
         ]
+
+    def _at_blocks(self, robot: Robot) -> list[tuple[int]]:
+        """Blocks in reach; before BW4T 3.8.4 only the closest of them."""
+        blocks = [b for b in self.world.blocks if robot.can_pick_up(b)]
+        if self.closest_block_only and blocks:
+            blocks = [min(blocks, key=lambda b: robot.distance_to(b.x, b.y))]
+        return [(b.id,) for b in blocks]
 
     def _players(self, me: str) -> list[str]:
         """Entities of the agents that do not control ``me`` (``RobotEntity.getPlayers``)."""
@@ -242,7 +249,7 @@ class BW4T(PythonEnvironment):
 
     @action("pickUp")
     def pick_up(self, entity: str, block: int = NO_BLOCK) -> None:
-        """``pickUp(Block)`` (BW4T 3.8.3+), or ``pickUp`` the nearest block in reach (older)."""
+        """``pickUp(Block)`` (BW4T 3.8.4+), or ``pickUp`` the nearest block in reach (older)."""
         robot = self.robots[entity]
         if len(robot.holding) >= robot.capacity:
             raise ActionRefused(f"pickUp: {robot.name} already holds {robot.capacity} "
@@ -291,8 +298,14 @@ class BW4T(PythonEnvironment):
         """Accepted as in BW4T, where its answer is not a percept and so is never seen."""
 
 
-class BW4TLegacy(BW4T):
-    """BW4T 3.8 and BW4T 2: negated percepts, for the agents written for them."""
+class BW4T38(BW4T):
+    """BW4T 3.8.4 to 3.8.7: negated percepts, ``pickUp(Block)``."""
 
-    name = "bw4t"
-    default_version = "3.8"
+    default_version = "3.8.4"
+
+
+class BW4T2(BW4T):
+    """BW4T 2 and BW4T 3 up to 3.8.3: negated percepts, ``atBlock`` of the closest block only,
+    ``pickUp`` without argument."""
+
+    default_version = "3.8.0"
