@@ -107,10 +107,12 @@ def test_source_ranking_follows_table_5_4():
     assert [c.known.name for c in ranked] == ["o2", "o1"]  # o2 shares all three relations
     assert [c.shared_relations for c in ranked] == [3, 1]
     assert ranked[0].target_part == "handle"
-    # o5: o2 and o4 share every relation; o5's lid looks like o2's, not o4's
+    # o5: o2 and o4 share every relation; the tie goes to the object known first
     ranked = rank_sources(learned(["o1", "o2", "o3", "o4"]), cans["o5"].perceive(), goal)
-    assert [c.known.name for c in ranked][:2] == ["o2", "o4"]
-    assert ranked[0].distance < ranked[1].distance
+    assert [c.known.name for c in ranked] == ["o2", "o4", "o1", "o3"]
+    assert [c.shared_relations for c in ranked] == [3, 3, 1, 1]
+    ranked = rank_sources(learned(["o1", "o3", "o4", "o2"]), cans["o5"].perceive(), goal)
+    assert [c.known.name for c in ranked][:2] == ["o4", "o2"]
     assert rank_sources([], cans["o5"].perceive(), goal) == []
     assert fit_similarity([]) is None
 
