@@ -105,3 +105,16 @@ def test_a_failed_write_leaves_the_database_as_it_was(tmp_path: Path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["known.json"]
     with pytest.raises(ValueError, match="model for unknown part"):
         KnownObject("x", {}, frozenset(), known.bounds, known.models)
+
+
+def test_the_saved_file_is_an_ordinary_file(tmp_path: Path):
+    import os
+
+    database = KnownObjectDatabase(tmp_path / "known.json")
+    _learn("o1", database)
+    umask = os.umask(0o022)
+    try:
+        database.forget("o1")
+    finally:
+        os.umask(umask)
+    assert (tmp_path / "known.json").stat().st_mode & 0o777 == 0o644  # not mkstemp's 0600
