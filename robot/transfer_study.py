@@ -66,33 +66,42 @@ def _models(learner: PartBasedLearner) -> list[dict[str, object]]:
             for (part, action), model in learner.models_.items()]
 
 
+def baseline_seed(seed: int, cans: Sequence[str] = THESIS_CANS, perception: str = "truth",
+                  progress: Progress = lambda line: None) -> dict[str, dict]:
+    """Algorithm 4 on every can under one seed: N, the pair found, every pair's models."""
+    world = GarbageWorld("o1", seed=0)
+    row: dict[str, dict] = {}
+    try:
+        for can in cans:
+            learner = _run(PartBasedLearner(random_state=seed), world, can, seed, perception)
+            row[can] = {"n": learner.n_actions_, **_found(learner), "models": _models(learner)}
+            progress(f"ch5-baseline {perception} seed {seed} {can}: N = "
+                     f"{learner.n_actions_}, pair {row[can]['part']}/{row[can]['action']}")
+    finally:
+        world.close()
+    return row
+
+
+def baseline_summary(rows: Sequence[dict[str, dict]]) -> dict[str, dict]:
+    """Per can over the seeds' rows: mean N without transfer, the most frequent pair, and on
+    how many seeds it was the can's true functional pair."""
+    summary = {}
+    for can in rows[0]:
+        runs = [row[can] for row in rows]
+        summary[can] = {"n_without": mean(r["n"] for r in runs),
+                        **_most_frequent(runs, ("part", "action")),
+                        "found": sum((r["part"], r["action"]) == find_can(can).functional
+                                     for r in runs)}
+    return summary
+
+
 def baseline_study(cans: Sequence[str] = THESIS_CANS, seeds: Sequence[int] = range(5),
                    perception: str = "truth", progress: Progress = lambda line: None) -> dict:
     """Algorithm 4 on every can and seed (Table 5.3 and the N-without column of Table 5.4)."""
-    world = GarbageWorld("o1", seed=0)
-    per_seed: dict[str, dict[str, dict]] = {}
-    try:
-        for seed in seeds:
-            row = per_seed.setdefault(str(seed), {})
-            for can in cans:
-                learner = _run(PartBasedLearner(random_state=seed), world, can, seed,
-                               perception)
-                row[can] = {"n": learner.n_actions_, **_found(learner),
-                            "models": _models(learner)}
-                progress(f"ch5-baseline {perception} seed {seed} {can}: N = "
-                         f"{learner.n_actions_}, pair {row[can]['part']}/{row[can]['action']}")
-    finally:
-        world.close()
-    summary = {}
-    for can in cans:
-        runs = [per_seed[str(s)][can] for s in seeds]
-        summary[can] = {"n_without": mean(r["n"] for r in runs),
-                        **_most_frequent(runs, ("part", "action")),
-                        "found": sum(r["part"] == find_can(can).functional[0]
-                                     and r["action"] == find_can(can).functional[1]
-                                     for r in runs)}
+    per_seed = {str(seed): baseline_seed(seed, cans, perception, progress) for seed in seeds}
     return {"name": "ch5-baseline", "perception": perception, "cans": list(cans),
-            "seed_list": list(seeds), "summary": summary, "seeds": per_seed}
+            "seed_list": list(seeds), "summary": baseline_summary(list(per_seed.values())),
+            "seeds": per_seed}
 
 
 def _most_frequent(runs: Sequence[dict], keys: Sequence[str]) -> dict[str, object]:
@@ -100,51 +109,60 @@ def _most_frequent(runs: Sequence[dict], keys: Sequence[str]) -> dict[str, objec
     return {key: Counter(r[key] for r in runs).most_common(1)[0][0] for key in keys}
 
 
-def transfer_study(cans: Sequence[str] = THESIS_CANS, seeds: Sequence[int] = range(5),
-                   perception: str = "truth", progress: Progress = lambda line: None,
-                   with_baseline: bool = True) -> dict:
-    """Table 5.4: each can learned with transfer from the ones before, in order, per seed."""
+def transfer_seed(seed: int, cans: Sequence[str] = THESIS_CANS, perception: str = "truth",
+                  progress: Progress = lambda line: None) -> dict[str, dict]:
+    """Table 5.4 under one seed: each can learned with transfer from the ones before it (in
+    order, from an empty database) and, for N without transfer, with Algorithm 4."""
     world = GarbageWorld("o1", seed=0)
-    per_seed: dict[str, dict[str, dict]] = {}
+    known: list[KnownObject] = []
+    row: dict[str, dict] = {}
     try:
-        for seed in seeds:
-            known: list[KnownObject] = []
-            row = per_seed.setdefault(str(seed), {})
-            for can in cans:
-                started = time.perf_counter()
-                learner = _run(TransferLearner(database=list(known), random_state=seed), world,
-                               can, seed, perception)
-                known.append(KnownObject.learned(can, learner))
-                first = learner.trials_[0] if learner.trials_ else None
-                entry = {"n_with": learner.n_actions_, "source": learner.source_,
-                         "branch": learner.branch_, **_found(learner),
-                         "first_try": None if first is None else f"{first.action}({first.part})",
-                         "seconds_with": round(time.perf_counter() - started, 2)}
-                if with_baseline:
-                    baseline = _run(PartBasedLearner(random_state=seed), world, can, seed,
-                                    perception)
-                    entry["n_without"] = baseline.n_actions_
-                row[can] = entry
-                progress(f"ch5-transfer {perception} seed {seed} {can}: N_tran = "
-                         f"{entry['n_with']} (without {entry.get('n_without', '-')}), source "
-                         f"{entry['source']}, {entry['branch']}, pair "
-                         f"{entry['part']}/{entry['action']}")
+        for can in cans:
+            started = time.perf_counter()
+            learner = _run(TransferLearner(database=list(known), random_state=seed), world, can,
+                           seed, perception)
+            known.append(KnownObject.learned(can, learner))
+            first = learner.trials_[0] if learner.trials_ else None
+            entry = {"n_with": learner.n_actions_, "source": learner.source_,
+                     "branch": learner.branch_, **_found(learner),
+                     "first_try": None if first is None else f"{first.action}({first.part})",
+                     "seconds_with": round(time.perf_counter() - started, 2)}
+            baseline = _run(PartBasedLearner(random_state=seed), world, can, seed, perception)
+            entry["n_without"] = baseline.n_actions_
+            row[can] = entry
+            progress(f"ch5-transfer {perception} seed {seed} {can}: N_tran = "
+                     f"{entry['n_with']} (without {entry['n_without']}), source "
+                     f"{entry['source']}, {entry['branch']}, pair "
+                     f"{entry['part']}/{entry['action']}")
     finally:
         world.close()
+    return row
+
+
+def transfer_summary(rows: Sequence[dict[str, dict]]) -> dict[str, dict]:
+    """Per can over the seeds' rows: mean N without and with transfer, the most frequent
+    source, part, action and branch, how many seeds found the true functional pair, and
+    whether transfer never took more actions than Algorithm 4."""
     summary = {}
-    for can in cans:
-        runs = [per_seed[str(s)][can] for s in seeds]
-        truth = find_can(can).functional
+    for can in rows[0]:
+        runs = [row[can] for row in rows]
         summary[can] = {
-            "n_without": mean(r["n_without"] for r in runs) if with_baseline else None,
+            "n_without": mean(r["n_without"] for r in runs),
             "n_with": mean(r["n_with"] for r in runs),
             **_most_frequent(runs, ("source", "part", "action", "branch")),
-            "found": sum((r["part"], r["action"]) == truth for r in runs),
-            "never_worse": all(r["n_with"] <= r["n_without"] for r in runs)
-            if with_baseline else None,
+            "found": sum((r["part"], r["action"]) == find_can(can).functional for r in runs),
+            "never_worse": all(r["n_with"] <= r["n_without"] for r in runs),
         }
+    return summary
+
+
+def transfer_study(cans: Sequence[str] = THESIS_CANS, seeds: Sequence[int] = range(5),
+                   perception: str = "truth", progress: Progress = lambda line: None) -> dict:
+    """Table 5.4 over several seeds (see ``transfer_seed``)."""
+    per_seed = {str(seed): transfer_seed(seed, cans, perception, progress) for seed in seeds}
     return {"name": "ch5-transfer", "perception": perception, "cans": list(cans),
-            "seed_list": list(seeds), "summary": summary, "seeds": per_seed}
+            "seed_list": list(seeds), "summary": transfer_summary(list(per_seed.values())),
+            "seeds": per_seed}
 
 
 def markdown(result: dict) -> str:
@@ -157,8 +175,8 @@ def markdown(result: dict) -> str:
                   "|---|---|---|---|---|---|---|---|"]
         for can, s in result["summary"].items():
             thesis = THESIS_TABLE_5_4.get(can, ("-", "-", "-"))
-            without = "-" if s["n_without"] is None else f"{s['n_without']:.1f}"
-            lines.append(f"| {can} | {without} | {s['n_with']:.1f} | {s['source'] or '-'} | "
+            lines.append(f"| {can} | {s['n_without']:.1f} | {s['n_with']:.1f} | "
+                         f"{s['source'] or '-'} | "
                          f"{s['action']}({s['part']}) ({s['found']}/{seeds}) | {s['branch']} | "
                          f"{s['never_worse']} | {thesis[0]}, {thesis[1] or '-'}, "
                          f"{thesis[2] or '-'} |")
