@@ -48,14 +48,90 @@ def snapshot(
                       markup=False)
 
 
-COMMANDS: tuple[Callable[..., None], ...] = (snapshot,)
+def reproduce(
+    name: Annotated[str | None, typer.Argument(
+        help="Which reproduction (see --list).", show_default=False)] = None,
+    seeds: Annotated[int | None, typer.Option(
+        help="Number of seeds, 0 .. K-1 (default: the reproduction's, 10; 2 with --quick)",
+        show_default=False)] = None,
+    out: Annotated[Path, typer.Option(
+        help="Folder for NAME.json, NAME.md and the figures.")] = Path("results"),
+    jobs: Annotated[int | None, typer.Option(
+        help="Seeds run in parallel processes (default: the number of CPUs)",
+        show_default=False)] = None,
+    scale: Annotated[float, typer.Option(
+        help="Run size in (0, 1]; 1 is the full size of the thesis's or paper's runs.")] = 1.0,
+    quick: Annotated[bool, typer.Option(
+        "--quick", help="A small run: the reproduction's quick scale (and 2 seeds).")] = False,
+    list_: Annotated[bool, typer.Option(
+        "--list", help="List the reproductions, one line each, and stop.")] = False,
+) -> None:
+    """Run a named reproduction of the thesis's results: seeds in parallel, then NAME.json
+    (summary and per-seed numbers), NAME.md (measured beside the reference, with the gap) and
+    PNG figures in --out."""
+    import os
+
+    from robot.reproduce.framework import UnknownReproduction, find, registered
+
+    if list_:
+        for reproduction in registered():
+            err_console.print(f"{reproduction.name:<16} {reproduction.description}",
+                              markup=False)
+        return
+    if name is None:
+        raise user_error("name a reproduction (goalagent reproduce --list shows them)")
+    try:
+        reproduction = find(name)
+    except UnknownReproduction as err:
+        raise user_error(str(err)) from None
+    seeds = seeds if seeds is not None else 2 if quick else reproduction.default_seeds
+    jobs = jobs if jobs is not None else os.cpu_count() or 1
+    scale = reproduction.quick_scale if quick else scale
+    if seeds < 1:
+        raise user_error(f"--seeds must be at least 1, got {seeds}")
+    if jobs < 1:
+        raise user_error(f"--jobs must be at least 1, got {jobs}")
+    if not 0.0 < scale <= 1.0:
+        raise user_error(f"--scale must be in (0, 1], got {scale}")
+    if out.exists() and not out.is_dir():
+        raise user_error(f"--out {out} exists and is not a folder")
+    _run_reproduction(reproduction, seeds, scale, jobs, out)
+
+
+def _run_reproduction(reproduction: object, seeds: int, scale: float, jobs: int,
+                      out: Path) -> None:
+    """Run it with a progress bar; print the table and where the files went."""
+    from rich.table import Table
+
+    from robot.reproduce.report import number
+    from robot.reproduce.runner import ReproductionFailed, run
+
+    try:
+        outcome = run(reproduction, seeds=seeds, scale=scale, jobs=jobs, out=out,
+                      console=err_console)
+    except ReproductionFailed as err:
+        err_console.print(f"error: {err}", markup=False)
+        raise typer.Exit(code=1) from None
+    table = Table("quantity", "measured", "reference", "gap", "source")
+    for row in outcome.comparisons:
+        measured = number(row.measured) + (
+            f" ± {number(row.spread)}" if row.spread is not None and row.measured is not None
+            else "")
+        table.add_row(row.quantity, measured, number(row.reference),
+                      "—" if row.gap is None else f"{row.gap:+.4g}", row.source or "—")
+    err_console.print(table, markup=False)
+    err_console.print("wrote " + ", ".join(str(path) for path in outcome.files), markup=False)
+
+
+COMMANDS: tuple[Callable[..., None], ...] = (snapshot, reproduce)
 """The robot application's commands, in the order ``goalagent --help`` lists them."""
 
 
 def add_commands(app: typer.Typer) -> None:
     """Add the robot commands to ``app``: each at the top level and under ``robot``."""
     robot = typer.Typer(name="robot", no_args_is_help=True,
-                        help="The robot application: MuJoCo garbage cans, snapshots.")
+                        help="The robot application: MuJoCo garbage cans, snapshots, "
+                             "reproductions of the thesis's results.")
     for command in COMMANDS:
         app.command()(command)
         robot.command()(command)

@@ -8,6 +8,7 @@ estimate, experience, numerosity and time stamps.
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -177,3 +178,15 @@ def test_numerosity_experience_and_records_are_consistent_after_learning():
     assert len({(c.condition, c.action) for c in records}) == len(records)
     assert all(c.numerosity >= 1 and c.experience >= 0 and c.fitness > 0 for c in records)
     assert all(0 <= c.time_stamp <= xcs.time_ for c in records)
+
+
+
+def test_action_sets_deleted_before_their_payoff_arrives_are_skipped_quietly():
+    xcs = XCS(4, N=12, theta_ga=0, random_state=0)  # deletion after almost every step
+    rng = np.random.default_rng(0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for step in range(3000):
+            xcs.act(rng.integers(0, 2, 6), explore=True)
+            xcs.reward(float(rng.integers(0, 2)) * 100.0, done=step % 7 == 6)
+    assert xcs.micro_count <= 12

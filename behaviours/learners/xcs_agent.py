@@ -347,8 +347,8 @@ class XCS:
         live = stats[NUMEROSITY] > 0
         if not _all(live):
             rows, stats = rows[live], stats[:, live]
-            if rows.size == 0:
-                return
+        if rows.size == 0:  # every classifier of the set was deleted meanwhile
+            return
         self._update_set(stats, payoff)
         population.stats[:, rows] = stats
         if settings.action_set_subsumption:

@@ -1,0 +1,102 @@
+"""A reproduction's outputs: the markdown page (its table of measured values beside the
+reference with the gap) and its figures (mean ± standard deviation over seeds, references as
+dashed lines), and the atomic file writing they share."""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from robot.reproduce.framework import Comparison, Figure, Reproduction
+
+
+def write_atomically(path: Path, data: bytes) -> Path:
+    """A temporary file in the same folder, fsync, then os.replace: all or nothing."""
+    fd, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def number(value: float | None) -> str:
+    """Four significant digits (whole thousands grouped); an em dash for a missing value."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "—"
+    if abs(value) >= 1000:
+        return f"{value:,.0f}"
+    return f"{value:.4g}"
+
+
+def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
+             figure_files: Sequence[str], n_seeds: int, scale: float, command: str) -> str:
+    """NAME.md: title, command, the comparison table, notes and the figures."""
+    lines = [f"# {reproduction.name}", "", reproduction.description, "",
+             f"Produced by `{command}` ({n_seeds} seeds"
+             + ("" if scale == 1.0 else f", scale {scale:g} of the full run") + ").", "",
+             f"| quantity | measured (mean ± sd over {n_seeds} seeds) | reference | gap | "
+             "source |", "|---|---|---|---|---|"]
+    for row in comparisons:
+        measured = number(row.measured)
+        if row.spread is not None and row.measured is not None:
+            measured += f" ± {number(row.spread)}"
+        gap = row.gap
+        gap_text = "—" if gap is None else ("+" if gap >= 0 else "−") + number(abs(gap))
+        if gap is not None and row.reference:
+            gap_text += f" ({100 * gap / abs(row.reference):+.0f}%)"
+        lines.append(f"| {row.quantity} | {measured} | {number(row.reference)} | {gap_text} | "
+                     f"{row.source or '—'} |")
+    if reproduction.notes:
+        lines += ["", reproduction.notes.strip()]
+    for name in figure_files:
+        lines += ["", f"![{name}]({name})"]
+    return "\n".join(lines) + "\n"
+
+
+def render_figure(figure: Figure, n_seeds: int) -> bytes:
+    """The figure as PNG bytes: each series' mean over seeds with a ±1 sd band."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure as Canvas
+
+    canvas = Canvas(figsize=(5.2 * len(figure.panels), 3.8), layout="constrained")
+    FigureCanvasAgg(canvas)
+    axes = canvas.subplots(1, len(figure.panels), squeeze=False)[0]
+    for ax, panel in zip(axes, figure.panels, strict=True):
+        for series in panel.series:
+            runs = np.asarray(series.runs, dtype=float)
+            if runs.ndim != 2 or runs.shape[1] != len(series.x):
+                raise ValueError(f"figure {figure.stem}: series {series.label!r} needs one run "
+                                 f"of {len(series.x)} values per seed")
+            mean, spread = np.nanmean(runs, axis=0), np.nanstd(runs, axis=0)
+            line, = ax.plot(series.x, mean, label=f"{series.label} (mean ± sd, {n_seeds} seeds)")
+            ax.fill_between(series.x, mean - spread, mean + spread, alpha=0.25,
+                            color=line.get_color(), linewidth=0)
+        for reference in panel.references:
+            if reference.vertical:
+                ax.axvline(reference.value, linestyle=":", color="firebrick", linewidth=1.2,
+                           label=reference.label)
+            else:
+                ax.axhline(reference.value, linestyle="--", color="0.3", linewidth=1,
+                           label=reference.label)
+        ax.set_xlabel(panel.xlabel)
+        ax.set_ylabel(panel.ylabel)
+        if panel.ylim is not None:
+            ax.set_ylim(*panel.ylim)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize="small")
+    canvas.suptitle(figure.title)
+    buffer = io.BytesIO()
+    canvas.savefig(buffer, format="png", dpi=110)
+    return buffer.getvalue()
