@@ -103,7 +103,7 @@ def _run_reproduction(reproduction: object, seeds: int, scale: float, jobs: int,
     """Run it with a progress bar; print the table and where the files went."""
     from rich.table import Table
 
-    from robot.reproduce.report import number
+    from robot.reproduce.report import gap_text, measured_text, number
     from robot.reproduce.runner import ReproductionFailed, run
 
     try:
@@ -114,11 +114,8 @@ def _run_reproduction(reproduction: object, seeds: int, scale: float, jobs: int,
         raise typer.Exit(code=1) from None
     table = Table("quantity", "measured", "reference", "gap", "source")
     for row in outcome.comparisons:
-        measured = number(row.measured) + (
-            f" ± {number(row.spread)}" if row.spread is not None and row.measured is not None
-            else "")
-        table.add_row(row.quantity, measured, number(row.reference),
-                      "—" if row.gap is None else f"{row.gap:+.4g}", row.source or "—")
+        table.add_row(row.quantity, measured_text(row), number(row.reference), gap_text(row),
+                      row.source or "—")
     err_console.print(table, markup=False)
     err_console.print("wrote " + ", ".join(str(path) for path in outcome.files), markup=False)
 

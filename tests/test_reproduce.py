@@ -5,6 +5,7 @@ command line."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -60,6 +61,9 @@ def test_each_reproduction_runs_small_and_writes_json_markdown_and_figures(tmp_p
     assert sorted(outcome.files) == sorted([*pngs, tmp_path / f"{name}.md",
                                             tmp_path / f"{name}.json"])
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary left
+    umask = os.umask(0)
+    os.umask(umask)
+    assert {p.stat().st_mode & 0o777 for p in outcome.files} == {0o666 & ~umask}
 
 
 # -- the runner, on a tiny reproduction of its own ---------------------------------------------
@@ -126,7 +130,7 @@ def test_the_markdown_table_puts_each_value_beside_its_reference_with_the_gap():
                             Comparison("size", 81.0), Comparison("missing", None, None, 1.0)],
                     ["toy-run-curve.png"], 10, 1.0, "goalagent reproduce toy-run")
     assert "| steps | 2.25 ± 0.5 | 2 | +0.25 (+12%) | Wilson 1995 |" in page
-    assert "| problems | 4,200 ± 300 | 5,000 | −800 (-16%) | Wilson |" in page
+    assert "| problems | 4,200 ± 300 | 5,000 | -800 (-16%) | Wilson |" in page
     assert "| size | 81 | — | — | — |" in page
     assert "| missing | — | 1 | — | — |" in page
     assert "![toy-run-curve.png](toy-run-curve.png)" in page

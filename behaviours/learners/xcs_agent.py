@@ -303,7 +303,7 @@ class XCS:
         """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates),
         with the fitness sums it divides by."""
         population, n = self.population_, self._settings.n_actions
-        stats = population.stats[:, match]
+        stats = population.stats.take(match, axis=1)
         fitness = stats[FITNESS]
         weights = np.bincount(actions, weights=fitness, minlength=n)
         weighted = np.bincount(actions, weights=fitness * stats[PREDICTION], minlength=n)
@@ -343,10 +343,10 @@ class XCS:
         eq. 7.3 says the set's classifiers have waited long enough."""
         population, settings = self.population_, self._settings
         rows = step.rows
-        stats = population.stats[:, rows]
+        stats = population.stats.take(rows, axis=1)
         live = stats[NUMEROSITY] > 0
         if not _all(live):
-            rows, stats = rows[live], stats[:, live]
+            rows, stats = rows[live], stats.compress(live, axis=1)
         if rows.size == 0:  # every classifier of the set was deleted meanwhile
             return
         self._update_set(stats, payoff)
@@ -354,11 +354,11 @@ class XCS:
         if settings.action_set_subsumption:
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
-            stats = population.stats[:, rows]
+            stats = population.stats.take(rows, axis=1)
         numerosity = stats[NUMEROSITY]
         waited = self.time_ - stats[TIME_STAMP] @ numerosity / _sum(numerosity)
         if waited > settings.theta_ga:  # eq. 7.3
-            population.stats[TIME_STAMP, rows] = self.time_
+            population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
 
     def _update_set(self, stats: np.ndarray, payoff: float) -> None:

@@ -106,7 +106,7 @@ def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state:
     spins = cumulative.searchsorted(draws[:2] * cumulative[-1], side="right")
     parents = rows[np.minimum(spins, rows.size - 1)].tolist()
     prediction, error, fitness_, set_size, _, numerosity, stamp = (
-        population.stats[:, parents].tolist())
+        population.stats.take(parents, axis=1).tolist())
     micro_fitness = [fitness_[0] / numerosity[0], fitness_[1] / numerosity[1]]
     conditions = [population.keys[parent][:2] for parent in parents]
     if draws[2] < settings.chi:

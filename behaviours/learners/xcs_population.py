@@ -136,7 +136,7 @@ class Population:
 
     def alive(self, rows: np.ndarray) -> np.ndarray:
         """Whether each of ``rows`` holds a live classifier."""
-        return self.stats[NUMEROSITY, rows] > 0
+        return self.numerosity[rows] > 0
 
     def add(self, care: int, value: int, action: int, *, prediction: float, error: float,
             fitness: float, experience: int, numerosity: int, action_set_size: float,

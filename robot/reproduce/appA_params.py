@@ -68,7 +68,7 @@ def compare(summary: dict, seeds: list[dict]) -> list[Comparison]:
         Comparison("6-multiplexer: fraction correct, last 50 exploit problems",
                    mux["final_accuracy"], mux["final_accuracy_sd"], 1.0,
                    "a perfect score (no thesis value)"),
-        Comparison(f"6-multiplexer: explore problems until 50/50 correct "
+        Comparison(f"6-multiplexer: explore problems until 50/50 correct for good "
                    f"({mux['seeds_reaching_99']}/{mux['seeds']} seeds got there)",
                    mux["problems_to_99"], mux["problems_to_99_sd"]),
     ]

@@ -31,13 +31,17 @@ def environment_rng(seed: int) -> np.random.Generator:
 
 def multiplexer_experiment(address_bits: int, explore_problems: int, params: dict, seed: int,
                            progress: Callable[[float], None]) -> dict:
-    """XCS on the (address_bits + 2**address_bits)-bit multiplexer, reward 1000 when right."""
+    """XCS on the (address_bits + 2**address_bits)-bit multiplexer, reward 1000 when right.
+
+    ``problems_to_99``: the explore problem from which the fraction correct over the last 50
+    exploit problems stayed at 0.99 or more (all 50 right) to the end of the run;
+    ``first_at_99``: the first time it got there."""
     length = address_bits + 2 ** address_bits
     rng = environment_rng(seed)
     xcs = XCS(2, random_state=seed, **params)
     window: deque[bool] = deque(maxlen=WINDOW)
     curve: dict[str, list] = {"problems": [], "accuracy": [], "macro_classifiers": []}
-    first_perfect = None
+    first_perfect = stays_perfect = None
     for problem in range(1, explore_problems + 1):
         for explore in (True, False):
             state = format(int(rng.integers(2 ** length)), f"0{length}b")
@@ -46,15 +50,19 @@ def multiplexer_experiment(address_bits: int, explore_problems: int, params: dic
             xcs.reward(REWARD if action == answer else 0.0, done=True)
         window.append(action == answer)
         accuracy = sum(window) / len(window)
-        if first_perfect is None and len(window) == WINDOW and accuracy >= 0.99:
-            first_perfect = problem
+        if len(window) == WINDOW and accuracy >= 0.99:
+            first_perfect = first_perfect or problem
+            stays_perfect = stays_perfect or problem
+        else:
+            stays_perfect = None
         if problem % RECORD_EVERY == 0:
             curve["problems"].append(problem)
             curve["accuracy"].append(accuracy)
             curve["macro_classifiers"].append(xcs.macro_count)
             progress(problem / explore_problems)
     return {**curve, "final_accuracy": sum(window) / len(window),
-            "problems_to_99": first_perfect, "final_macro_classifiers": xcs.macro_count}
+            "problems_to_99": stays_perfect, "first_at_99": first_perfect,
+            "final_macro_classifiers": xcs.macro_count}
 
 
 def woods_experiment(rows: tuple[str, ...], codes: dict[str, str], explore_problems: int,

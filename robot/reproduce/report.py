@@ -15,11 +15,20 @@ import numpy as np
 
 from robot.reproduce.framework import Comparison, Figure, Reproduction
 
+_UMASK = os.umask(0)
+os.umask(_UMASK)
+
+REFERENCE_STYLES = ({"linestyle": "--", "color": "0.25"}, {"linestyle": ":", "color": "firebrick"},
+                    {"linestyle": "-.", "color": "darkgreen"})
+"""How reference lines look, in the order a panel lists them."""
+
 
 def write_atomically(path: Path, data: bytes) -> Path:
-    """A temporary file in the same folder, fsync, then os.replace: all or nothing."""
+    """A temporary file in the same folder, fsync, then os.replace: all or nothing. The file
+    gets the permissions a plainly created one would (mkstemp makes it owner-only)."""
     fd, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
     try:
+        os.chmod(temporary, 0o666 & ~_UMASK)
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
             handle.flush()
@@ -40,6 +49,24 @@ def number(value: float | None) -> str:
     return f"{value:.4g}"
 
 
+def measured_text(row: Comparison) -> str:
+    """The measured value with its spread over seeds, e.g. ``2.1 ± 0.3``."""
+    if row.spread is None or row.measured is None:
+        return number(row.measured)
+    return f"{number(row.measured)} ± {number(row.spread)}"
+
+
+def gap_text(row: Comparison) -> str:
+    """measured - reference, signed, with the gap relative to the reference."""
+    gap = row.gap
+    if gap is None:
+        return "—"
+    text = ("+" if gap >= 0 else "-") + number(abs(gap))
+    if row.reference:
+        text += f" ({100 * gap / abs(row.reference):+.0f}%)"
+    return text
+
+
 def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
              figure_files: Sequence[str], n_seeds: int, scale: float, command: str) -> str:
     """NAME.md: title, command, the comparison table, notes and the figures."""
@@ -49,15 +76,8 @@ def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
              f"| quantity | measured (mean ± sd over {n_seeds} seeds) | reference | gap | "
              "source |", "|---|---|---|---|---|"]
     for row in comparisons:
-        measured = number(row.measured)
-        if row.spread is not None and row.measured is not None:
-            measured += f" ± {number(row.spread)}"
-        gap = row.gap
-        gap_text = "—" if gap is None else ("+" if gap >= 0 else "−") + number(abs(gap))
-        if gap is not None and row.reference:
-            gap_text += f" ({100 * gap / abs(row.reference):+.0f}%)"
-        lines.append(f"| {row.quantity} | {measured} | {number(row.reference)} | {gap_text} | "
-                     f"{row.source or '—'} |")
+        lines.append(f"| {row.quantity} | {measured_text(row)} | {number(row.reference)} | "
+                     f"{gap_text(row)} | {row.source or '—'} |")
     if reproduction.notes:
         lines += ["", reproduction.notes.strip()]
     for name in figure_files:
@@ -83,13 +103,10 @@ def render_figure(figure: Figure, n_seeds: int) -> bytes:
             line, = ax.plot(series.x, mean, label=f"{series.label} (mean ± sd, {n_seeds} seeds)")
             ax.fill_between(series.x, mean - spread, mean + spread, alpha=0.25,
                             color=line.get_color(), linewidth=0)
-        for reference in panel.references:
-            if reference.vertical:
-                ax.axvline(reference.value, linestyle=":", color="firebrick", linewidth=1.2,
-                           label=reference.label)
-            else:
-                ax.axhline(reference.value, linestyle="--", color="0.3", linewidth=1,
-                           label=reference.label)
+        for index, reference in enumerate(panel.references):
+            draw = ax.axvline if reference.vertical else ax.axhline
+            style = REFERENCE_STYLES[index % len(REFERENCE_STYLES)]
+            draw(reference.value, linewidth=1.2, label=reference.label, **style)
         ax.set_xlabel(panel.xlabel)
         ax.set_ylabel(panel.ylabel)
         if panel.ylim is not None:
