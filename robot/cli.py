@@ -65,6 +65,9 @@ def reproduce(
         "--quick", help="A small run: the reproduction's quick scale (and 2 seeds).")] = False,
     list_: Annotated[bool, typer.Option(
         "--list", help="List the reproductions, one line each, and stop.")] = False,
+    replot: Annotated[bool, typer.Option(
+        "--replot", help="Redraw NAME.md and the figures from --out's NAME.json, run "
+                         "nothing.")] = False,
 ) -> None:
     """Run a named reproduction of the thesis's results: seeds in parallel, then NAME.json
     (summary and per-seed numbers), NAME.md (measured beside the reference, with the gap) and
@@ -95,21 +98,24 @@ def reproduce(
         raise user_error(f"--scale must be in (0, 1], got {scale}")
     if out.exists() and not out.is_dir():
         raise user_error(f"--out {out} exists and is not a folder")
-    _run_reproduction(reproduction, seeds, scale, jobs, out)
+    _run_reproduction(reproduction, seeds, scale, jobs, out, replot)
 
 
 def _run_reproduction(reproduction: object, seeds: int, scale: float, jobs: int,
-                      out: Path) -> None:
-    """Run it with a progress bar; print the table and where the files went."""
+                      out: Path, replot: bool) -> None:
+    """Run it with a progress bar (or redraw it); print the table and where the files went."""
     from rich.table import Table
 
+    from robot.reproduce import runner
     from robot.reproduce.report import gap_text, measured_text, number
-    from robot.reproduce.runner import ReproductionFailed, run
 
     try:
-        outcome = run(reproduction, seeds=seeds, scale=scale, jobs=jobs, out=out,
-                      console=err_console)
-    except ReproductionFailed as err:
+        if replot:
+            outcome = runner.replot(reproduction, out)
+        else:
+            outcome = runner.run(reproduction, seeds=seeds, scale=scale, jobs=jobs, out=out,
+                                 console=err_console)
+    except runner.ReproductionFailed as err:
         err_console.print(f"error: {err}", markup=False)
         raise typer.Exit(code=1) from None
     table = Table("quantity", "measured", "reference", "gap", "source")

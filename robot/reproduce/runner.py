@@ -47,11 +47,31 @@ def run(reproduction: Reproduction, *, seeds: int, scale: float, jobs: int, out:
     if seeds < 1 or jobs < 1 or not 0.0 < scale <= 1.0:
         raise ValueError("seeds and jobs must be at least 1 and scale in (0, 1]")
     results = run_seeds(reproduction, list(range(seeds)), scale, jobs, console)
+    command = command or shlex.join(["goalagent", "reproduce", *sys.argv[2:]])
+    return write_outputs(reproduction, results, scale, out, command)
+
+
+def replot(reproduction: Reproduction, out: Path) -> Outcome:
+    """Rewrite NAME.md, the figures and the summary from the seeds in ``out``/NAME.json, as
+    the reproduction's current code draws them (nothing is run again)."""
+    path = out / f"{reproduction.name}.json"
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+        seeds, scale, command = document["seeds"], document["scale"], document["command"]
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError, KeyError, TypeError) as error:
+        raise ReproductionFailed(f"cannot replot from {path}: {error}") from None
+    if not isinstance(seeds, list) or not seeds or not all(isinstance(s, dict) for s in seeds):
+        raise ReproductionFailed(f"cannot replot from {path}: it holds no seeds")
+    return write_outputs(reproduction, seeds, scale, out, command)
+
+
+def write_outputs(reproduction: Reproduction, results: list[SeedResult], scale: float,
+                  out: Path, command: str) -> Outcome:
+    """The figures, NAME.md and NAME.json (summary and seeds), each written atomically."""
     summary = reproduction.summarize(results)
     comparisons = reproduction.compare(summary, results)
     figures = reproduction.figures(results)
     out.mkdir(parents=True, exist_ok=True)
-    command = command or shlex.join(["goalagent", "reproduce", *sys.argv[2:]])
     files = []
     for figure in figures:
         path = out / f"{reproduction.name}-{figure.stem}.png"

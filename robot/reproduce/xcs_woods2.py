@@ -74,21 +74,26 @@ def compare(summary: dict, seeds: list[dict]) -> list[Comparison]:
     ]
 
 
-def woods_figure(seeds: list[dict], stem: str, title: str) -> Figure:
-    x = seeds[0]["problems"]
+def woods_figure(runs: dict[str, list[dict]], stem: str, title: str,
+                 ylim: tuple[float, float] | None = (0.0, 8.0)) -> Figure:
+    """Steps to food and population size, one series per labelled set of seeds; the first
+    problems' long walks are cut off at 8 steps unless ``ylim`` says otherwise."""
+    first = next(iter(runs.values()))
+    x, optimum = first[0]["problems"], first[0]["optimum"]
     return Figure(stem, title, [
         Panel("explore problems", "steps to food (last 50 exploit problems)",
-              [Series("goalagent XCS", x, [seed["steps"] for seed in seeds])],
+              [Series(label, x, [seed["steps"] for seed in seeds])
+               for label, seeds in runs.items()],
               [Reference(WILSON_STEPS, "Wilson 1995: about 2 within 4,000"),
-               Reference(seeds[0]["optimum"], f"optimum {seeds[0]['optimum']:.2f}")],
-              ylim=(0.0, 8.0)),
+               Reference(optimum, f"optimum {optimum:.2f}")], ylim=ylim),
         Panel("explore problems", "population size (macro-classifiers)",
-              [Series("goalagent XCS", x, [seed["macro_classifiers"] for seed in seeds])]),
+              [Series(label, x, [seed["macro_classifiers"] for seed in seeds])
+               for label, seeds in runs.items()]),
     ])
 
 
 def figures(seeds: list[dict]) -> list[Figure]:
-    return [woods_figure(seeds, "steps", "XCS in Woods2 (N = 800)")]
+    return [woods_figure({"goalagent XCS": seeds}, "steps", "XCS in Woods2 (N = 800)")]
 
 
 REPRODUCTION = Reproduction(
