@@ -23,7 +23,7 @@ from robot.reproduce.framework import (
     registered,
 )
 from robot.reproduce.report import markdown
-from robot.reproduce.runner import ReproductionFailed, run
+from robot.reproduce.runner import ReproductionFailed, replot, run
 
 ROOT = Path(__file__).resolve().parents[1]
 SUMMARY_KEYS = {
@@ -122,6 +122,19 @@ def test_a_failing_seed_is_reported_by_number_and_nothing_is_written(tmp_path, j
 def test_a_result_that_is_not_plain_json_is_refused(tmp_path):
     with pytest.raises(ReproductionFailed, match="not plain JSON"):
         run(toy(_not_json_seed), seeds=1, scale=1.0, jobs=1, out=tmp_path)
+
+
+def test_replot_redraws_from_the_saved_seeds_without_running_them(tmp_path):
+    run(toy(), seeds=2, scale=1.0, jobs=1, out=tmp_path, command="the first run")
+    before = (tmp_path / "toy-run.json").read_text()
+    (tmp_path / "toy-run.md").unlink()
+    outcome = replot(toy(_failing_seed), tmp_path)  # would fail on seed 1 if it ran
+    assert outcome.summary == {"total": 1.0}
+    assert (tmp_path / "toy-run.json").read_text() == before
+    assert "the first run" in (tmp_path / "toy-run.md").read_text()
+    (tmp_path / "toy-run.json").write_text('{"seeds": "nothing"')
+    with pytest.raises(ReproductionFailed, match="cannot replot"):
+        replot(toy(), tmp_path)
 
 
 def test_the_markdown_table_puts_each_value_beside_its_reference_with_the_gap():
