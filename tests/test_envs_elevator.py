@@ -165,6 +165,7 @@ def test_the_example_cars_serve_every_rider() -> None:
         summaries = system.run(max_cycles=400)
         building = system.environment.building
         assert len(building.people) == 3 and all(p.arrived for p in building.people)
-        assert [s.status for s in summaries] == ["terminated", "terminated"]
+        assert [(s.name, s.status) for s in summaries] == [
+            ("car", "terminated"), ("car2", "terminated")]
     finally:
         system.close()
