@@ -1,23 +1,19 @@
 """Thesis Tables 5.3 and 5.4 on the simulated cans: learning without and with transfer.
 
-``baseline_study`` runs Algorithm 4 on every can and seed (Table 5.3: ĝ and ĥ of every part ×
-action, the functional pair; N without transfer). ``transfer_study`` presents the cans in
+``baseline_seed`` runs Algorithm 4 on every can and seed (Table 5.3: ĝ and ĥ of every part ×
+action, the functional pair; N without transfer). ``transfer_seed`` presents the cans in
 order, each learned with Algorithm 6 from the ones before (Table 5.4), next to Algorithm 4 on
 the same can and seed: N without and with transfer, the source, the functional pair found.
 Both measure what the code does; nothing is copied from the thesis. The results are plain
-dicts (JSON-ready) plus a Markdown rendering, written by ``python -m robot.transfer_study
-ch5-baseline|ch5-transfer`` (the names ``goalagent reproduce`` will give them).
+dicts (JSON-ready), run per seed by ``goalagent reproduce ch5-baseline|ch5-transfer``
+(``robot/reproduce/ch5_baseline.py``, ``ch5_transfer.py``).
 """
 
 from __future__ import annotations
 
-import argparse
-import json
-import sys
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from statistics import mean
 
 from behaviours.learners.baseline import PartBasedLearner
@@ -25,14 +21,11 @@ from behaviours.learners.known_objects import KnownObject
 from behaviours.learners.transfer import TransferLearner
 from behaviours.part_learning import CanUnderTest
 from behaviours.perception import make_perception
-from sim.canfile import CanFileError, find_can
+from sim.canfile import find_can
 from sim.world import GarbageWorld
 
 THESIS_CANS = ("o1", "o2", "o3", "o4", "o5")
 NEW_CANS = ("slide", "pedal")
-THESIS_TABLE_5_4 = {"o1": (36, None, None), "o2": (65, 29, "o1"), "o3": (53, 1, "o1"),
-                    "o4": (83, 3, "o2"), "o5": (80, 11, "o2")}
-"""(N without, N with transfer, source) as printed in the thesis, for side-by-side reading."""
 Progress = Callable[[str], None]
 
 
@@ -95,15 +88,6 @@ def baseline_summary(rows: Sequence[dict[str, dict]]) -> dict[str, dict]:
     return summary
 
 
-def baseline_study(cans: Sequence[str] = THESIS_CANS, seeds: Sequence[int] = range(5),
-                   perception: str = "truth", progress: Progress = lambda line: None) -> dict:
-    """Algorithm 4 on every can and seed (Table 5.3 and the N-without column of Table 5.4)."""
-    per_seed = {str(seed): baseline_seed(seed, cans, perception, progress) for seed in seeds}
-    return {"name": "ch5-baseline", "perception": perception, "cans": list(cans),
-            "seed_list": list(seeds), "summary": baseline_summary(list(per_seed.values())),
-            "seeds": per_seed}
-
-
 def _most_frequent(runs: Sequence[dict], keys: Sequence[str]) -> dict[str, object]:
     """The most frequent value of each key over the runs (ties: the first seen)."""
     return {key: Counter(r[key] for r in runs).most_common(1)[0][0] for key in keys}
@@ -154,87 +138,3 @@ def transfer_summary(rows: Sequence[dict[str, dict]]) -> dict[str, dict]:
             "never_worse": all(r["n_with"] <= r["n_without"] for r in runs),
         }
     return summary
-
-
-def transfer_study(cans: Sequence[str] = THESIS_CANS, seeds: Sequence[int] = range(5),
-                   perception: str = "truth", progress: Progress = lambda line: None) -> dict:
-    """Table 5.4 over several seeds (see ``transfer_seed``)."""
-    per_seed = {str(seed): transfer_seed(seed, cans, perception, progress) for seed in seeds}
-    return {"name": "ch5-transfer", "perception": perception, "cans": list(cans),
-            "seed_list": list(seeds), "summary": transfer_summary(list(per_seed.values())),
-            "seeds": per_seed}
-
-
-def markdown(result: dict) -> str:
-    """The study as Markdown tables (per can: means over seeds and the most frequent values)."""
-    seeds = len(result["seed_list"])
-    lines = [f"## {result['name']} ({result['perception']} perception, {seeds} seeds)", ""]
-    if result["name"] == "ch5-transfer":
-        lines += ["| can | N without | N with transfer | source | pair found (of seeds) | "
-                  "branch | never worse | thesis (N, N_tran, source) |",
-                  "|---|---|---|---|---|---|---|---|"]
-        for can, s in result["summary"].items():
-            thesis = THESIS_TABLE_5_4.get(can, ("-", "-", "-"))
-            lines.append(f"| {can} | {s['n_without']:.1f} | {s['n_with']:.1f} | "
-                         f"{s['source'] or '-'} | "
-                         f"{s['action']}({s['part']}) ({s['found']}/{seeds}) | {s['branch']} | "
-                         f"{s['never_worse']} | {thesis[0]}, {thesis[1] or '-'}, "
-                         f"{thesis[2] or '-'} |")
-        return "\n".join(lines) + "\n"
-    lines += ["| can | N without | pair found (of seeds) |", "|---|---|---|"]
-    for can, s in result["summary"].items():
-        lines.append(f"| {can} | {s['n_without']:.1f} | {s['action']}({s['part']}) "
-                     f"({s['found']}/{seeds}) |")
-    first = str(result["seed_list"][0])
-    lines += ["", f"Table 5.3 (seed {first}): ĝ(θ) = b + cθ and ĥ(e_ψ) = d + e·e_ψ of every "
-              "pair tried; the functional pair in bold.", "",
-              "| can | part | action | n | ĝ | ĥ |", "|---|---|---|---|---|---|"]
-    for can, entry in result["seeds"][first].items():
-        for m in entry["models"]:
-            bold = "**" if (m["part"], m["action"]) == (entry["part"], entry["action"]) else ""
-            lines.append(f"| {can} | {m['part']} | {bold}{m['action']}{bold} | {m['n']} | "
-                         f"{m['g'][0]:+.3f} {m['g'][1]:+.3f}θ | "
-                         f"{m['h'][0]:+.3f} {m['h'][1]:+.3f}e |")
-    return "\n".join(lines) + "\n"
-
-
-def write_results(result: dict, out_dir: Path) -> tuple[Path, Path]:
-    """Write ``<name>-<perception>.json`` and ``.md`` under ``out_dir`` (atomically each)."""
-    from behaviours.learners.persist import write_text_atomically
-
-    stem = out_dir / f"{result['name']}-{result['perception']}"
-    json_path = write_text_atomically(stem.with_suffix(".json"),
-                                      json.dumps(result, indent=1) + "\n")
-    md_path = write_text_atomically(stem.with_suffix(".md"), markdown(result))
-    return json_path, md_path
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m robot.transfer_study ch5-baseline|ch5-transfer [options]``."""
-    parser = argparse.ArgumentParser(prog="python -m robot.transfer_study",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("name", choices=("ch5-baseline", "ch5-transfer"))
-    parser.add_argument("--perception", choices=("truth", "camera"), default="truth")
-    parser.add_argument("--seeds", type=int, default=5, help="seeds 0 .. N-1 (default 5)")
-    parser.add_argument("--cans", default=",".join(THESIS_CANS),
-                        help="comma-separated can names or can files, in the order presented")
-    parser.add_argument("--out", type=Path, default=Path("docs/results"))
-    args = parser.parse_args(argv)
-    cans = tuple(c for c in args.cans.split(",") if c)
-    try:
-        for can in cans:
-            find_can(can)
-    except CanFileError as err:
-        parser.error(str(err))
-    if args.seeds < 1:
-        parser.error("--seeds must be at least 1")
-    study = baseline_study if args.name == "ch5-baseline" else transfer_study
-    result = study(cans=cans, seeds=range(args.seeds), perception=args.perception,
-                   progress=lambda line: print(line, file=sys.stderr, flush=True))
-    for path in write_results(result, args.out):
-        print(path)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

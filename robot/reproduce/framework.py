@@ -107,6 +107,9 @@ class Reproduction:
     """Seeds -> the plots."""
     notes: str = ""
     """Markdown shown under the table: the setup, the parameters, what differs and why."""
+    listings: Callable[[dict, list[SeedResult]], str] | None = None
+    """(summary, seeds) -> more Markdown under the notes: tables the thesis prints that are
+    not one number beside another (learned rules, every part model), or None."""
     quick_scale: float = 0.05
     """The scale of ``--quick`` (and of the test suite's small runs)."""
     default_seeds: int = 10

@@ -68,8 +68,9 @@ def gap_text(row: Comparison) -> str:
 
 
 def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
-             figure_files: Sequence[str], n_seeds: int, scale: float, command: str) -> str:
-    """NAME.md: title, command, the comparison table, notes and the figures."""
+             figure_files: Sequence[str], n_seeds: int, scale: float, command: str,
+             listings: str = "") -> str:
+    """NAME.md: title, command, the comparison table, notes, listings and the figures."""
     lines = [f"# {reproduction.name}", "", reproduction.description, "",
              f"Produced by `{command}` ({n_seeds} seeds"
              + ("" if scale == 1.0 else f", scale {scale:g} of the full run") + ").", "",
@@ -80,6 +81,8 @@ def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
                      f"{gap_text(row)} | {row.source or '—'} |")
     if reproduction.notes:
         lines += ["", reproduction.notes.strip()]
+    if listings.strip():
+        lines += ["", listings.strip()]
     for name in figure_files:
         lines += ["", f"![{name}]({name})"]
     return "\n".join(lines) + "\n"

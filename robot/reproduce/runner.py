@@ -77,8 +77,9 @@ def write_outputs(reproduction: Reproduction, results: list[SeedResult], scale: 
         path = out / f"{reproduction.name}-{figure.stem}.png"
         write_atomically(path, render_figure(figure, len(results)))
         files.append(path)
+    listings = reproduction.listings(summary, results) if reproduction.listings else ""
     page = markdown(reproduction, comparisons, [p.name for p in files], len(results), scale,
-                    command)
+                    command, listings)
     files.append(write_atomically(out / f"{reproduction.name}.md", page.encode()))
     document = {"name": reproduction.name, "description": reproduction.description,
                 "command": command, "scale": scale, "summary": summary, "seeds": results}
