@@ -17,7 +17,6 @@ from goalagent.eis.envs.support import (
     int_param,
 )
 from goalagent.eis.registry import _jar_name
-from goalagent.eis.terms import Percept
 from goalagent.kb.terms import Atom
 from goalagent.mas import parse_parameter
 
@@ -56,35 +55,31 @@ def test_java_string_hash_and_hashmap_order() -> None:
     assert sorted(java_hashmap_order(many)) == sorted(many)
 
 
-def percepts(*values: object) -> list[Percept]:
-    return [Percept.of("p", value) for value in values]
-
-
 def test_filters_as_eis_0_7() -> None:
     f = PerceptFilter()
-    assert f.apply("e", "p", Filter.ALWAYS, percepts(1)) == percepts(1)
-    assert f.apply("e", "p", Filter.ALWAYS, percepts(1)) == percepts(1)
-    assert f.apply("e", "o", Filter.ONCE, percepts(1, 2)) == percepts(1, 2)
-    assert f.apply("e", "o", Filter.ONCE, percepts(1, 2)) == []
+    assert f.apply("e", "p", Filter.ALWAYS, [1]) == ([1], [])
+    assert f.apply("e", "p", Filter.ALWAYS, [1]) == ([1], [])
+    assert f.apply("e", "o", Filter.ONCE, [1, 2]) == ([1, 2], [])
+    assert f.apply("e", "o", Filter.ONCE, [1, 2]) == ([], [])
     assert f.sent_once("e", "o") and not f.sent_once("other", "o")
-    assert f.apply("e", "c", Filter.ON_CHANGE, percepts(1, 2)) == percepts(1, 2)
-    assert f.apply("e", "c", Filter.ON_CHANGE, percepts(1, 2)) == []
-    assert f.apply("e", "c", Filter.ON_CHANGE, percepts(1, 3)) == percepts(3)  # only the new
-    assert f.apply("other", "c", Filter.ON_CHANGE, percepts(1)) == percepts(1)  # per entity
+    assert f.apply("e", "c", Filter.ON_CHANGE, [1, 2]) == ([1, 2], [])
+    assert f.apply("e", "c", Filter.ON_CHANGE, [1, 2]) == ([], [])
+    assert f.apply("e", "c", Filter.ON_CHANGE, [1, 3]) == ([3], [])  # only the new
+    assert f.apply("other", "c", Filter.ON_CHANGE, [1]) == ([1], [])  # per entity
     with pytest.raises(ValueError, match="legacy"):
-        f.apply("e", "n", Filter.ON_CHANGE_NEG, percepts(1))
+        f.apply("e", "n", Filter.ON_CHANGE_NEG, [1])
     f.reset("e")
-    assert f.apply("e", "o", Filter.ONCE, percepts(1)) == percepts(1)
+    assert f.apply("e", "o", Filter.ONCE, [1]) == ([1], [])
 
 
 def test_filters_as_eis_0_5() -> None:
     f = PerceptFilter(legacy=True)
-    assert f.apply("e", "c", Filter.ON_CHANGE, percepts(1, 2)) == percepts(1, 2)
-    assert f.apply("e", "c", Filter.ON_CHANGE, percepts(1, 3)) == percepts(1, 3)  # all again
-    assert f.apply("e", "n", Filter.ON_CHANGE_NEG, percepts(1, 2)) == percepts(1, 2)
-    assert f.apply("e", "n", Filter.ON_CHANGE_NEG, percepts(1, 2)) == []
-    changed = f.apply("e", "n", Filter.ON_CHANGE_NEG, percepts(2, 4))
-    assert [str(p) for p in changed] == ["p(4)", "not(p(1))"]
+    assert f.apply("e", "c", Filter.ON_CHANGE, [1, 2]) == ([1, 2], [])
+    assert f.apply("e", "c", Filter.ON_CHANGE, [1, 3]) == ([1, 3], [])  # all again
+    assert f.apply("e", "n", Filter.ON_CHANGE_NEG, [(1,), (2,)]) == ([(1,), (2,)], [])
+    assert f.apply("e", "n", Filter.ON_CHANGE_NEG, [(1,), (2,)]) == ([], [])
+    changed = f.percepts("e", "n", Filter.ON_CHANGE_NEG, [(2,), (4, "x")])
+    assert [str(p) for p in changed] == ["n(4,x)", "not(n(1))"]
 
 
 def test_rounds_end_when_an_entity_perceives_again() -> None:

@@ -11,12 +11,14 @@ perceive call (the percepts of one reasoning cycle):
   every value that was there last call and is gone.
 
 ``PerceptFilter`` keeps the previous values per entity and percept name, as EIS2Java keeps
-them per entity and percept method.
+them per entity and percept method. Values are the percepts' argument tuples (compared as
+Python values, cheaper than building percepts that are not sent); ``percepts`` builds the
+ones that are.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Hashable, Iterable
 from enum import Enum
 
 from goalagent.eis.terms import Function, Percept
@@ -55,28 +57,34 @@ class PerceptFilter:
         return (entity, name) in self._previous
 
     def apply(
-        self, entity: str, name: str, kind: Filter, current: Iterable[Percept]
-    ) -> list[Percept]:
-        """The percepts called ``name`` that ``entity`` gets now, given the ``current`` values."""
+        self, entity: str, name: str, kind: Filter, current: Iterable[Hashable]
+    ) -> tuple[list[Hashable], list[Hashable]]:
+        """The values of ``name`` that ``entity`` gets now, given the ``current`` values: those
+        sent as they are, and those sent negated (``ON_CHANGE_NEG`` only)."""
         key = (entity, name)
         values = list(current)
         previous = self._previous.get(key)
         self._previous[key] = values
         if kind is Filter.ALWAYS:
-            return values
+            return values, []
         if kind is Filter.ONCE:
-            return values if previous is None else []
+            return (values if previous is None else []), []
         before = previous or []
         if kind is Filter.ON_CHANGE:
             if self.legacy:
-                return values if values != before else []
-            return [value for value in values if value not in before]
+                return (values if values != before else []), []
+            return [value for value in values if value not in before], []
         if not self.legacy:
             raise ValueError("ON_CHANGE_NEG exists only in EIS 0.5 and older (legacy filtering)")
-        added = [value for value in values if value not in before]
-        gone = [
-            Percept("not", (Function(value.name, value.params),))
-            for value in before
-            if value not in values
-        ]
-        return added + gone
+        return ([value for value in values if value not in before],
+                [value for value in before if value not in values])
+
+    def percepts(self, entity: str, name: str, kind: Filter,
+                 current: Iterable[tuple]) -> list[Percept]:
+        """``apply`` for argument tuples, as percepts: ``name(Args...)``, ``not(name(...))``."""
+        sent, negated = self.apply(entity, name, kind, current)
+        result = [Percept.of(name, *args) for args in sent]
+        for args in negated:
+            percept = Percept.of(name, *args)
+            result.append(Percept("not", (Function(name, percept.params),)))
+        return result

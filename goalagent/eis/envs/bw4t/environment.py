@@ -128,8 +128,7 @@ class BW4T(PythonEnvironment):
                 continue
             if name in _NEGATED_IN_LEGACY and self.filter.legacy:
                 kind = Filter.ON_CHANGE_NEG
-            values = [Percept.of(name, *args) for args in produce()]
-            result += self.filter.apply(entity, name, kind, values)
+            result += self.filter.percepts(entity, name, kind, produce())
         robot.hold = False
         return result
 

@@ -223,6 +223,8 @@ class Robot:
         """``getMoveType`` is a hit: a wall, a room someone else is in, a full corridor."""
         world = self.world
         start = world.zone_at(self.x, self.y)
+        if start is not None and not world.zones_overlap and start.rect.contains(x, y):
+            return False  # staying in the zone (the only one there, zones not overlapping)
         door = world.door_at(self.x, self.y)
         for end in world.zones_at(x, y):
             if end is start:

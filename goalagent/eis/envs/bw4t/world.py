@@ -88,6 +88,8 @@ class World:
         self.doors: list[Door] = []
         self._build_zones()
         self.by_name = {zone.name: zone for zone in self.zones}
+        self.zones_overlap = any(a.rect.intersects(b.rect) for i, a in enumerate(self.zones)
+                                 for b in self.zones[i + 1:])
         self.drop_zone = self.by_name[DROP_ZONE]
         self.sequence = list(spec.sequence)
         self.sequence_index = 0

@@ -128,8 +128,7 @@ class Elevator(PythonEnvironment):
         ]
         result: list[Percept] = []
         for name, kind, values in every:
-            result += self.filter.apply(entity, name, kind,
-                                        [Percept.of(name, *args) for args in values])
+            result += self.filter.percepts(entity, name, kind, values)
         return result
 
     def _calls(self) -> list[tuple[int, str]]:
