@@ -361,6 +361,40 @@ def test_go_to_a_point_and_old_pick_up() -> None:
     assert len(env.robots["Bot_1"].holding) == 1
 
 
+def test_with_collisions_robots_bump_into_each_other() -> None:
+    env = running(agentcount=2, collision="true")
+    look(env, "a1"), look(env, "a2")
+    act(env, "goTo", "LeftHall", agent="a2")  # Bot_2 crosses Bot_1's way to MidHall's centre
+    act(env, "goTo", "RightHall", agent="a1")
+    bumped = None
+    for _ in range(60):
+        seen = {agent: look(env, agent) for agent in ("a1", "a2")}
+        bumped = next((a for a in seen if named(seen[a], "bumped")), None)
+        if bumped:
+            break
+    assert bumped is not None, "no robot bumped into the other"
+    assert "state(collided)" in seen[bumped]
+    other = "Bot_1" if bumped == "a2" else "Bot_2"
+    assert named(seen[bumped], "bumped") == [f"bumped('{other}')"]
+    act(env, "navigateObstacles", agent=bumped)  # try again
+    assert env.robots[env.associated_entities(bumped)[0]].state == "traveling"
+    assert not running(agentcount=2).world.collision  # off by default, as BW4T's server
+
+
+def test_only_human_entities_get_positions() -> None:
+    env = running(agentcount=1, humancount=1)
+    human, bot = look(env, "a2"), look(env, "a1")
+    assert not named(bot, "position")
+    positions = named(human, "position")
+    drop = env.world.drop_zone
+    assert positions[0] == f"position({drop.id},{drop.centre[0]},{drop.centre[1]})"
+    robot = env.robots["Human_1"]
+    assert positions[-1] == f"position({robot.id},{robot.x},{robot.y})"
+    bot1 = env.robots["Bot_1"]  # in the same zone, so visible
+    assert positions[1:-1] == ["position(3,5.0,5.0)", "position(5,25.0,5.0)",
+                               f"position({bot1.id},{bot1.x},{bot1.y})"]
+
+
 # ---- snapshots and a whole team ---------------------------------------------------------------
 
 
