@@ -131,9 +131,11 @@ class XCS:
         previous = self._compact_keeping(previous if explore else None)
         if explore:
             self.time_ += 1
-        match, actions, prediction = self._match_set(words, number, permitted)
-        # every permitted action is advocated now: covering saw to it
-        values = (prediction if allowed is None else prediction[permitted]).tolist()
+        match, actions = self._match_set(words, number, permitted)
+        values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
+        if not explore or previous is not None:  # (a single explore step needs none)
+            prediction = self._prediction_array(match, actions)
+            values = (prediction if allowed is None else prediction[permitted]).tolist()
         if explore:
             action = self._explore_action(permitted, previous, words)
             action_set = match[actions == action]
@@ -179,7 +181,7 @@ class XCS:
             return np.full(int(self.n_actions), np.nan)
         words, _ = self._encode(state)
         match = self.population_.match(words)
-        return self._prediction_array(match, self.population_.action[match])[1]
+        return self._prediction_array(match, self.population_.action[match])
 
     def classifiers(self) -> list[Classifier]:
         """Every macro-classifier as a `Classifier` record."""
@@ -280,36 +282,35 @@ class XCS:
         return bits
 
     def _match_set(self, words: np.ndarray, state: int,
-                   permitted: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """[M] (rows), their actions and the prediction array, after covering every permitted
-        action that no matching classifier advocates."""
+                   permitted: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """[M] (rows) and their actions, after covering every permitted action that no
+        matching classifier advocates."""
         population, settings = self.population_, self._settings
         for _ in range(MAX_COVERING_ROUNDS):
             match = population.match(words)
             actions = population.action[match]
-            weights, prediction = self._prediction_array(match, actions)
-            if permitted is self._all_actions and _all(weights):
-                return match, actions, prediction
-            missing = permitted[weights[permitted] == 0.0]  # fitness is always > 0
+            advocates = np.bincount(actions, minlength=settings.n_actions)
+            if permitted is self._all_actions and _all(advocates):
+                return match, actions
+            missing = permitted[advocates[permitted] == 0]
             if missing.size == 0:
-                return match, actions, prediction
+                return match, actions
             for action in missing:
                 cover(population, state, int(action), settings, self._rng, self.time_)
                 delete_from_population(population, settings, self._rng)
         raise RuntimeError("XCS: covering kept being undone by deletion; N is too small")
 
-    def _prediction_array(self, match: np.ndarray,
-                          actions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates),
-        with the fitness sums it divides by."""
+    def _prediction_array(self, match: np.ndarray, actions: np.ndarray) -> np.ndarray:
+        """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates;
+        fitness is always > 0, so a zero weight means no advocate)."""
         population, n = self.population_, self._settings.n_actions
         stats = population.stats.take(match, axis=1)
         fitness = stats[FITNESS]
         weights = np.bincount(actions, weights=fitness, minlength=n)
         weighted = np.bincount(actions, weights=fitness * stats[PREDICTION], minlength=n)
         if _all(weights):
-            return weights, weighted / weights
-        return weights, np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
+            return weighted / weights
+        return np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
 
     def _best_action(self, values: list[float], permitted: np.ndarray) -> int:
         """Eq. 3.9 over the permitted actions (``values``: their predictions), ties broken at
@@ -349,19 +350,19 @@ class XCS:
             rows, stats = rows[live], stats.compress(live, axis=1)
         if rows.size == 0:  # every classifier of the set was deleted meanwhile
             return
-        self._update_set(stats, payoff)
+        set_size = float(_sum(stats[NUMEROSITY]))
+        self._update_set(stats, set_size, payoff)
         population.stats[:, rows] = stats
-        if settings.action_set_subsumption:
+        if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
             stats = population.stats.take(rows, axis=1)
-        numerosity = stats[NUMEROSITY]
-        waited = self.time_ - stats[TIME_STAMP] @ numerosity / _sum(numerosity)
+        waited = self.time_ - stats[TIME_STAMP] @ stats[NUMEROSITY] / set_size
         if waited > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
 
-    def _update_set(self, stats: np.ndarray, payoff: float) -> None:
+    def _update_set(self, stats: np.ndarray, set_size: float, payoff: float) -> None:
         """On an action set's columns of `Population.stats`, in place: eq. 7.1 (prediction), 7.4
         (error, against the updated prediction as in Butz & Wilson), the action-set size
         estimate, then fitness by eq. 7.5-7.7. Prediction, error and set size average over a
@@ -371,7 +372,7 @@ class XCS:
         experience += 1.0
         rate = 1.0 / experience
         numerosity = stats[NUMEROSITY]
-        prediction, error, set_size = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
+        prediction, error, estimate = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
         if settings.beta_p == settings.beta_e == settings.beta:
             np.maximum(rate, settings.beta, out=rate)
             rate_p = rate_e = rate
@@ -383,7 +384,7 @@ class XCS:
         miss = np.abs(payoff - prediction)
         miss -= error
         error += rate_e * miss
-        set_size += rate * (_sum(numerosity) - set_size)
+        estimate += rate * (set_size - estimate)
         # eq. 7.6 as (error * c) ** -nu with c = alpha ** (-1 / nu) / epsilon_0, clamped so
         # that an error of 0 raises no warning; below epsilon_0 the accuracy is 1
         accuracy = error * self._accuracy_scale
