@@ -209,11 +209,10 @@ class Population:
         numerosity, fitness = stats[NUMEROSITY], stats[FITNESS]
         mean_fitness = np.add.reduce(fitness) / self.micro_count
         votes = stats[SET_SIZE] * numerosity
-        mean_share = mean_fitness * numerosity  # what the fitness would be at the mean
         weak = stats[EXPERIENCE] > theta_del
-        weak &= fitness < delta * mean_share
+        weak &= fitness < (delta * mean_fitness) * numerosity
         # uninitialised where not weak, and only read where weak
-        raise_by = np.divide(mean_share, fitness, out=None, where=weak)
+        raise_by = np.divide(mean_fitness * numerosity, fitness, out=None, where=weak)
         np.multiply(votes, raise_by, out=votes, where=weak)
         cumulative = np.add.accumulate(votes)
         row = min(int(cumulative.searchsorted(uniform * cumulative[-1], side="right")),
