@@ -77,8 +77,10 @@ def reproduce(
     from robot.reproduce.framework import UnknownReproduction, find, registered
 
     if list_:
-        for reproduction in registered():
-            err_console.print(f"{reproduction.name:<16} {reproduction.description}",
+        reproductions = registered()
+        width = max((len(reproduction.name) for reproduction in reproductions), default=0)
+        for reproduction in reproductions:
+            err_console.print(f"{reproduction.name:<{width}}  {reproduction.description}",
                               markup=False)
         return
     if name is None:
