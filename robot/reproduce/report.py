@@ -50,10 +50,12 @@ def number(value: float | None) -> str:
 
 
 def measured_text(row: Comparison) -> str:
-    """The measured value with its spread over seeds, e.g. ``2.1 ± 0.3``."""
+    """The measured value with its spread over seeds to two significant digits, e.g. ``2.1 ±
+    0.31``."""
     if row.spread is None or row.measured is None:
         return number(row.measured)
-    return f"{number(row.measured)} ± {number(row.spread)}"
+    spread = number(row.spread) if abs(row.spread) >= 100 else f"{row.spread:.2g}"
+    return f"{number(row.measured)} ± {spread}"
 
 
 def gap_text(row: Comparison) -> str:
