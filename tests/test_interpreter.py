@@ -203,13 +203,16 @@ def test_a_reference_cycle_is_one_prolog_call(monkeypatch) -> None:
     agent = make(REFERENCE.read_text())
     agent.run(3)
     calls = []
-    solve = agent.ms.engine.solve
+    engine = agent.ms.engine
 
-    def counting(*args, **kwargs):
-        calls.append(args[0])
-        return solve(*args, **kwargs)
+    def counted(original):
+        def counting(*args, **kwargs):
+            calls.append(args[0])
+            return original(*args, **kwargs)
+        return counting
 
-    monkeypatch.setattr(agent.ms.engine, "solve", counting)
+    for name in ("solve", "call_once"):  # every way the engine runs a Prolog query
+        monkeypatch.setattr(engine, name, counted(getattr(engine, name)))
     for _ in range(10):
         agent.step()
     assert len(calls) == 10

@@ -50,6 +50,13 @@ class Recorder:
         self.steps.append(step)
 
 
+def run(code: CompiledProgram, program, requests: Recorder, *, environment: bool,
+        listen: bool):
+    """Runs the program's main module once."""
+    plan = code.plan([(program.module("main"), {})], environment=environment, listen=listen)
+    return code.run(plan, requests)
+
+
 PROGRAM = """
 init module {
     beliefs { n(1). n(2). n(3). }
@@ -77,11 +84,10 @@ def compiled():
 def test_one_call_runs_a_module_and_keeps_a_journal(compiled) -> None:
     program, state, code = compiled
     requests = Recorder()
-    outcome = code.run([(code.code(program.module("main")), {})], requests,
-                       environment=True, listen=False)
+    outcome = run(code, program, requests, environment=True, listen=False)
     # forall: m(2), m(3); if: go(1) not enabled, go(2) sent + print + module call; send.
-    assert outcome.actions == 2 + 3 + 1 and outcome.last_status == "fired"
-    entries = outcome.journal.entries()
+    assert outcome.actions == 2 + 3 + 1 and not outcome.exited
+    entries = outcome.entries()
     assert [(e.rule.rule.pos.line, e.bindings, e.done) for e in entries] == [
         (7, {"X": 2}, 1), (7, {"X": 3}, 1), (8, {"X": 2}, 3), (10, {}, 1)]
     assert requests.requests == [
@@ -100,8 +106,7 @@ def test_one_call_runs_a_module_and_keeps_a_journal(compiled) -> None:
 def test_listening_tells_every_step(compiled) -> None:
     program, state, code = compiled
     requests = Recorder()
-    code.run([(code.code(program.module("main")), {})], requests, environment=False,
-             listen=True)
+    run(code, program, requests, environment=False, listen=True)
     kinds = [step.kind for step in requests.steps]
     assert kinds[:4] == [EventKind.RULE_TRIED, EventKind.BELIEF_ADDED,
                          EventKind.RULE_FIRED, EventKind.BELIEF_ADDED]
@@ -120,8 +125,7 @@ def test_random_order_asks_for_a_shuffle_and_follows_it() -> None:
     with MentalState("r") as state:
         code = CompiledProgram(state, program)
         requests = Recorder()
-        code.run([(code.code(program.module("main")), {})], requests, environment=False,
-                 listen=False)
+        run(code, program, requests, environment=False, listen=False)
     assert requests.requests == [("shuffle", 3), ("print", "c"), ("print", "b"),
                                  ("print", "a")]
 
@@ -135,7 +139,6 @@ def test_a_python_exception_leaves_prolog_unchanged(compiled) -> None:
         code = CompiledProgram(state, program)
         requests = Recorder()
         with pytest.raises(KeyboardInterrupt):
-            code.run([(code.code(program.module("main")), {})], requests, environment=True,
-                     listen=False)
+            run(code, program, requests, environment=True, listen=False)
         assert ("print", "after") not in requests.requests
         assert state.query("bel", "true") == [{}]  # the engine is usable afterwards

@@ -84,6 +84,8 @@ class Agent:
             for goal in program.goals:
                 self.ms.adopt(goal)
             self._rules = RuleApplication(self)
+            self._event = program.module("event")
+            self._main = program.module("main")
         except KBError as err:
             pos = getattr(err, "pos", None)
             text = str(err)
@@ -109,31 +111,30 @@ class Agent:
             raise AgentError(f"agent {self.name} has terminated")
         self.cycle += 1
         self.report = CycleReport(self.cycle)
-        self._perceive()
-        program = self.program
-        modules: list[tuple[ast.Module, Bindings]] = []
-        for name in ("init", "event") if self.cycle == 1 else ("event",):
-            module = program.module(name)
-            if module is not None:
-                modules.append((module, {}))
-        focus = self.focus[-1] if self.focus else None
-        main = program.module("main")
-        if focus is not None:
+        if self.io is not None or self.postman is not None:
+            self._perceive()  # (without either, no percepts and no messages: nothing to do)
+        if self.focus:
+            focus = self.focus[-1]
+            modules = [(self._event, {})] if self._event is not None else []
             modules.append((focus.module, focus.bindings))
-        elif main is not None:
-            modules.append((main, {}))
-        outcome = self._rules.run_modules(modules) if modules else None
-        if focus is not None:
-            assert outcome is not None
+            outcome = self._rules.run_modules(modules, count_last=True)
             exit_option = focus.module.exit or "always"
             if (outcome.exited or (exit_option == "nogoals" and not self.ms.goals())
                     or (exit_option == "noaction" and outcome.last_actions == 0)):
                 leave_focus(self)
-        elif main is not None:
-            self._check_main_exit(main)
-        elif self.cycle > 1 or not program.module("init"):
-            self.terminated = True  # nothing left to do without a main module
-        self._blind_commitment()
+        else:
+            rules = self._rules
+            plan = rules.cycle_plans[self.cycle == 1, bool(self.listeners)]
+            if plan is not None:
+                rules.run_plan(plan)
+            main = self._main
+            if main is not None:
+                if main.exit is not None:  # (default: never)
+                    self._check_main_exit(main.exit)
+            elif self.cycle > 1 or not self.program.module("init"):
+                self.terminated = True  # nothing left to do without a main module
+        if self.ms.goals_unchecked:
+            self._blind_commitment()
         self.last_report = self.report
         return self.report
 
@@ -196,8 +197,8 @@ class Agent:
                     self.tell(message_event(self.name, sender, mood, content))
             self.report.messages = messages
 
-    def _check_main_exit(self, main: ast.Module) -> None:
-        exit_option = main.exit or "never"
+    def _check_main_exit(self, exit_option: str) -> None:
+        """The main module's exit option (nogoals, noaction, always) after its pass."""
         if exit_option == "nogoals" and not self.ms.goals():
             self.terminated = True
         elif exit_option == "noaction" and not self.report.acted:

@@ -9,10 +9,10 @@ module's firings and actions come where the call happened.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from goalagent import ast
-from goalagent.kb.interpreter import Journal, JournalEntry, RuleInfo
+from goalagent.kb.interpreter import JournalEntry, RuleInfo, RunOutcome
 from goalagent.kb.mentalstate import instantiate
 from goalagent.kb.terms import Struct, Term, format_term
 from goalagent.parser import rename_variables
@@ -92,21 +92,34 @@ class FiredRule:
 
 
 class RunRecord:
-    """The journal of one interpreter call (set when the call returns), read as fired rules
-    and actions at most once."""
+    """One interpreter call: its outcome and journal (set when the call returns; None if
+    it failed), read as fired rules and actions at most once; while it runs, where the
+    report's next spans of it start (a module call splits them) and its module calls so
+    far. As a span it is the whole call."""
 
-    __slots__ = ("journal", "_fired", "_actions")
+    __slots__ = ("outcome", "entries_from", "actions_from", "module_calls", "_fired",
+                 "_actions")
+    start = 0
+    stop = None
 
     def __init__(self) -> None:
-        self.journal: Journal | None = None
+        self.outcome: RunOutcome | None = None
+        self.entries_from = 0
+        self.actions_from = 0
+        self.module_calls = 0
         self._fired: list[FiredRule] | None = None
         self._actions: list[str] | None = None
+
+    @property
+    def record(self) -> RunRecord:
+        """As a span: the call itself."""
+        return self
 
     def fired(self) -> list[FiredRule]:
         """The firings, in the order they completed."""
         if self._fired is None:
-            assert self.journal is not None, "the call has not returned"
-            self._fired = [FiredRule(entry) for entry in self.journal.entries()]
+            entries = self.outcome.entries() if self.outcome is not None else []
+            self._fired = [FiredRule(entry) for entry in entries]
         return self._fired
 
     def actions(self) -> list[str]:
@@ -116,27 +129,38 @@ class RunRecord:
         return self._actions
 
 
-@dataclass(frozen=True)
 class Span:
     """Entries ``start`` to ``stop`` (None: to the end) of a call's firings or actions."""
 
-    record: RunRecord
-    start: int = 0
-    stop: int | None = None
+    __slots__ = ("record", "start", "stop")
+
+    def __init__(self, record: RunRecord, start: int = 0, stop: int | None = None) -> None:
+        self.record = record
+        self.start = start
+        self.stop = stop
 
 
-@dataclass
 class CycleReport:
-    """What happened in one cycle (for tests, traces and the CLI)."""
+    """What happened in one cycle (for tests, traces and the CLI): ``percepts``,
+    ``messages``, ``warnings``, and -- built when read -- ``fired`` and ``actions``."""
 
-    cycle: int
-    percepts: list[Term] = field(default_factory=list)
-    messages: list[tuple[str, str, Term]] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-    # In the order they happened: spans of the interpreter calls' firings and actions.
-    entries: list[Span] = field(default_factory=list, repr=False)
-    performed: list[Span] = field(default_factory=list, repr=False)
-    action_count: int = field(default=0, repr=False)  # actions and module calls
+    __slots__ = ("cycle", "percepts", "messages", "warnings", "entries", "performed",
+                 "action_count")
+
+    def __init__(self, cycle: int) -> None:
+        self.cycle = cycle
+        self.percepts: list[Term] = []
+        self.messages: list[tuple[str, str, Term]] = []
+        self.warnings: list[str] = []
+        # In the order they happened: spans of the interpreter calls' firings and actions
+        # (a whole call is its RunRecord).
+        self.entries: list[Span | RunRecord] = []
+        self.performed: list[Span | RunRecord] = []
+        self.action_count = 0  # actions and module calls
+
+    def __repr__(self) -> str:
+        return (f"CycleReport(cycle={self.cycle}, percepts={self.percepts!r}, "
+                f"messages={self.messages!r}, warnings={self.warnings!r})")
 
     @property
     def fired(self) -> list[FiredRule]:

@@ -13,24 +13,32 @@ from goalagent.agent import actions, messages, modules
 from goalagent.agent.events import interpreter_event
 from goalagent.agent.problems import warning_text
 from goalagent.agent.reports import RunRecord, Span
-from goalagent.kb.interpreter import CompiledProgram, Firing, Journal, Problem, RunOutcome, Step
+from goalagent.kb.interpreter import CompiledProgram, Firing, Problem, RunOutcome, Step
 from goalagent.kb.terms import Term
 
 if TYPE_CHECKING:
     from goalagent.agent.cycle import Agent
 
 
-class _RunningCall:
-    """An interpreter call in progress: its journal's record and where the report's next
-    spans of it start (a module call splits them), and its module calls so far."""
+class _CyclePlans(dict):
+    """The plans of a cycle without a module in focus, by (first cycle, has listeners):
+    the init (first cycle), event and main modules that exist; None when none does.
+    Planned on first use."""
 
-    __slots__ = ("record", "entries", "actions", "module_calls")
+    def __init__(self, agent: Agent, code: CompiledProgram) -> None:
+        super().__init__()
+        self._agent = agent
+        self._code = code
 
-    def __init__(self) -> None:
-        self.record = RunRecord()
-        self.entries = 0
-        self.actions = 0
-        self.module_calls = 0
+    def __missing__(self, key: tuple[bool, bool]) -> Term | None:
+        first, listen = key
+        program = self._agent.program
+        names = ("init", "event", "main") if first else ("event", "main")
+        modules = [(module, {}) for module in map(program.module, names) if module is not None]
+        plan = self._code.plan(modules, environment=self._agent.io is not None,
+                               listen=listen) if modules else None
+        self[key] = plan
+        return plan
 
 
 class RuleApplication:
@@ -40,43 +48,50 @@ class RuleApplication:
     def __init__(self, agent: Agent) -> None:
         self._agent = agent
         self._code = CompiledProgram(agent.ms, agent.program)
-        self._calls: list[_RunningCall] = []
+        self._calls: list[RunRecord] = []  # the interpreter calls in progress, innermost last
+        self.cycle_plans = _CyclePlans(agent, self._code)
 
-    def run_modules(self, modules: Sequence[tuple[ast.Module, Mapping[str, Term]]]
-                    ) -> RunOutcome:
+    def run_modules(self, modules: Sequence[tuple[ast.Module, Mapping[str, Term]]], *,
+                    count_last: bool = False) -> RunOutcome:
         """One pass over each module's rules, in one interpreter call (the modules run in
-        turn; exit-module leaves only its own module)."""
+        turn; exit-module leaves only its own module); ``count_last``: the outcome counts
+        the last module's actions."""
         agent = self._agent
-        call = _RunningCall()
-        self._calls.append(call)
+        plan = self._code.plan(modules, environment=agent.io is not None,
+                               listen=bool(agent.listeners), count_last=count_last)
+        return self.run_plan(plan)
+
+    def run_plan(self, plan: Term) -> RunOutcome:
+        """Runs a plan (see ``CompiledProgram.plan``; ``cycle_plans`` has the cycles') in
+        one interpreter call; the report gets its spans, the agent its action count."""
+        agent = self._agent
+        record = RunRecord()
+        self._calls.append(record)
         try:
-            outcome = self._code.run([(self._code.code(module), bindings)
-                                      for module, bindings in modules], self,
-                                     environment=agent.io is not None,
-                                     listen=bool(agent.listeners))
-        except BaseException:
-            call.record.journal = Journal()  # spans made by module calls stay readable
-            raise
+            outcome = record.outcome = self._code.run(plan, self)
         finally:
             self._calls.pop()
-        call.record.journal = outcome.journal
         report = agent.report
-        report.entries.append(Span(call.record, call.entries))
-        report.performed.append(Span(call.record, call.actions))
+        if record.module_calls:
+            report.entries.append(Span(record, record.entries_from))
+            report.performed.append(Span(record, record.actions_from))
+        else:  # the whole call: the record is its own span
+            report.entries.append(record)
+            report.performed.append(record)
         report.action_count += outcome.actions
-        agent.total_actions += outcome.actions - call.module_calls  # calls are no actions
+        agent.total_actions += outcome.actions - record.module_calls  # calls: no actions
         return outcome
 
     def split_at(self, entries: int, position: int) -> None:
         """A module call at action ``position`` of the running call (``entries`` firings
         done): the report shows the call's firings and actions so far, the call, then what
         the called module does."""
-        call = self._calls[-1]
+        record = self._calls[-1]
         report = self._agent.report
-        report.entries.append(Span(call.record, call.entries, entries))
-        report.performed.append(Span(call.record, call.actions, position + 1))
-        call.entries, call.actions = entries, position + 1
-        call.module_calls += 1
+        report.entries.append(Span(record, record.entries_from, entries))
+        report.performed.append(Span(record, record.actions_from, position + 1))
+        record.entries_from, record.actions_from = entries, position + 1
+        record.module_calls += 1
 
     # ------------------------------------------------------------------ requests
 

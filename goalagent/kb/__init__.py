@@ -22,8 +22,8 @@ Typical use::
     state.blind_commitment()
     # or a whole program's rules, run by the interpreter (see goalagent.agent.rules):
     code = CompiledProgram(state, program)
-    outcome = code.run([(code.code(program.module("main")), {})], requests,
-                       environment=False, listen=False)
+    plan = code.plan([(program.module("main"), {})], environment=False, listen=False)
+    outcome = code.run(plan, requests)
     state.close()
 
 Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).

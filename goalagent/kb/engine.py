@@ -1,9 +1,10 @@
-"""The one SWI-Prolog engine of the process: syntax checks, term conversion, error mapping.
+"""The one SWI-Prolog engine of the process: syntax checks, queries, error mapping, foreign
+predicates.
 
-This is the ONLY module that imports pyswip. It uses pyswip just to load and initialise
-``libswipl`` and then talks to the C foreign interface directly through ctypes (the string
-API costs 40-80 µs a call; this path a few µs). Terms crossing the seam are
-``goalagent.kb.terms`` values, converted in :meth:`Engine._put` / :meth:`Engine._get`.
+pyswip loads and initialises ``libswipl`` (see clib.py, the only module that imports it);
+the engine then talks to the C foreign interface directly through ctypes (the string API
+costs 40-80 µs a call; this path a few µs). Terms crossing the seam are
+``goalagent.kb.terms`` values, converted in conversion.py (the engine's base class).
 Every query is opened, drained or cut, and closed inside one Python call, with
 ``debug_on_error`` off and exceptions caught, so Prolog never enters the tracer.
 """
@@ -13,17 +14,48 @@ from __future__ import annotations
 import ctypes
 import threading
 from collections.abc import Callable, Sequence
-from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_int64, c_size_t, c_uint, c_void_p
-from fractions import Fraction
+from ctypes import c_size_t, c_void_p
 from pathlib import Path
 
-from pyswip import core as _pyswip_core  # loads libswipl and runs PL_initialise once
-
+from goalagent.kb.clib import (
+    INT_BUF,
+    INT_REF,
+    Q_CATCH,
+    Q_PASS,
+    TEXT_FLAGS,
+    PL_call_predicate,
+    PL_clear_exception,
+    PL_cut_query,
+    PL_discard_foreign_frame,
+    PL_erase,
+    PL_exception,
+    PL_get_int64,
+    PL_new_term_ref,
+    PL_new_term_refs,
+    PL_next_solution,
+    PL_open_foreign_frame,
+    PL_open_query,
+    PL_predicate,
+    PL_put_atom,
+    PL_put_term,
+    PL_raise_exception,
+    PL_record,
+    PL_recorded,
+    PL_register_foreign_in_module,
+    PL_thread_attach_engine,
+    PL_thread_self,
+    PL_unify,
+    PL_unregister_atom,
+    term_t,
+    text_of,
+)
+from goalagent.kb.conversion import Kept, Record, TermConversion
 from goalagent.kb.errors import KBError, PrologRuntimeError, PrologSyntaxError
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [
     "Engine",
+    "Kept",
     "define_foreign",
     "Record",
     "KBError",
@@ -33,139 +65,22 @@ __all__ = [
 ]
 
 
-# --------------------------------------------------------------------------- C interface
-
-_lib = ctypes.CDLL(_pyswip_core._lib._name, mode=ctypes.RTLD_GLOBAL)
-
-_term = c_size_t
-_atom = c_size_t
-
-
-def _fn(name: str, restype: object, *argtypes: object) -> ctypes._CFuncPtr:
-    """Our own typed handle on a libswipl function (pyswip's handles keep their own types)."""
-    func = getattr(_lib, name)
-    func.restype = restype
-    func.argtypes = argtypes
-    return func
-
-
-PL_open_foreign_frame = _fn("PL_open_foreign_frame", c_size_t)
-PL_discard_foreign_frame = _fn("PL_discard_foreign_frame", None, c_size_t)
-PL_new_term_ref = _fn("PL_new_term_ref", _term)
-PL_new_term_refs = _fn("PL_new_term_refs", _term, c_int)
-PL_copy_term_ref = _fn("PL_copy_term_ref", _term, _term)
-PL_predicate = _fn("PL_predicate", c_void_p, c_char_p, c_int, c_char_p)
-PL_open_query = _fn("PL_open_query", c_void_p, c_void_p, c_int, c_void_p, _term)
-PL_next_solution = _fn("PL_next_solution", c_int, c_void_p)
-PL_cut_query = _fn("PL_cut_query", c_int, c_void_p)
-PL_exception = _fn("PL_exception", _term, c_void_p)
-PL_record = _fn("PL_record", c_void_p, _term)
-PL_recorded = _fn("PL_recorded", c_int, c_void_p, _term)
-PL_erase = _fn("PL_erase", None, c_void_p)
-PL_term_type = _fn("PL_term_type", c_int, _term)
-PL_get_atom = _fn("PL_get_atom", c_int, _term, POINTER(_atom))
-PL_get_int64 = _fn("PL_get_int64", c_int, _term, POINTER(c_int64))
-PL_get_float = _fn("PL_get_float", c_int, _term, POINTER(c_double))
-PL_get_nchars = _fn("PL_get_nchars", c_int, _term, POINTER(c_size_t), POINTER(c_void_p), c_uint)
-PL_get_name_arity = _fn("PL_get_name_arity_sz", c_int, _term, POINTER(_atom), POINTER(c_size_t))
-PL_get_arg = _fn("_PL_get_arg_sz", c_int, c_size_t, _term, _term)
-PL_get_list = _fn("PL_get_list", c_int, _term, _term, _term)
-PL_compare = _fn("PL_compare", c_int, _term, _term)
-PL_put_variable = _fn("PL_put_variable", c_int, _term)
-PL_put_atom = _fn("PL_put_atom", c_int, _term, _atom)
-PL_put_int64 = _fn("PL_put_int64", c_int, _term, c_int64)
-PL_put_float = _fn("PL_put_float", c_int, _term, c_double)
-PL_put_chars = _fn("PL_put_chars", c_int, _term, c_int, c_size_t, c_char_p)
-PL_put_nil = _fn("PL_put_nil", c_int, _term)
-PL_put_term = _fn("PL_put_term", c_int, _term, _term)
-PL_put_term_from_chars = _fn("PL_put_term_from_chars", c_int, _term, c_int, c_size_t, c_char_p)
-PL_cons_list = _fn("PL_cons_list", c_int, _term, _term, _term)
-PL_cons_functor_v = _fn("PL_cons_functor_v", c_int, _term, c_size_t, _term)
-PL_new_functor = _fn("PL_new_functor_sz", c_size_t, _atom, c_size_t)
-PL_new_atom = _fn("PL_new_atom_mbchars", _atom, c_int, c_size_t, c_char_p)
-PL_register_atom = _fn("PL_register_atom", None, _atom)
-PL_unregister_atom = _fn("PL_unregister_atom", None, _atom)
-PL_unify = _fn("PL_unify", c_int, _term, _term)
-PL_raise_exception = _fn("PL_raise_exception", c_int, _term)
-PL_register_foreign_in_module = _fn("PL_register_foreign_in_module", c_int, c_char_p,
-                                    c_char_p, c_int, c_void_p, c_int)
-PL_thread_self = _fn("PL_thread_self", c_int)
-PL_thread_attach_engine = _fn("PL_thread_attach_engine", c_int, c_void_p)
-
-_PL_VARIABLE, _PL_ATOM, _PL_INTEGER, _PL_RATIONAL, _PL_FLOAT, _PL_STRING = 1, 2, 3, 4, 5, 6
-_PL_TERM, _PL_NIL, _PL_LIST_PAIR = 7, 8, 10
-_Q_FLAGS = 0x04 | 0x08  # PL_Q_NODEBUG | PL_Q_CATCH_EXCEPTION
-_REP_UTF8 = 0x00100000
-_CVT_ATOM, _CVT_STRING, _CVT_INTEGER, _CVT_WRITEQ = 0x1, 0x2, 0x8, 0x200
-_TEXT_FLAGS = _CVT_ATOM | _CVT_STRING | _REP_UTF8
-_PUT_STRING = 6 | _REP_UTF8  # PL_STRING type for PL_put_chars
-_INT64_MIN, _INT64_MAX = -(2**63), 2**63 - 1
-_ATOM_CACHE_MAX = 200_000  # cached atoms stay registered (never GC'd): keep this bounded
 _PARSE_CACHE_MAX = 20_000
-_VAR_MARK = "$ga_var"
-
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
 _PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
 
 # A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
-_FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, _term, _term)
+_FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, term_t, term_t)
 
 
-# Output buffers for the getters: Prolog runs on one thread at a time and every value is
-# read right after the call that fills it, so one set of buffers serves all calls.
-_ATOM_BUF, _SIZE_BUF, _INT_BUF, _FLOAT_BUF = _atom(), c_size_t(), c_int64(), c_double()
-_ATOM_REF, _SIZE_REF = byref(_ATOM_BUF), byref(_SIZE_BUF)
-_INT_REF, _FLOAT_REF = byref(_INT_BUF), byref(_FLOAT_BUF)
-
-
-def _text(t: int, flags: int) -> str:
-    """The text of an atom/string/number term (UTF-8) or raises on failure."""
-    length = c_size_t()
-    ptr = c_void_p()
-    if not PL_get_nchars(t, byref(length), byref(ptr), flags):
-        raise KBError("cannot read the text of a Prolog term")
-    return ctypes.string_at(ptr.value, length.value).decode("utf-8")
-
-
-class Record:
-    """A Prolog term kept in Prolog (``PL_record``) until Python asks for its value: answers
-    that are usually never read cost no conversion."""
-
-    __slots__ = ("_engine", "_handle", "_value")
-
-    def __init__(self, engine: Engine, handle: int) -> None:
-        self._engine = engine
-        self._handle: int | None = handle
-        self._value: Term | None = None
-
-    def value(self) -> Term:
-        """The term as a Python value (converted once, then the record is freed)."""
-        if self._handle is not None:
-            self._value = self._engine._recorded(self._handle)
-            PL_erase(self._handle)
-            self._handle = None
-        return self._value
-
-    def __del__(self) -> None:
-        """Frees the record at the engine's next call (from the thread that runs Prolog)."""
-        if self._handle is not None:
-            self._engine._dead_records.append(self._handle)
-
-
-class Engine:
+class Engine(TermConversion):
     """The process's SWI-Prolog: one per process (see :func:`get_engine`), one thread at a time."""
 
     def __init__(self) -> None:
+        super().__init__()
         self._thread = threading.get_ident()
-        self._atoms: dict[str, int] = {}
-        self._atom_names: dict[int, Atom] = {}
-        self._functors: dict[tuple[str, int], int] = {}
-        self._functor_names: dict[int, str] = {}  # atom handle -> plain str (Struct names)
         self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
-        self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
-        self._dead_records: list[int] = []  # records of collected Record objects, to erase
-        self._counter = 0
         self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
         self._python_errors: list[BaseException] = []  # raised inside foreign predicates
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
@@ -205,6 +120,16 @@ class Engine:
             if len(self._parsed) < _PARSE_CACHE_MAX:
                 self._parsed[text] = cached
         return cached
+
+    def keep(self, term: Term) -> Kept:
+        """``term`` recorded in Prolog, to be given to calls as it is (see :class:`Kept`)."""
+        fid = PL_open_foreign_frame()
+        try:
+            t = PL_new_term_ref()
+            self._put(t, term, {})
+            return Kept(self, PL_record(t))
+        finally:
+            PL_discard_foreign_frame(fid)
 
     def format(self, term: Term) -> str:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""
@@ -263,6 +188,38 @@ class Engine:
             result[index] = value
         return result
 
+    def call_once(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term]],
+                  number: int, keep: int) -> tuple[int, Record]:
+        """One call of a deterministic ``pred`` (the rule interpreter's, once per cycle):
+        the integer output ``number`` and output ``keep`` kept as a :class:`Record`. As
+        :meth:`solve`, with nothing else converted (a few C calls fewer per cycle)."""
+        if threading.get_ident() != self._thread:
+            self._attach_thread()
+        fid = PL_open_foreign_frame()
+        try:
+            base = PL_new_term_refs(arity)
+            for index, value in inputs:
+                if type(value) is Kept:
+                    PL_recorded(value.handle, base + index)
+                else:
+                    self._put(base + index, value, {})
+            if PL_call_predicate(None, Q_PASS, pred, base):
+                if not PL_get_int64(base + number, INT_REF):
+                    raise KBError("internal: the interpreter's outcome is not a number")
+                return INT_BUF.value, Record(self, PL_record(base + keep))
+            exception = PL_exception(0)
+            if not exception:
+                raise KBError("internal: the interpreter failed")
+            record = PL_record(exception)
+            PL_clear_exception()
+            raise self._error_from(record)
+        finally:
+            PL_discard_foreign_frame(fid)
+            while self._transient_atoms:
+                PL_unregister_atom(self._transient_atoms.pop())
+            while self._dead_records:
+                PL_erase(self._dead_records.pop())
+
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
               limit: int | None, marks: bool = False,
               outputs: Sequence[int] | None = None, keep: int | None = None) -> list[list[Term]]:
@@ -284,7 +241,7 @@ class Engine:
                         self._put(base + index, value, shared)
             except UnicodeEncodeError as error:
                 raise KBError(f"text Prolog cannot hold: {error.object!r}") from None
-            qid = PL_open_query(None, _Q_FLAGS, pred, base)
+            qid = PL_open_query(None, Q_CATCH, pred, base)
             answers: list[list[Term]] = []
             record = None
             try:
@@ -308,12 +265,7 @@ class Engine:
             finally:
                 PL_cut_query(qid)
             if record is not None:
-                error = self._runtime_error(record)
-                if error.term == _PYTHON_ERROR and self._python_errors:
-                    python_error = self._python_errors[-1]
-                    self._python_errors.clear()
-                    raise python_error
-                raise error
+                raise self._error_from(record)
             return answers
         finally:
             PL_discard_foreign_frame(fid)
@@ -348,26 +300,15 @@ class Engine:
             message += " (leave out the final '.')"
         raise PrologSyntaxError(message, offset)
 
-    def _runtime_error(self, record: int) -> PrologRuntimeError:
-        """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""
-        fid = PL_open_foreign_frame()
-        try:
-            t = PL_new_term_ref()
-            PL_recorded(record, t)
-            PL_erase(record)
-            term = self._get(t, [], False)
-            pred = self.predicate("error_message", 2, "ga_kb")
-            base = PL_new_term_refs(2)
-            PL_put_term(base, t)
-            qid = PL_open_query(None, _Q_FLAGS, pred, base)
-            try:
-                ok = PL_next_solution(qid)
-                message = _text(base + 1, _TEXT_FLAGS) if ok else format_term(term)
-            finally:
-                PL_cut_query(qid)
-            return PrologRuntimeError(message, term)
-        finally:
-            PL_discard_foreign_frame(fid)
+    def _error_from(self, record: int) -> BaseException:
+        """The exception to raise for a recorded Prolog exception: the Python exception a
+        foreign predicate raised (see :func:`define_foreign`), or a PrologRuntimeError."""
+        error = self._runtime_error(record)
+        if error.term == _PYTHON_ERROR and self._python_errors:
+            python_error = self._python_errors[-1]
+            self._python_errors.clear()
+            return python_error
+        return error
 
     def _recorded(self, record: int) -> Term:
         """The Python value of a recorded term (the record stays)."""
@@ -381,152 +322,26 @@ class Engine:
         finally:
             PL_discard_foreign_frame(fid)
 
-    def _atom_handle(self, name: str) -> int:
-        """The atom_t for ``name`` (cached and kept registered while the cache has room)."""
-        handle = self._atoms.get(name)
-        if handle is None:
-            data = name.encode("utf-8")
-            handle = PL_new_atom(_REP_UTF8, len(data), data)  # returned registered
-            if len(self._atoms) < _ATOM_CACHE_MAX:
-                self._atoms[name] = handle
-                self._atom_names[handle] = Atom(name)
-            else:
-                self._transient_atoms.append(handle)
-        return handle
-
-    def _functor(self, name: str, arity: int) -> int:
-        """The functor_t for name/arity (functors are never garbage collected: cache them)."""
-        key = (name, arity)
-        handle = self._functors.get(key)
-        if handle is None:
-            handle = PL_new_functor(self._atom_handle(name), arity)
-            self._functors[key] = handle
-        return handle
-
-    def _put(self, t: int, value: Term, shared: dict[str, int]) -> None:
-        """Stores the Python term ``value`` in term ref ``t``; ``shared`` maps Var names."""
-        kind = type(value)
-        if kind is Atom:
-            handle = self._atoms.get(value)
-            PL_put_atom(t, handle if handle is not None else self._atom_handle(value))
-        elif kind is Struct:
-            arity = len(value.args)
-            if arity == 0:
-                data = format_term(value).encode("utf-8")
-                PL_put_term_from_chars(t, _REP_UTF8, len(data), data)
-                return
-            args = PL_new_term_refs(arity)
-            put = self._put
-            for i, arg in enumerate(value.args):
-                put(args + i, arg, shared)
-            functor = self._functors.get((value.name, arity))
-            PL_cons_functor_v(t, functor or self._functor(value.name, arity), args)
-        elif kind is int:
-            if _INT64_MIN <= value <= _INT64_MAX:
-                PL_put_int64(t, value)
-            else:
-                data = str(value).encode()
-                PL_put_term_from_chars(t, _REP_UTF8, len(data), data)
-        elif kind is list or kind is tuple:
-            PL_put_nil(t)
-            if value:
-                head = PL_new_term_ref()
-                put = self._put
-                for item in reversed(value):
-                    put(head, item, shared)
-                    PL_cons_list(t, head, t)
-        elif kind is Var:
-            existing = shared.get(value.name) if value.name != "_" else None
-            if existing is None:
-                PL_put_variable(t)
-                if value.name != "_":
-                    shared[value.name] = PL_copy_term_ref(t)
-            else:
-                PL_put_term(t, existing)
-        elif kind is float:
-            PL_put_float(t, value)
-        elif kind is bool:
-            PL_put_atom(t, self._atom_handle("true" if value else "false"))
-        elif isinstance(value, Atom):
-            self._put(t, Atom(str(value)), shared)
-        elif isinstance(value, str):
-            data = value.encode("utf-8")
-            PL_put_chars(t, _PUT_STRING, len(data), data)
-        else:
-            raise KBError(f"not a Prolog term: {value!r}")
-
-    def _get(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
-        """The Python term in term ref ``t``; ``seen`` keeps unbound variables' identities;
-        with ``marks``, ``'$ga_var'(Name)`` becomes ``Var(Name)`` (see parse/2)."""
-        kind = PL_term_type(t)
-        if kind == _PL_ATOM:
-            PL_get_atom(t, _ATOM_REF)
-            handle = _ATOM_BUF.value
-            return self._atom_names.get(handle) or self._atom_name(handle)
-        if kind == _PL_TERM:
-            PL_get_name_arity(t, _ATOM_REF, _SIZE_REF)
-            handle = _ATOM_BUF.value
-            arity = _SIZE_BUF.value
-            name = self._functor_names.get(handle)
-            if name is None:
-                name = str(self._atom_names.get(handle) or self._atom_name(handle))
-                self._functor_names[handle] = name
-            arg = PL_new_term_ref()
-            args = []
-            get = self._get
-            for i in range(1, arity + 1):
-                PL_get_arg(i, t, arg)
-                args.append(get(arg, seen, marks))
-            if marks and name == _VAR_MARK and arity == 1:
-                return Var(str(args[0]))
-            return Struct(name, tuple(args))
-        if kind == _PL_INTEGER:
-            if PL_get_int64(t, _INT_REF):
-                return _INT_BUF.value
-            return int(_text(t, _CVT_INTEGER))
-        if kind == _PL_LIST_PAIR:
-            items: list[Term] = []
-            rest = PL_copy_term_ref(t)
-            head = PL_new_term_ref()
-            get = self._get
-            while PL_get_list(rest, head, rest):
-                items.append(get(head, seen, marks))
-            if PL_term_type(rest) == _PL_NIL:
-                return items
-            tail = get(rest, seen, marks)
-            for item in reversed(items):
-                tail = Struct("[|]", (item, tail))
-            return tail
-        if kind == _PL_NIL:
-            return []
-        if kind == _PL_STRING:
-            return _text(t, _TEXT_FLAGS)
-        if kind == _PL_FLOAT:
-            PL_get_float(t, _FLOAT_REF)
-            return _FLOAT_BUF.value
-        if kind == _PL_VARIABLE:
-            for ref, var in seen:
-                if PL_compare(ref, t) == 0:
-                    return var
-            self._counter += 1
-            var = Var("_" if marks else f"_G{self._counter}")
-            seen.append((PL_copy_term_ref(t), var))
-            return var
-        if kind == _PL_RATIONAL:
-            numerator, denominator = _text(t, _CVT_WRITEQ | _REP_UTF8).split("r")
-            return float(Fraction(int(numerator), int(denominator)))
-        return Atom(_text(t, _CVT_WRITEQ | _REP_UTF8))  # blobs (streams, clause refs), dicts
-
-    def _atom_name(self, handle: int) -> Atom:
-        """The name of atom ``handle`` (cache miss path); caching registers the atom."""
-        ref = PL_new_term_ref()
-        PL_put_atom(ref, handle)
-        name = Atom(_text(ref, _TEXT_FLAGS))
-        if len(self._atom_names) < _ATOM_CACHE_MAX:
-            PL_register_atom(handle)
-            self._atom_names[handle] = name
-            self._atoms.setdefault(str(name), handle)
-        return name
+    def _runtime_error(self, record: int) -> PrologRuntimeError:
+        """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""
+        fid = PL_open_foreign_frame()
+        try:
+            t = PL_new_term_ref()
+            PL_recorded(record, t)
+            PL_erase(record)
+            term = self._get(t, [], False)
+            pred = self.predicate("error_message", 2, "ga_kb")
+            base = PL_new_term_refs(2)
+            PL_put_term(base, t)
+            qid = PL_open_query(None, Q_CATCH, pred, base)
+            try:
+                ok = PL_next_solution(qid)
+                message = text_of(base + 1, TEXT_FLAGS) if ok else format_term(term)
+            finally:
+                PL_cut_query(qid)
+            return PrologRuntimeError(message, term)
+        finally:
+            PL_discard_foreign_frame(fid)
 
 
 def _copy(term: Term) -> Term:

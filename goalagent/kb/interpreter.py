@@ -14,16 +14,16 @@ shapes stay inside ``goalagent.kb``.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Protocol
 
 from goalagent import ast
 from goalagent.events import EventKind, ProblemKind
-from goalagent.kb.engine import Engine, KBError, Record, define_foreign
+from goalagent.kb.engine import Engine, KBError, Kept, Record, define_foreign
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
-__all__ = ["CompiledProgram", "Firing", "Journal", "JournalEntry", "ModuleCode", "Problem",
+__all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
            "Requests", "RuleInfo", "RunOutcome", "Step", "listall_variable"]
 
 _TRUE, _FALSE = Atom("true"), Atom("false")
@@ -157,42 +157,38 @@ class JournalEntry:
         return dict(zip(self.rule.names, self.values, strict=False))
 
 
-class Journal:
-    """The firings of one interpreter call, in the order they completed; kept in Prolog (a
-    :class:`Record`) until someone reads them: most cycles nobody does."""
+class RunOutcome:
+    """What one :meth:`CompiledProgram.run` did: ``actions`` performed (all passes),
+    ``last_actions`` of the last pass (when counted), whether the last pass ``exited``
+    (exit-module), and its journal: the firings in the order they completed, kept in
+    Prolog (a :class:`Record`) until someone reads them (:meth:`entries`): most cycles
+    nobody does."""
 
-    __slots__ = ("_record", "_entries")
+    __slots__ = ("_outcome", "actions", "_record", "_entries")
 
-    def __init__(self, record: Record | None = None) -> None:
+    def __init__(self, outcome: int, record: Record) -> None:
+        self._outcome = outcome
+        self.actions = outcome >> 32
         self._record = record
         self._entries: list[JournalEntry] | None = None
 
-    def entries(self) -> list[JournalEntry]:
-        """The entries (converted once)."""
-        if self._entries is None:
-            self._entries = []
-            if self._record is not None:
-                for entry in self._record.value():  # type: ignore[union-attr]
-                    rule_id, values, done, terms = entry.args
-                    self._entries.append(JournalEntry(_rules[int(rule_id)], tuple(values),
-                                                      int(done), tuple(terms)))
-        return self._entries
-
-
-@dataclass(frozen=True)
-class RunOutcome:
-    """What one :meth:`CompiledProgram.run` did: the actions performed (all passes), the
-    last pass's status (fired, none or exit) and actions, and the journal."""
-
-    actions: int
-    last_status: str
-    last_actions: int
-    journal: Journal = field(repr=False)
+    @property
+    def last_actions(self) -> int:
+        return (self._outcome >> 2) & 0x3FFFFFFF
 
     @property
     def exited(self) -> bool:
-        """The last module performed exit-module."""
-        return self.last_status == "exit"
+        return bool(self._outcome & 2)
+
+    def entries(self) -> list[JournalEntry]:
+        """The journal's entries (converted once)."""
+        if self._entries is None:
+            self._entries = []
+            for entry in self._record.value():  # type: ignore[union-attr]
+                rule_id, values, done, terms = entry.args
+                self._entries.append(JournalEntry(_rules[int(rule_id)], tuple(values),
+                                                  int(done), tuple(terms)))
+        return self._entries
 
 
 # ----------------------------------------------------------------------------- compiling
@@ -223,6 +219,8 @@ class CompiledProgram:
         self._modules = {(m.name, m.arity): index for index, m in enumerate(program.modules)}
         self._directives = state.directives
         self._codes: dict[int, ModuleCode] = {}
+        self._kept: dict[tuple, Kept] = {}  # plans, recorded
+        self._answerer: _Answerer | None = None
         _define_requests(self._engine)
         state.declare_actions(program.actionspecs)
         for module in program.modules:
@@ -334,19 +332,40 @@ class CompiledProgram:
 
     # ------------------------------------------------------------------ running
 
-    def run(self, modules: Sequence[tuple[ModuleCode, Mapping[str, Term]]],
-            requests: Requests, *, environment: bool, listen: bool) -> RunOutcome:
-        """Runs the modules' passes in turn in one Prolog call (each with the values of its
-        given variables), answering the interpreter's requests with ``requests``."""
-        passes = [Struct("p", (code.clause, [values.get(name) for name in code.given]))
-                  for code, values in modules]
-        _answering.append(_Answerer(requests))
+    def plan(self, modules: Sequence[tuple[ast.Module, Mapping[str, Term]]], *,
+             environment: bool, listen: bool, count_last: bool = False) -> Term:
+        """What :meth:`run` runs: ``modules`` (each with the values of its module's
+        parameters) in turn, for an agent with or without an environment and listeners
+        (``count_last``: count the last module's actions). Recorded in Prolog once when no
+        module has parameters (a cycle's modules are the same every cycle), so a run puts
+        it in one C call."""
+        flags = (_TRUE if environment else _FALSE, _TRUE if listen else _FALSE,
+                 _TRUE if count_last else _FALSE)
+        codes = [(self._codes[id(module)], values) for module, values in modules]
+        modules = self._state.modules
+        if any(code.given for code, _ in codes):
+            return Struct("r", (*modules, *flags, [
+                Struct("p", (code.clause, [values.get(name) for name in code.given]))
+                for code, values in codes]))
+        key = (tuple(code.clause for code, _ in codes), flags)
+        kept = self._kept.get(key)
+        if kept is None:
+            kept = self._kept[key] = self._engine.keep(Struct("r", (*modules, *flags, [
+                Struct("p", (clause, [])) for clause in key[0]])))
+        return kept
+
+    def run(self, plan: Term, requests: Requests) -> RunOutcome:
+        """Runs a plan (see :meth:`plan`) in one Prolog call, answering the interpreter's
+        requests with ``requests``."""
+        answerer = self._answerer
+        if answerer is None or answerer.requests is not requests:
+            answerer = self._answerer = _Answerer(requests)
+        _answering.append(answerer)
         try:
-            total, last, journal = self._state.run(environment, listen, passes)
+            outcome, journal = self._state.run(plan)
         finally:
             _answering.pop()
-        status, actions = last.args  # type: ignore[union-attr]
-        return RunOutcome(total, str(status), int(actions), Journal(journal))
+        return RunOutcome(outcome, journal)
 
 
 # ----------------------------------------------------------------------------- requests

@@ -2,10 +2,11 @@
     per process, as module ga_kb; the parts are included below).
 
     One agent = two modules: B holds knowledge + beliefs + percepts + mailbox (bel/percept
-    queries run there) and G holds a copy of the knowledge plus the goal bases. A goal's facts
-    are stored as '$gf'(Id, Fact) in G; every predicate that may occur in a goal gets a
-    forwarding clause in G that answers from the goal selected by the backtrackable global
-    variable '$ga_g'. So goal(Phi) is "Phi follows from knowledge + that ONE goal".
+    queries run there) and G holds a copy of the knowledge plus the goal bases. A goal's
+    facts are stored as '$gf'(Id, Fact, WatchKey) in G (see watch/1); every predicate that
+    may occur in a goal gets a forwarding clause in G that answers from the goal selected
+    by the backtrackable global variable '$ga_g'. So goal(Phi) is "Phi follows from
+    knowledge + that ONE goal".
     Python (goalagent/kb/engine.py, mentalstate.py, interpreter.py) calls only the
     predicates documented with %! in these files.
 
@@ -20,9 +21,12 @@
 
 %   '$ga_g': the goal a goal/1 query reads (see forwarder/2); '$ga_listen': true while the
 %   running agent has listeners, so the interpreter reports each step (see tell/1 in
-%   rules.pl). Each agent's belief module name holds its "recheck" flag (see recheck/1).
+%   rules.pl); '$ga_goal_id': the last goal id given (see add_goal/5). Each agent's belief
+%   module name holds its "recheck" flag (see recheck/1), its goal module name what its
+%   goals watch (see watch/1).
 :- initialization(( nb_setval('$ga_g', none),
-                     nb_setval('$ga_listen', false) )).
+                     nb_setval('$ga_listen', false),
+                     nb_setval('$ga_goal_id', 0) )).
 
 :- include(mentalstate_load).
 :- include(mentalstate_updates).

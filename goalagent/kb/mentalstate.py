@@ -214,6 +214,11 @@ class MentalState:
         return self._b
 
     @property
+    def modules(self) -> tuple[Atom, Atom]:
+        """The names of the belief and the goal module."""
+        return self._b, self._g
+
+    @property
     def directives(self) -> str:
         """The ``:-`` directives of knowledge and beliefs (they change how texts read)."""
         return self._directives
@@ -287,21 +292,17 @@ class MentalState:
             items.append(Struct("spec", (index, _TRUE if spec.internal else _FALSE, text)))
         self._call("declare_actions", self._b, items)
 
-    def run(self, environment: bool, listen: bool,
-            passes: list[Term]) -> tuple[int, Term, Record]:
-        """Runs compiled module passes in one call of the rule interpreter (run/8 in
-        rules.pl; see goalagent.kb.interpreter): the actions performed, the last pass's
-        s(Status, Actions) and the journal, kept in Prolog."""
+    def run(self, plan: Term) -> tuple[int, Record]:
+        """Runs a plan of module passes in one call of the rule interpreter (run/3 in
+        rules.pl; see goalagent.kb.interpreter): its outcome (one integer) and journal,
+        kept in Prolog."""
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
         if self._run_pred is None:
-            self._run_pred = self._engine.predicate("run", 8, "ga_kb")
-        total, last, recheck, journal = self._engine.solve(
-            self._run_pred, 8, [(0, self._b), (1, _TRUE if environment else _FALSE),
-                                (2, _TRUE if listen else _FALSE), (3, passes)],
-            1, outputs=(4, 5, 6, 7), keep=7)[0]
-        self._recheck = recheck == "true"
-        return int(total), last, journal  # type: ignore[arg-type, return-value]
+            self._run_pred = self._engine.predicate("run", 3, "ga_kb")
+        outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
+        self._recheck = bool(outcome & 1)
+        return outcome, journal
 
     def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
         """The error of the first literal SWI's reader rejects (with its position)."""
@@ -419,10 +420,17 @@ class MentalState:
         assert isinstance(removed, list)
         return removed
 
+    @property
+    def goals_unchecked(self) -> bool:
+        """Goals may have been achieved since the last :meth:`blind_commitment`."""
+        return self._recheck or bool(self._achieved)
+
     def blind_commitment(self) -> list[list[Term]]:
         """Removes every goal whose facts are all believed (all goal bases); returns them,
         with those already removed by insert/delete since the last call. Prolog is asked
         only when percepts, messages or goal bases changed since (updates check themselves)."""
+        if not self._recheck and not self._achieved:
+            return []
         removed, self._achieved = self._achieved, []
         if self._recheck:
             removed += self._call("check_goals", self._b, self._g, None)[2]

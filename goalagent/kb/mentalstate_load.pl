@@ -14,15 +14,17 @@ new_agent(B, G) :-
              forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
                     dynamic(M:PI))
            )),
-    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4)),
+    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4, '$ga_pre_body'/3, '$ga_wk'/2)),
     assertz(B:'$ga_gm'(G)),
     recheck(B),
-    dynamic(G:('$gf'/2, '$goal'/2, '$top'/1, '$fwd'/1)),
-    assertz(G:'$top'(0)).
+    dynamic(G:('$gf'/3, '$goal'/3, '$top'/1, '$fwd'/1, '$rule_inserted'/0)),
+    assertz(G:'$top'(0)),
+    nb_setval(G, []).
 
 %!  destroy(+B, +G) is det.
 destroy(B, G) :-
     nb_delete(B),
+    nb_delete(G),
     '$destroy_module'(B),
     '$destroy_module'(G).
 
@@ -138,9 +140,18 @@ positive(Lit, Lit).
 %!  declare_goal(+B, +G, +Facts) is det.
 %   As declare/3, and the predicates of Facts can be goal facts (forwarders in G).
 
-declare_goal(B, G, Facts) :-
-    forall(( member(F, Facts), fact_like(F) ),
-           ( ensure_dynamic(B, F), forwarder(G, F) )).
+declare_goal(_, _, []).
+declare_goal(B, G, [Fact|Facts]) :-
+    (   fact_like(Fact)
+    ->  functor(Fact, Name, Arity),
+        (   G:'$fwd'(Name/Arity)            % declared before
+        ->  true
+        ;   ensure_dynamic(B, Fact),
+            forwarder(G, Fact)
+        )
+    ;   true
+    ),
+    declare_goal(B, G, Facts).
 
 fact_like(H) :-
     callable(H),
@@ -167,7 +178,7 @@ forwarder(G, Head) :-
     ->  true                        % a built-in: it can never be a goal fact
     ;   functor(Gen, N, A),
         dynamic(G:N/A),
-        assertz(G:(Gen :- b_getval('$ga_g', Id), '$gf'(Id, Gen))),
+        assertz(G:(Gen :- b_getval('$ga_g', Id), '$gf'(Id, Gen, _))),
         assertz(G:'$fwd'(N/A))
     ).
 
@@ -213,18 +224,30 @@ translate('$percept'(Q), _, Body, N, N, Aux, Aux) :-
     percept_body(Q, Body).
 
 in_goal(Q, Name, I, ('$ga_gm'(G), G:AuxHead),
-        (AuxHead :- '$top'(Base), '$goal'(Base, Id), b_setval('$ga_g', Id), LocalQ)) :-
+        (AuxHead :- '$top'(Base), '$goal'(Base, Id, _), b_setval('$ga_g', Id), LocalQ)) :-
     local_cut(Q, LocalQ),
     format(atom(AuxName), '~w_~w', [Name, I]),
     term_variables(Q, Vars),
     AuxHead =.. [AuxName|Vars].
 
 %   A cut in a query cuts that query only, as if each literal were its own Prolog query.
-local_cut(Q, Local) :-
+%   not/1 at a goal position of the query is compiled as \+ (the same negation, one call
+%   less).
+local_cut(Q0, Local) :-
+    inline_not(Q0, Q),
     (   has_cut(Q)
     ->  Local = call(Q)
     ;   Local = Q
     ).
+
+inline_not(Q, Q) :- var(Q), !.
+inline_not((A0, B0), (A, B)) :- !, inline_not(A0, A), inline_not(B0, B).
+inline_not((A0 ; B0), (A ; B)) :- !, inline_not(A0, A), inline_not(B0, B).
+inline_not((A0 -> B0), (A -> B)) :- !, inline_not(A0, A), inline_not(B0, B).
+inline_not((A0 *-> B0), (A *-> B)) :- !, inline_not(A0, A), inline_not(B0, B).
+inline_not(\+ A0, \+ A) :- !, inline_not(A0, A).
+inline_not(not(A0), \+ A) :- !, inline_not(A0, A).
+inline_not(Q, Q).
 
 has_cut(Q) :- var(Q), !, fail.
 has_cut(!).

@@ -24,9 +24,118 @@ update(B, G, Mode, Formula, Deleted, Added, Achieved) :-
     delete_facts(Dels, B, Deleted, false, Changed0),
     add_facts(Adds, B, G, Added, Changed0, Changed),
     (   Changed == true,
-        G:'$goal'(_, _)
+        may_achieve(G, Adds)
     ->  blind_commitment(B, G, Achieved)
     ;   Achieved = []
+    ).
+
+%!  update_facts(+B, +G, +Listen, +Dels, +Adds) is det.
+%   As update/7 for a formula split when its rule was compiled (see compile_update/2):
+%   Dels and Adds are facts whose predicates the agent declared when it was loaded.
+
+update_facts(B, G, Listen, Dels, Adds) :-
+    must_be_ground(Adds),
+    delete_known(Dels, B, Listen, false, Changed0),
+    add_known(Adds, B, Listen, Changed0, Changed),
+    (   Changed == true,
+        may_achieve(G, Adds)
+    ->  blind_commitment(B, G, _)
+    ;   true
+    ).
+
+%!  insert_one(+B, +G, +Listen, +Fact, +Key, +K, +Firing) is semidet.
+%   insert/1 of one fact of a dynamic predicate Key (Name/Arity) the agent declared, by
+%   action K of Firing: as update/7; a fact that is not ground is a problem (the action
+%   is not enabled), told here rather than thrown.
+insert_one(B, G, Listen, Fact, Key, K, Firing) :-
+    (   ground(Fact)
+    ->  true
+    ;   format(string(Message), "insert: ~q is not ground (unbound variables)", [Fact]),
+        problem(action(Firing, K, ga_error(Message))),
+        fail
+    ),
+    (   clause(B:Fact, true)
+    ->  true
+    ;   assertz(B:Fact),
+        (   Listen == true -> tell(belief(added, Fact)) ; true ),
+        nb_getval(G, Watched),
+        (   Watched \== [],
+            ( Watched == any -> true ; memberchk(Key, Watched) )
+        ->  blind_commitment(B, G, _)
+        ;   true
+        )
+    ).
+
+%!  delete_one(+B, +G, +Listen, +Fact) is det.
+%   delete/1 of one fact of a dynamic predicate the agent declared: as update/7.
+delete_one(B, G, Listen, Fact) :-
+    (   ground(Fact)
+    ->  (   retract(B:Fact)
+        ->  (   Listen == true
+            ->  retract_count(B, Fact, 1, Copies),
+                tell_deleted(Copies, Fact)
+            ;   retractall(B:Fact)                  % the other copies, if any
+            ),
+            (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
+        ;   true
+        )
+    ;   findall(Fact, retract(B:Fact), Deleted),
+        (   Deleted == []
+        ->  true
+        ;   (   Listen == true -> tell_deleted(Deleted, Fact) ; true ),
+            (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
+        )
+    ).
+
+must_be_ground([]).
+must_be_ground([Fact|Facts]) :-
+    (   ground(Fact)
+    ->  must_be_ground(Facts)
+    ;   must_be_fact(Fact, "insert")
+    ).
+
+delete_known([], _, _, Changed, Changed).
+delete_known([Fact|Facts], B, Listen, Changed0, Changed) :-
+    (   ground(Fact)
+    ->  retract_count(B, Fact, 0, Deleted),
+        (   Deleted > 0
+        ->  Changed1 = true,
+            (   Listen == true -> tell_deleted(Deleted, Fact) ; true )
+        ;   Changed1 = Changed0
+        )
+    ;   findall(Fact, retract(B:Fact), Deleted),
+        (   Deleted \== []
+        ->  Changed1 = true,
+            (   Listen == true -> tell_deleted(Deleted, Fact) ; true )
+        ;   Changed1 = Changed0
+        )
+    ),
+    delete_known(Facts, B, Listen, Changed1, Changed).
+
+add_known([], _, _, Changed, Changed).
+add_known([Fact|Facts], B, Listen, Changed0, Changed) :-
+    (   catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
+    ->  Changed1 = Changed0
+    ;   assertz(B:Fact),
+        Changed1 = true,
+        (   Listen == true -> tell(belief(added, Fact)) ; true )
+    ),
+    add_known(Facts, B, Listen, Changed1, Changed).
+
+%   may_achieve(+G, +Adds): beliefs changed by adding (some of) Adds and deleting facts;
+%   a goal may now be achieved. Goal facts are positive and ground: a goal whose
+%   predicates are plain beliefs (facts only, see watch_key/3) can only be achieved by
+%   adding one of its facts; any other goal by any change. The global variable named
+%   after G holds what the goals watch (see watch/1).
+may_achieve(G, Adds) :-
+    nb_getval(G, Watched),
+    (   Watched == any
+    ->  true
+    ;   Watched \== [],
+        member(Fact, Adds),
+        functor(Fact, Name, Arity),
+        memberchk(Name/Arity, Watched)
+    ->  true
     ).
 
 %   split_formula(+Formula, +Mode, -Adds, ?AddsTail, -Dels, ?DelsTail): the facts to add and
@@ -84,19 +193,20 @@ add_fact(B, G, Fact, Added) :-
     ->  Added = 0
     ;   assertz(B:Fact),
         ensure_dynamic(G, Fact),
+        (   Fact = (_ :- _)                 % a rule: goals may now follow from anything
+        ->  assertz(G:'$rule_inserted'),
+            watch(G)
+        ;   true
+        ),
         Added = 1
     ).
 
+%   A predicate not defined in B fails to retract, as one without clauses does.
 delete_fact(B, Fact, Deleted) :-
     must_be_callable(Fact),
     (   ground(Fact)
-    ->  (   current_predicate(_, B:Fact)
-        ->  retract_count(B, Fact, 0, Deleted)
-        ;   Deleted = 0
-        )
-    ;   current_predicate(_, B:Fact)
-    ->  findall(Fact, retract(B:Fact), Deleted)
-    ;   Deleted = []
+    ->  retract_count(B, Fact, 0, Deleted)
+    ;   findall(Fact, retract(B:Fact), Deleted)
     ).
 
 %   retract_count(+B, +Fact, +N0, -N): retracts every copy of the ground Fact.
@@ -132,56 +242,119 @@ must_be_fact(Fact, Action) :-
 
 adopt(B, G, Formula, Result) :-
     conjuncts(Formula, Facts),
-    forall(member(F, Facts), must_be_fact(F, "adopt")),
+    must_be_facts(Facts, "adopt"),
     declare_goal(B, G, Facts),
     (   Facts == []
     ->  Result = believed
-    ;   \+ \+ all_believed(B, Facts)
+    ;   \+ \+ all_believed(Facts, B)
     ->  Result = believed
     ;   G:'$top'(Base),
-        msort(Facts, Sorted),
-        G:'$goal'(Base, Id),
-        goal_facts(G, Id, Existing),
-        msort(Existing, Sorted)
-    ->  Result = exists
-    ;   G:'$top'(Base),
-        add_goal(G, Base, Facts),
-        Result = adopted
+        msort(Facts, Key),
+        (   G:'$goal'(Base, _, Key)
+        ->  Result = exists
+        ;   add_goal(B, G, Base, Facts, Key),
+            Result = adopted
+        )
     ).
 
-all_believed(B, Facts) :-
-    forall(member(F, Facts), B:F).
+must_be_facts([], _).
+must_be_facts([Fact|Facts], Action) :-
+    must_be_fact(Fact, Action),
+    must_be_facts(Facts, Action).
 
-add_goal(G, Base, Facts) :-
-    flag('$ga_goal_id', Id, Id + 1),
-    forall(member(F, Facts), assertz(G:'$gf'(Id, F))),
-    assertz(G:'$goal'(Base, Id)).
+all_believed([], _).
+all_believed([Fact|Facts], B) :-
+    B:Fact,
+    all_believed(Facts, B).
+
+%   add_goal(+B, +G, +Base, +Facts, +Key): a new goal in goal base Base: '$goal'(Base, Id,
+%   Key), Key its facts sorted (an equal goal is found at once), and '$gf'(Id, Fact,
+%   WatchKey) per fact (see watch/1).
+add_goal(B, G, Base, Facts, Key) :-
+    nb_getval('$ga_goal_id', Id),           % (flag/3 takes a mutex: dearer)
+    Next is Id + 1,
+    nb_setval('$ga_goal_id', Next),
+    add_goal_facts(Facts, Id, B, G),
+    assertz(G:'$goal'(Base, Id, Key)),
+    watch(G).
+
+add_goal_facts([], _, _, _).
+add_goal_facts([Fact|Facts], Id, B, G) :-
+    watch_key(B, Fact, WatchKey),
+    assertz(G:'$gf'(Id, Fact, WatchKey)),
+    add_goal_facts(Facts, Id, B, G).
+
+%   watch(+G): the global variable named after G gets what G's goals watch (see
+%   may_achieve/2): any, or the sorted list of the plain belief predicates of their facts
+%   ([] when there are none). A rule inserted as a belief makes it any for good.
+watch(G) :-
+    findall(Key, G:'$gf'(_, _, Key), Keys),
+    sort(Keys, Set),
+    (   ( memberchk(any, Set) ; G:'$rule_inserted' )
+    ->  Watched = any
+    ;   Watched = Set
+    ),
+    nb_setval(G, Watched).
+
+%   watch_key(+B, +Fact, -Key): what can make the goal fact Fact believed. Name/Arity for
+%   a plain belief (its predicate has only facts in B and no knowledge clauses): only
+%   adding such a fact; any: anything (knowledge, belief rules, built-ins, other modules).
+%   Kept per predicate in '$ga_wk'/2 (a rule inserted later is seen by watch/1).
+watch_key(B, Fact, Key) :-
+    functor(Fact, Name, Arity),
+    (   B:'$ga_wk'(Name/Arity, Known)       % known once: dynamic or not, knowledge or not
+    ->  Key = Known
+    ;   plain_key(B, Name, Arity, Key),
+        assertz(B:'$ga_wk'(Name/Arity, Key))
+    ).
+
+plain_key(B, Name, Arity, Key) :-
+    functor(Head, Name, Arity),
+    (   \+ B:'$kpred'(Name/Arity),
+        (   predicate_property(B:Head, dynamic)
+        ->  \+ ( clause(B:Head, Body), Body \== true ),
+            \+ predicate_property(B:Head, imported_from(_))
+        ;   \+ predicate_property(B:Head, defined)
+        )
+    ->  Key = Name/Arity
+    ;   Key = any
+    ).
 
 goal_facts(G, Id, Facts) :-
-    findall(F, G:'$gf'(Id, F), Facts).
+    findall(F, G:'$gf'(Id, F, _), Facts).
 
 remove_goal(G, Id, Facts) :-
     goal_facts(G, Id, Facts),
-    retractall(G:'$gf'(Id, _)),
-    retractall(G:'$goal'(_, Id)).
+    retractall(G:'$gf'(Id, _, _)),
+    retractall(G:'$goal'(_, Id, _)),
+    watch(G).
 
 %!  drop(+B, +G, +Formula, -Removed) is det.
 %   Removes every goal of the top goal base from which Formula follows.
 
 drop(B, G, Formula, Removed) :-
-    declare(B, G, [Formula]),
+    (   callable(Formula),
+        functor(Formula, Name, Arity),
+        G:'$fwd'(Name/Arity)                % a goal predicate: declared already
+    ->  true
+    ;   declare(B, G, [Formula])
+    ),
     G:'$top'(Base),
-    findall(Id, ( G:'$goal'(Base, Id),
-                  \+ \+ ( b_setval('$ga_g', Id), G:Formula ) ), Ids),
+    findall(Id, entails(G, Base, Formula, Id), Ids),
     maplist(remove_goal(G), Ids, Removed).
+
+%   entails(+G, +Base, +Formula, -Id): Formula follows from goal Id of Base (and knowledge).
+entails(G, Base, Formula, Id) :-
+    G:'$goal'(Base, Id, _),
+    \+ \+ ( b_setval('$ga_g', Id), G:Formula ).
 
 %!  blind_commitment(+B, +G, -Removed) is det.
 %   Removes every goal (all goal bases) whose facts are all believed.
 
 blind_commitment(B, G, Removed) :-
-    (   G:'$goal'(_, Id),
+    (   G:'$goal'(_, Id, _),
         achieved(B, G, Id)
-    ->  findall(Id1, ( G:'$goal'(_, Id1), achieved(B, G, Id1) ), Ids),
+    ->  findall(Id1, achieved_goal(B, G, Id1), Ids),
         maplist(remove_goal(G), Ids, Removed),
         (   listening
         ->  forall(member(Goal, Removed), tell(goal(achieved, Goal)))
@@ -206,12 +379,16 @@ check_goals(B, G, Removed) :-
     ).
 
 achieved(B, G, Id) :-
-    \+ ( G:'$gf'(Id, Fact), \+ B:Fact ).
+    \+ ( G:'$gf'(Id, Fact, _), \+ B:Fact ).
+
+achieved_goal(B, G, Id) :-
+    G:'$goal'(_, Id, _),
+    achieved(B, G, Id).
 
 %!  goals(+G, -Goals) is det.
 goals(G, Goals) :-
     G:'$top'(Base),
-    findall(Facts, ( G:'$goal'(Base, Id), goal_facts(G, Id, Facts) ), Goals).
+    findall(Facts, ( G:'$goal'(Base, Id, _), goal_facts(G, Id, Facts) ), Goals).
 
 %!  push(+B, +G, +Goals) is det.
 push(B, G, Goals) :-
@@ -221,7 +398,7 @@ push(B, G, Goals) :-
     retract(G:'$top'(Base0)),
     Base is Base0 + 1,
     assertz(G:'$top'(Base)),
-    forall(member(Facts, FactLists), add_goal(G, Base, Facts)),
+    forall(member(Facts, FactLists), ( msort(Facts, Key), add_goal(B, G, Base, Facts, Key) )),
     recheck(B).
 
 conjuncts_or_list(Goal, Facts) :-
@@ -234,7 +411,7 @@ conjuncts_or_list(Goal, Facts) :-
 pop(G, Goals) :-
     G:'$top'(Base),
     (   Base > 0
-    ->  findall(Id, G:'$goal'(Base, Id), Ids),
+    ->  findall(Id, G:'$goal'(Base, Id, _), Ids),
         maplist(remove_goal(G), Ids, Goals),
         retract(G:'$top'(Base)),
         Base1 is Base - 1,

@@ -3,9 +3,11 @@
 		 *******************************/
 
 /*  The one rule interpreter: every rule of every agent runs here, whether or not someone
-    watches. Python compiles each rule once into a clause of module ga_rules (shared by all
-    agents that read the rule alike, see compile_rule/6) and each list of rules (a module,
-    a nested block) into a pass (compile_pass/4); run/8 runs module passes in one call.
+    watches. Each rule is compiled once into clauses of module ga_rules (shared by all
+    agents that read it alike, see compile_rule/6) that do what GOAL says a rule does, with
+    the actions of its combo written out; each list of rules (a module, a nested block)
+    into a pass (compile_pass/4); run/5 runs the passes of a cycle in one call. The
+    clauses call the action predicates below, so each action's semantics is written once.
 
     What needs Python -- the environment, print/log output, messages, module calls, the
     agent's random order of rules, warnings -- is asked for through the foreign predicate
@@ -14,36 +16,45 @@
     their instantiations, firings, refused actions, belief and goal changes. The same code
     runs either way; listening only adds the telling.
 
-    Ctx = ctx(B, G, Env, Journal): the agent's belief and goal modules, whether it has an
-    environment (its user actions go there unless @int), and the head of the call's
-    journal: per completed firing f(RuleId, Values, Done, Terms) in order, Values being the
-    bindings the rule's actions see (as listed when it was compiled), Done the number of
-    actions performed, Terms the closed forms of the user actions whose arguments only
-    their precondition binds. Python reads the journal only when someone asks what fired.
+    Ctx = ctx(B, G, Env, Listen, Journal): the agent's belief and goal modules, whether it
+    has an environment (its user actions go there unless @int), whether it has listeners,
+    and the head of the call's journal: per completed firing f(RuleId, Values, Done, Terms)
+    in order, Values being the bindings the rule's actions see (as listed when it was
+    compiled), Done the number of actions performed, Terms the closed forms of the user
+    actions whose arguments only their precondition binds. Python reads the journal only
+    when someone asks what fired.
 */
 
-%!  run(+B, +Env, +Listen, +Passes, -Total, -Last, -Recheck, -Journal) is det.
-%   Runs Passes, a list of p(Pass, Given) (a compiled pass and the values of its given
-%   variables), in turn; a module that performs exit-module ends only its own pass.
-%   Total: the actions performed; Last = s(Status, Actions) for the last pass (Status
-%   fired, none or exit); Recheck: true when goals still need a full blind commitment
-%   check; Journal: see above.
+%!  run(+Call, -Outcome, -Journal) is det.
+%   Call = r(B, G, Env, Listen, CountLast, Passes): runs Passes, a list of p(Pass, Given)
+%   (a compiled pass and the values of its given variables), in turn for the agent whose
+%   belief and goal modules are B and G; a module that performs exit-module ends only its own pass. Env:
+%   true when the agent has an environment; Listen: true when it has listeners;
+%   CountLast: true to count the actions of the last pass. Outcome, one integer (one
+%   number crosses to Python faster than several terms): Total << 32 + LastActions << 2 +
+%   Exited << 1 + Recheck, Total being the actions performed, LastActions those of the
+%   last pass (0 unless asked), Exited 1 when the last pass performed exit-module,
+%   Recheck 1 when goals still need a full blind commitment check.
 
-run(B, Env, Listen, Passes, Total, Last, Recheck, Journal) :-
-    B:'$ga_gm'(G),
-    b_setval('$ga_listen', Listen),
-    Ctx = ctx(B, G, Env, Journal),
-    run_passes(Passes, Ctx, Journal, Last),
+run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
+    (   Listen == true -> b_setval('$ga_listen', true) ; true ),
+    Ctx = ctx(B, G, Env, Listen, Journal),
+    run_passes(Passes, Ctx, Journal, Status, Last),
     journal_actions(Journal, 0, Total),
-    nb_getval(B, Recheck).
+    (   CountLast == true -> journal_actions(Last, 0, LastActions) ; LastActions = 0 ),
+    (   nb_getval(B, true) -> Recheck = 1 ; Recheck = 0 ),
+    (   Status == exit -> Exited = 2 ; Exited = 0 ),
+    Outcome is Total << 32 + LastActions << 2 + Exited + Recheck.
 
-run_passes([p(Pass, Given)|Passes], Ctx, J0, Last) :-
-    call(ga_rules:Pass, Ctx, Given, J0, J1, Status),
+%   run_passes(+Passes, +Ctx, ?J0, -Status, -Last): Last is the last pass's part of the
+%   journal.
+run_passes([p(Pass, Given)|Passes], Ctx, J0, Status, Last) :-
+    call(ga_rules:Pass, Ctx, Given, J0, J1, Status0),
     (   Passes == []
     ->  J1 = [],
-        journal_actions(J0, 0, Actions),
-        Last = s(Status, Actions)
-    ;   run_passes(Passes, Ctx, J1, Last)
+        Last = J0,
+        Status = Status0
+    ;   run_passes(Passes, Ctx, J1, Status, Last)
     ).
 
 journal_actions([], N, N).
@@ -51,20 +62,42 @@ journal_actions([f(_, _, Done, _)|J], N0, N) :-
     N1 is N0 + Done,
     journal_actions(J, N1, N).
 
+		 /*******************************
+		 *            PASSES            *
+		 *******************************/
+
 %!  compile_pass(+Name, +Stop, +Random, +Rules) is det.
 %   Asserts ga_rules:Name(Ctx, Given, J0, J, Status) applying the compiled rules Rules
 %   (names, see compile_rule/6; all take the same given variables) in order, or in an
 %   order Python draws from the agent's random stream (Random = true), stopping after the
-%   first that fires when Stop = true. Status: fired, none, or exit (exit-module).
+%   first that fires when Stop = true. Status: fired, none, or exit (exit-module, which
+%   ends the pass). In order, the pass is one clause calling the rules in turn.
 
 compile_pass(Name, Stop, Random, Rules) :-
     Head =.. [Name, Ctx, Given, J0, J, Status],
-    assertz(ga_rules:(Head :- ga_kb:apply_pass(Stop, Random, Rules, Ctx, Given, J0, J,
-                                                Status))).
+    (   Random == true
+    ->  Body = ga_kb:apply_shuffled(Stop, Rules, Ctx, Given, J0, J, Status)
+    ;   Stop == true
+    ->  pass_until_fired(Rules, Ctx, Given, J0, J, Status, Body)
+    ;   pass_all(Rules, Ctx, Given, J0, J, Status, [], Body)
+    ),
+    assertz(ga_rules:(Head :- Body)).
 
-apply_pass(Stop, Random, Rules0, Ctx, Given, J0, J, Status) :-
-    (   Random == true,
-        Rules0 = [_, _|_]
+pass_until_fired([], _, _, J0, J, Status, (J = J0, Status = none)).
+pass_until_fired([Rule|Rules], Ctx, Given, J0, J, Status,
+                 (Call, ( Status1 == none -> Rest ; J = J1, Status = Status1 ))) :-
+    Call =.. [Rule, Ctx, Given, J0, J1, Status1],
+    pass_until_fired(Rules, Ctx, Given, J1, J, Status, Rest).
+
+pass_all([], _, _, J0, J, Status, Statuses,
+         (J = J0, ( memberchk(fired, Statuses) -> Status = fired ; Status = none ))).
+pass_all([Rule|Rules], Ctx, Given, J0, J, Status, Statuses,
+         (Call, ( Status1 == exit -> J = J1, Status = exit ; Rest ))) :-
+    Call =.. [Rule, Ctx, Given, J0, J1, Status1],
+    pass_all(Rules, Ctx, Given, J1, J, Status, [Status1|Statuses], Rest).
+
+apply_shuffled(Stop, Rules0, Ctx, Given, J0, J, Status) :-
+    (   Rules0 = [_, _|_]
     ->  length(Rules0, N),
         '$ga_py'(shuffle(N), Order),
         maplist(nth0_of(Rules0), Order, Rules)
@@ -90,6 +123,10 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
     ;   apply_rules(Rules, Stop, Ctx, Given, J1, J, Status0, Status)
     ).
 
+		 /*******************************
+		 *            RULES             *
+		 *******************************/
+
 %!  compile_rule(+B, +Name, +Id, +Kind, +Condition, +Text) is det.
 %   Text is '$rule'(Given, Values, Body), read with B's operators so that its parts share
 %   variables: Given, the list of the variables the rule is given (a module's parameters,
@@ -98,26 +135,32 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
 %   Condition = c(CondName, CondNames): the condition compiled in every agent as
 %   CondName/N (see compile/5) and its variables' names. Kind: if, forall or
 %   listall(Collected, List) (the names of the variable collected and of the list).
-%   Asserts ga_rules:Name(Ctx, Given, J0, J, Status) :- apply_rule(...).
 %
 %   Actions: insert(F), delete(F), adopt(F), drop(F); do(Action, Open) for a user action
 %   (Open = true: record its closed form in the journal); print(T), log(T);
 %   send(Once, Mood, Receiver, Content); module(Index, Args) (a call of the program's
 %   module Index); exit_module; sleep(Millis) (GOAL 6+, performed without waiting).
+%
+%   Asserts Name(Ctx, Given, J0, J, Status), which computes every instantiation of
+%   the condition first, in the state the rule starts in (GOAL's semantics; a Prolog error
+%   in the condition is a warning and the rule is not applicable; GOAL's random choice
+%   among an if rule's instantiations and its one-entry-per-answer listall belong there);
+%   and Name_fire, which tries them: an if rule (and listall) fires with the first one
+%   whose attempt succeeds, a forall rule with every one. An attempt performs the combo
+%   with one instantiation: its actions in order until one is not enabled (an action that raises
+%   an error is not enabled: a warning) or exit-module, blind commitment after each; the
+%   attempt fails when its first action is not enabled (or no rule of its block fired).
 
-compile_rule(B, Name, Id, Kind0, c(CondName, CondNames), Text) :-
+compile_rule(B, Name, Id, Kind, c(CondName, CondNames), Text) :-
     read_text(Text, B, '$rule'(Given, Values, Body), Bindings),
     maplist(named_var(Bindings), CondNames, CondVars),
     Cond =.. [CondName|CondVars],
-    (   Kind0 = listall(Collected, ListName)
-    ->  named_var(Bindings, Collected, CollectedVar, CondNames, CondVars),
-        named_var(Bindings, ListName, List),
-        Kind = listall(CollectedVar, List)
-    ;   Kind = Kind0
-    ),
-    Head =.. [Name, Ctx, Given, J0, J, Status],
-    assertz(ga_rules:(Head :- ga_kb:apply_rule(Kind, Id, Cond, Values, Body, Ctx, J0, J,
-                                                Status))).
+    atom_concat(Name, '_fire', Fire),
+    rule_clause(Kind, Bindings, CondNames, CondVars, Id, Cond, Values, Given, Name, Fire,
+                Clause),
+    attempt_clause(Body, B, Id, Values, Attempt),
+    fire_clauses(Kind, Fire, Attempt, FireClauses),
+    forall(member(C, [Clause|FireClauses]), assertz(ga_rules:C)).
 
 %   named_var(+Bindings, +Name, -Var): the variable called Name in the rule text (a fresh
 %   one when the text does not name it, e.g. a condition variable the body never uses).
@@ -127,145 +170,203 @@ named_var(Bindings, Name, Var) :-
     ;   true
     ).
 
-named_var(Bindings, Name, Var, CondNames, CondVars) :-
-    (   nth0(I, CondNames, Name)
-    ->  nth0(I, CondVars, Var)
-    ;   named_var(Bindings, Name, Var)
-    ).
-
-%!  apply_rule(+Kind, +Id, +Cond, +Values, +Body, +Ctx, ?J0, ?J, -Status) is det.
-%   Every instantiation of the condition is computed first, in the state the rule starts
-%   in (GOAL's semantics); an if rule (and listall) then fires with the first one whose
-%   first action is enabled (or whose nested block fires), a forall rule with every one.
-%   A Prolog error in the condition is a warning and the rule is not applicable.
-
-apply_rule(Kind, Id, Cond, Values, Body, Ctx, J0, J, Status) :-
-    arg(1, Ctx, B),
-    catch(instantiations(Kind, B, Cond, Values, Body, Instances), E,
-          ( problem(condition(Id, E)), Instances = [] )),
-    (   listening
-    ->  pairs_keys(Instances, Tried),
-        tell(tried(Id, Tried))
-    ;   true
-    ),
+rule_clause(listall(Collected, ListName), Bindings, CondNames, CondVars, Id, Cond, Values,
+            Given, Name, Fire, (Head :- Body)) :- !,
+    (   nth0(I, CondNames, Collected) -> nth0(I, CondVars, CollectedVar) ; true ),
+    named_var(Bindings, ListName, List),
+    Head =.. [Name, Ctx, Given, J0, J, Status],
+    instances_code(CollectedVar, B:Cond, Id, List, Ok, Collect),
+    Body = ( Ctx = ctx(B, _, _, Listen, _),
+             Collect,
+             ( Ok == true -> Instances = [Values] ; Instances = [] ),
+             ( Listen == true -> ga_kb:tell(tried(Id, Instances)) ; true ),
+             FireCall ),
+    FireCall =.. [Fire, Instances, Ctx, J0, J, Status].
+rule_clause(Kind, _, _, _, Id, Cond, Values, Given, Name, Fire, (Head :- Body)) :-
+    Head =.. [Name, Ctx, Given, J0, J, Status],
+    instances_code(Values, B:Cond, Id, Instances, _, Collect),
+    Body = ( Ctx = ctx(B, _, _, Listen, _),
+             Collect,
+             ( Listen == true -> ga_kb:tell(tried(Id, Instances)) ; true ),
+             FireCall ),
     (   Kind == forall
-    ->  fire_each(Instances, Id, Ctx, J0, J, none, Status)
-    ;   fire_first(Instances, Id, Ctx, J0, J, Status)
+    ->  FireCall =.. [Fire, Instances, Ctx, J0, J, none, Status]
+    ;   FireCall =.. [Fire, Instances, Ctx, J0, J, Status]
     ).
 
-%   Each instantiation comes with its own copy of the body (fresh variables for what the
-%   condition does not bind). GOAL's random choice among an if rule's instantiations and
-%   its one-entry-per-answer listall belong here.
-instantiations(listall(Collected, List), B, Cond, Values, Body, [Values-Body]) :- !,
-    findall(Collected, B:Cond, List).
-instantiations(_, B, Cond, Values, Body, Instances) :-
-    findall(Values-Body, B:Cond, Instances).
+%   instances_code(+Template, +Goal, +Id, -List, -Ok, -Code): Code collects Template for
+%   every solution of Goal into List as findall/3 does; a Prolog error in Goal is told as
+%   a problem of rule Id, and List = [] and Ok = false then (else Ok = true). This is
+%   findall/3's own loop (boot/bags.pl of SWI-Prolog 9) with one catch/3 instead of
+%   findall's setup_call_cleanup/3 inside our catch/3, which cost a quarter of a rule's
+%   overhead; the bag is freed on both ways out.
+instances_code(Template, Goal, Id, List, Ok,
+               ( '$new_findall_bag',
+                 catch(ga_kb:collect(Template, Goal, List0), E, true),
+                 '$destroy_findall_bag',
+                 (   var(E)
+                 ->  List = List0, Ok = true
+                 ;   ga_kb:problem(condition(Id, E)), List = [], Ok = false
+                 ) )).
 
-fire_first([], _, _, J, J, none).
-fire_first([Values-Body|Instances], Id, Ctx, J0, J, Status) :-
-    (   attempt(Body, Id, Values, Ctx, J0, J1, Status1)
-    ->  J = J1,
-        Status = Status1
-    ;   fire_first(Instances, Id, Ctx, J0, J, Status)
+%   collect(+Template, +Goal, -List): the solutions into the current findall bag.
+collect(Template, Goal, List) :-
+    (   call(Goal),
+        '$add_findall_bag'(Template),
+        fail
+    ;   '$collect_findall_bag'(List, [])
     ).
 
-fire_each([], _, _, J, J, Status, Status).
-fire_each([Values-Body|Instances], Id, Ctx, J0, J, Status0, Status) :-
-    (   attempt(Body, Id, Values, Ctx, J0, J1, Status1)
-    ->  (   Status1 == exit
-        ->  J = J1,
-            Status = exit
-        ;   fire_each(Instances, Id, Ctx, J1, J, fired, Status)
+%   fire_clauses(+Kind, +Fire, +Attempt, -Clauses): Fire over the instantiations, each
+%   attempt (Attempt = (Head :- Body), see attempt_clause/5) written out in the clause.
+fire_clauses(forall, Fire, (AttemptHead :- Try), [Last, Next]) :- !,
+    AttemptHead =.. [_, Values, Ctx, J0, J1, Status1],
+    Last =.. [Fire, [], _, J, J, Status, Status],
+    Head =.. [Fire, [Values|Instances], Ctx, J0, J, Status0, Status],
+    Each =.. [Fire, Instances, Ctx, J1, J, fired, Status],
+    Skip =.. [Fire, Instances, Ctx, J0, J, Status0, Status],
+    Next = (Head :- ( Try -> ( Status1 == exit -> J = J1, Status = exit ; Each ) ; Skip )).
+fire_clauses(_, Fire, (AttemptHead :- Try), [Last, Next]) :-
+    AttemptHead =.. [_, Values, Ctx, J0, J1, Status1],
+    Last =.. [Fire, [], _, J, J, none],
+    Head =.. [Fire, [Values|Instances], Ctx, J0, J, Status],
+    Skip =.. [Fire, Instances, Ctx, J0, J, Status],
+    Next = (Head :- ( Try -> J = J1, Status = Status1 ; Skip )).
+
+%   attempt_clause(+Body, +CB, +Id, +Values, -Clause): attempt(Values, Ctx, J0, J, Status)
+%   :- the attempt (written out in the fire clauses); CB: the module of the agent whose
+%   program is being compiled (which of its predicates are dynamic).
+attempt_clause(rules(Pass, InnerGiven), _, Id, Values, (Head :- Body)) :- !,
+    Head = attempt(Values, Ctx, J0, J, Status),
+    Inner =.. [Pass, Ctx, InnerGiven, J0, J1, Status],
+    Body = ( Inner,
+             (   Status == fired
+             ->  J1 = [f(Id, Values, 0, [])|J],
+                 ( arg(4, Ctx, true) -> ga_kb:tell(fired(Id, Values, 0, [])) ; true )
+             ;   Status == exit
+             ->  J = J1
+             ) ).
+attempt_clause(actions(Actions), CB, Id, Values, (Head :- Body)) :-
+    Head = attempt(Values, Ctx, J0, J, Status),
+    Vars = v(Ctx, B, G, Listen, CB),
+    perform_code(Actions, 0, f(Id, Values), Vars, Done, Terms, Status, Perform),
+    Body = ( Ctx = ctx(B, G, _, Listen, _),
+             Perform,
+             Done > 0,
+             J0 = [f(Id, Values, Done, Terms)|J],
+             ( Listen == true -> ga_kb:tell(fired(Id, Values, Done, Terms)) ; true ) ).
+
+%   perform_code(+Actions, +K, +Firing, +Vars, -Done, -Terms, -Status, -Code): the code
+%   performing Actions from the K-th on.
+perform_code([], K, _, _, Done, Terms, Status, (Done = K, Terms = [], Status = fired)).
+perform_code([Action|Actions], K, Firing, Vars, Done, Terms, Status, Code) :-
+    action_goal(Action, K, Firing, Vars, Goal0, Outcome),
+    (   Goal0 = safe(Goal)                  % reports its own problems, never throws
+    ->  Call = Goal
+    ;   Call = catch(Goal0, E, ga_kb:action_error(E, K, Firing))
+    ),
+    K1 is K + 1,
+    (   Outcome == exit
+    ->  Then = ( Done = K1, Terms = [], Status = exit )
+    ;   perform_code(Actions, K1, Firing, Vars, Done, Terms1, Status, Rest),
+        (   Outcome = term(Term)
+        ->  Record = ( Terms = [Term|Terms1] )
+        ;   Record = ( Terms = Terms1 )
+        ),
+        (   Outcome == called
+        ->  Then = ( Record, Rest )
+        ;   arg(2, Vars, B),
+            arg(3, Vars, G),
+            Then = ( ( nb_getval(B, true) -> ga_kb:check_goals(B, G, _) ; true ),
+                     Record, Rest )
         )
-    ;   fire_each(Instances, Id, Ctx, J0, J, Status0, Status)
-    ).
+    ),
+    Code = (   Call
+           ->  Then
+           ;   Done = K, Terms = [], Status = fired
+           ).
 
-%   attempt(+Body, +Id, +Values, +Ctx, ?J0, ?J, -Status): the rule fires with this
-%   instantiation (Status fired or exit) or the attempt fails: its first action is not
-%   enabled, or no rule of its nested block fired. A failed attempt changed nothing.
-attempt(actions(Actions), Id, Values, Ctx, J0, J, Status) :-
-    perform(Actions, 0, f(Id, Values), Ctx, Done, Terms, Status),
-    Done > 0,
-    J0 = [f(Id, Values, Done, Terms)|J],
-    (   listening
-    ->  tell(fired(Id, Values, Done, Terms))
-    ;   true
-    ).
-attempt(rules(Pass, Given), Id, Values, Ctx, J0, J, Status) :-
-    call(ga_rules:Pass, Ctx, Given, J0, J1, Status),
-    (   Status == fired
-    ->  J1 = [f(Id, Values, 0, [])|J],
-        (   listening
-        ->  tell(fired(Id, Values, 0, []))
-        ;   true
-        )
-    ;   Status == exit
-    ->  J = J1
-    ).
+%   action_goal(+Action, +K, +Firing, +Vars, -Goal, -Outcome): the goal that performs
+%   Action (safe(Goal): one that reports its own problems, so needs no catch/3); Outcome:
+%   done, term(T) (the closed action to record), called (a module call: its own blind
+%   commitment) or exit. After an action, updates have checked what they
+%   changed (update/7 and the like); the first action after new percepts, messages or
+%   goal bases checks every goal (the recheck flag, see recheck/1).
+action_goal(insert(F), K, Firing, v(_, B, G, Listen, CB), Goal, done) :-
+    update_goal(insert, F, K, Firing, B, G, Listen, CB, Goal).
+action_goal(delete(F), K, Firing, v(_, B, G, Listen, CB), Goal, done) :-
+    update_goal(delete, F, K, Firing, B, G, Listen, CB, Goal).
+action_goal(adopt(F), K, Firing, v(_, B, G, Listen, _),
+            ga_kb:adopt_action(B, G, Listen, F, K, Firing), done).
+action_goal(drop(F), _, _, v(_, B, G, Listen, _), ga_kb:drop_action(B, G, Listen, F), done).
+action_goal(do(Action, Open), K, Firing, v(Ctx, _, _, _, _),
+            ga_kb:user_action(Action, K, Firing, Ctx, Term), Outcome) :-
+    (   Open == true -> Outcome = term(Term) ; Outcome = done ).
+action_goal(print(T), _, _, _, ga_kb:output(print, T), done).
+action_goal(log(T), _, _, _, ga_kb:output(log, T), done).
+action_goal(send(Once, Mood, Receiver, Content), K, Firing, _,
+            ga_kb:'$ga_py'(send(Firing, K, Once, Mood, Receiver, Content), true), done).
+action_goal(module(Index, Args), K, Firing, v(Ctx, _, _, _, _),
+            ga_kb:module_call(Ctx, K, Firing, Index, Args), called).
+action_goal(sleep(_), _, _, _, true, done).   % agents take turns: nothing to wait for
+action_goal(exit_module, _, _, _, true, exit).
 
-%   perform(+Actions, +K, +Firing, +Ctx, -Done, -Terms, -Status): the actions in order
-%   from the K-th until one is not enabled (an action that raises an error is not
-%   enabled: a warning) or exit-module; blind commitment after each (a module call does
-%   its own). Done: how many were performed.
-perform([], Done, _, _, Done, [], fired).
-perform([Action|Actions], K, Firing, Ctx, Done, Terms, Status) :-
-    (   catch(action(Action, K, Firing, Ctx, Outcome), E, action_error(E, K, Firing))
-    ->  K1 is K + 1,
-        (   Outcome == exit
-        ->  Done = K1, Terms = [], Status = exit
-        ;   Outcome == called
-        ->  perform(Actions, K1, Firing, Ctx, Done, Terms, Status)
-        ;   Outcome = term(Term)
-        ->  Terms = [Term|Terms1],
-            after_action(Ctx),
-            perform(Actions, K1, Firing, Ctx, Done, Terms1, Status)
-        ;   after_action(Ctx),
-            perform(Actions, K1, Firing, Ctx, Done, Terms, Status)
-        )
-    ;   Done = K, Terms = [], Status = fired
+%   update_goal(+Mode, +Formula, +K, +Firing, +B, +G, +Listen, +CB, -Goal): insert or
+%   delete of a formula whose literals are facts (no variable literal, no control
+%   construct, no rule) split at compile time into the facts to delete and to add (see
+%   insert_one/7, delete_one/4, update_facts/5); one fact of a predicate dynamic in the
+%   program's agent (CB) is safe: it cannot raise an error. Any other formula is split
+%   when performed (update/7).
+update_goal(Mode, Formula, K, Firing, B, G, Listen, CB, Goal) :-
+    catch(split_formula(Formula, Mode, Adds, [], Dels, []), _, fail),
+    forall(( member(Fact, Adds) ; member(Fact, Dels) ), known_fact(Fact)),
+    !,
+    (   Dels == [], Adds = [Fact], dynamic_in(CB, Fact)
+    ->  functor(Fact, Name, Arity),
+        Goal = safe(ga_kb:insert_one(B, G, Listen, Fact, Name/Arity, K, Firing))
+    ;   Adds == [], Dels = [Fact], dynamic_in(CB, Fact)
+    ->  Goal = safe(ga_kb:delete_one(B, G, Listen, Fact))
+    ;   Goal = ga_kb:update_facts(B, G, Listen, Dels, Adds)
     ).
+update_goal(Mode, Formula, _, _, B, G, _, _, ga_kb:update(B, G, Mode, Formula, _, _, _)).
 
-action(insert(F), _, _, ctx(B, G, _, _), done) :-
-    update(B, G, insert, F, _, _, _).
-action(delete(F), _, _, ctx(B, G, _, _), done) :-
-    update(B, G, delete, F, _, _, _).
-action(adopt(F), K, Firing, ctx(B, G, _, _), done) :-
+dynamic_in(Module, Fact) :-
+    functor(Fact, Name, Arity),
+    functor(Head, Name, Arity),
+    predicate_property(Module:Head, dynamic),
+    \+ predicate_property(Module:Head, imported_from(_)).
+
+known_fact(Fact) :-
+    nonvar(Fact),
+    fact_like(Fact),
+    Fact \= (_ :- _).
+
+		 /*******************************
+		 *            ACTIONS           *
+		 *******************************/
+
+adopt_action(B, G, Listen, F, K, Firing) :-
     adopt(B, G, F, Result),
     (   Result == adopted
-    ->  (   listening -> tell(goal(adopted, F)) ; true )
-    ;   (   listening -> tell(refused(Firing, K, Result)) ; true ),
+    ->  (   Listen == true -> tell(goal(adopted, F)) ; true )
+    ;   (   Listen == true -> tell(refused(Firing, K, Result)) ; true ),
         fail
     ).
-action(drop(F), _, _, ctx(B, G, _, _), done) :-
+
+drop_action(B, G, Listen, F) :-
     drop(B, G, F, Removed),
-    (   listening -> forall(member(Goal, Removed), tell(goal(dropped, Goal))) ; true ).
-action(do(Action, Open), K, Firing, Ctx, Outcome) :-
-    user_action(Action, K, Firing, Ctx, Term),
-    (   Open == true -> Outcome = term(Term) ; Outcome = done ).
-action(print(T), _, _, _, done) :-
-    plain_text(T, Text),
-    '$ga_py'(print(Text), _).
-action(log(T), _, _, _, done) :-
-    plain_text(T, Text),
-    '$ga_py'(log(Text), _).
-action(send(Once, Mood, Receiver, Content), K, Firing, _, done) :-
-    '$ga_py'(send(Firing, K, Once, Mood, Receiver, Content), true).
-action(module(Index, Args), K, Firing, Ctx, called) :-
-    journal_position(Ctx, K, Entries, Position),
-    '$ga_py'(call(Firing, K, Index, Args, Entries, Position), true).
-action(exit_module, _, _, _, exit).
-action(sleep(_), _, _, _, done).          % agents take turns: nothing to wait for
+    (   Listen == true -> forall(member(Goal, Removed), tell(goal(dropped, Goal))) ; true ).
 
 %   A user action: the first actionspec whose head unifies and whose precondition holds
 %   (see declare_actions/2); its precondition's bindings do not flow into the rule. It
 %   must then be closed. With an environment (and not @int) Python sends it there and the
 %   postcondition follows only if it was done; a failing postcondition is then a warning
 %   (the environment did act). Otherwise the postcondition alone is the action.
-user_action(Action0, K, Firing, ctx(B, G, Env, _), Action) :-
+user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     (   ground(Action0) -> Action = Action0 ; copy_term(Action0, Action) ),
     (   B:'$ga_pre'(Action, Post, _, Internal)
     ->  true
-    ;   (   listening -> tell(refused(Firing, K, precondition)) ; true ),
+    ;   (   Listen == true -> tell(refused(Firing, K, precondition)) ; true ),
         fail
     ),
     (   ground(Action) -> true ; throw(ga_open(Action)) ),
@@ -280,12 +381,18 @@ user_action(Action0, K, Firing, ctx(B, G, Env, _), Action) :-
     ;   update(B, G, insert, Post, _, _, _)
     ).
 
-%   print/1 and log/1 text: atoms and strings as they are, other terms as writeq shows them.
-plain_text(T, Text) :-
+%   print/1 and log/1: atoms and strings as they are, other terms as writeq shows them.
+output(Kind, T) :-
     (   ( atom(T) ; string(T) )
     ->  atom_string(T, Text)
     ;   write_text(T, true, Text)
-    ).
+    ),
+    Request =.. [Kind, Text],
+    '$ga_py'(Request, _).
+
+module_call(Ctx, K, Firing, Index, Args) :-
+    journal_position(Ctx, K, Entries, Position),
+    '$ga_py'(call(Firing, K, Index, Args, Entries, Position), true).
 
 action_error('$ga_python', _, _) :- !,
     throw('$ga_python').                  % a Python exception on its way out
@@ -296,19 +403,10 @@ action_error(E, K, Firing) :-
     problem(action(Firing, K, E)),
     fail.
 
-%   Blind commitment after an action: insert/delete checked what they changed (update/7);
-%   the first action after new percepts, messages or goal bases checks every goal.
-after_action(ctx(B, G, _, _)) :-
-    (   nb_getval(B, true)
-    ->  nb_setval(B, false),
-        blind_commitment(B, G, _)
-    ;   true
-    ).
-
 %   journal_position(+Ctx, +K, -Entries, -Position): how many firings the call's journal
 %   holds so far, and the place of the current action (the K-th of the firing in
 %   progress) in the sequence of actions performed in the call.
-journal_position(ctx(_, _, _, Journal), K, Entries, Position) :-
+journal_position(ctx(_, _, _, _, Journal), K, Entries, Position) :-
     journal_position(Journal, 0, Entries, K, Position).
 
 journal_position(J, Entries, Entries, Position, Position) :-
@@ -321,16 +419,19 @@ journal_position([f(_, _, Done, _)|J], N0, N, P0, P) :-
 %!  declare_actions(+B, +Specs) is det.
 %   Specs: list of spec(Index, Internal, Text), Text being '$spec'(Action, Pre, Post) for
 %   one actionspec (Index: its place in the program). Asserts, in order,
-%   B:'$ga_pre'(Action, Post, Index, Internal) :- Pre, so that the first clause whose Action
-%   unifies and whose Pre holds gives the action's postcondition. A Prolog error in Pre is
+%   B:'$ga_pre'(Action, Post, Index, Internal) :- Pre (Pre compiled as its own clause
+%   '$ga_pre_body'/3), so that the first clause whose Action unifies and whose Pre holds
+%   gives the action's postcondition. A Prolog error in Pre is
 %   a warning and that spec does not apply; so does a Pre that fails, told to listeners.
 
 declare_actions(B, Specs) :-
     forall(member(spec(Index, Internal, Text), Specs),
            ( read_text(Text, B, '$spec'(Action, Pre, Post), _),
              local_cut(Pre, Body),
+             assertz(B:('$ga_pre_body'(Index, Action, Post) :- Body)),
              assertz(B:('$ga_pre'(Action, Post, Index, Internal) :-
-                           ga_kb:precondition(B:Body, Index, Action))) )).
+                           ga_kb:precondition(B:'$ga_pre_body'(Index, Action, Post), Index,
+                                              Action))) )).
 
 precondition(Body, Index, Action) :-
     (   catch(Body, E, ( problem(precondition(Index, E)), fail ))
@@ -344,7 +445,8 @@ precondition(Body, Index, Action) :-
 		 *      TELLING PYTHON          *
 		 *******************************/
 
-%   listening: the running agent has listeners (run/8 sets it for the call).
+%   listening: the running agent has listeners (run/5 sets it for the call; the rule
+%   clauses read it from their Ctx).
 listening :-
     b_getval('$ga_listen', true).
 

@@ -1,0 +1,274 @@
+"""Python <-> Prolog terms over the C interface (the values of ``goalagent.kb.terms``): the
+base of :class:`~goalagent.kb.engine.Engine`, kept apart so that each file has one job.
+
+Written by hand rather than through pyswip's converters: these read and build terms with a
+few C calls each and keep atom and functor handles cached (pyswip's string API costs
+40-80 µs a call).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from goalagent.kb.clib import (
+    ATOM_BUF,
+    ATOM_REF,
+    CVT_INTEGER,
+    CVT_WRITEQ,
+    FLOAT_BUF,
+    FLOAT_REF,
+    INT64_MAX,
+    INT64_MIN,
+    INT_BUF,
+    INT_REF,
+    PL_ATOM,
+    PL_FLOAT,
+    PL_INTEGER,
+    PL_LIST_PAIR,
+    PL_NIL,
+    PL_RATIONAL,
+    PL_STRING,
+    PL_TERM,
+    PL_VARIABLE,
+    PUT_STRING,
+    REP_UTF8,
+    SIZE_BUF,
+    SIZE_REF,
+    TEXT_FLAGS,
+    PL_compare,
+    PL_cons_functor_v,
+    PL_cons_list,
+    PL_copy_term_ref,
+    PL_erase,
+    PL_get_arg,
+    PL_get_atom,
+    PL_get_float,
+    PL_get_int64,
+    PL_get_list,
+    PL_get_name_arity,
+    PL_new_atom,
+    PL_new_functor,
+    PL_new_term_ref,
+    PL_new_term_refs,
+    PL_put_atom,
+    PL_put_chars,
+    PL_put_float,
+    PL_put_int64,
+    PL_put_nil,
+    PL_put_term,
+    PL_put_term_from_chars,
+    PL_put_variable,
+    PL_recorded,
+    PL_register_atom,
+    PL_term_type,
+    text_of,
+)
+from goalagent.kb.errors import KBError
+from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+
+
+class Record:
+    """A Prolog term kept in Prolog (``PL_record``) until Python asks for its value: answers
+    that are usually never read cost no conversion."""
+
+    __slots__ = ("_engine", "_handle", "_value")
+
+    def __init__(self, engine: TermConversion, handle: int) -> None:
+        self._engine = engine
+        self._handle: int | None = handle
+        self._value: Term | None = None
+
+    def value(self) -> Term:
+        """The term as a Python value (converted once, then the record is freed)."""
+        if self._handle is not None:
+            self._value = self._engine._recorded(self._handle)
+            PL_erase(self._handle)
+            self._handle = None
+        return self._value
+
+    def __del__(self) -> None:
+        """Frees the record at the engine's next call (from the thread that runs Prolog)."""
+        if self._handle is not None:
+            self._engine._dead_records.append(self._handle)
+
+
+class Kept:
+    """A Prolog term recorded once (``PL_record``) and put into calls without converting it
+    again: the same input of many calls (e.g. the module passes of a cycle)."""
+
+    __slots__ = ("_engine", "handle")
+
+    def __init__(self, engine: TermConversion, handle: int) -> None:
+        self._engine = engine
+        self.handle = handle
+
+    def __del__(self) -> None:
+        """Frees the record at the engine's next call (from the thread that runs Prolog)."""
+        self._engine._dead_records.append(self.handle)
+
+
+ATOM_CACHE_MAX = 200_000  # cached atoms stay registered (never GC'd): keep this bounded
+VAR_MARK = "$ga_var"  # parse/2 marks named variables as '$ga_var'(Name)
+
+
+class TermConversion:
+    """Puts Python terms into term refs and gets them back, with atom and functor handles
+    cached; ``Kept`` terms (recorded once) are put by their record."""
+
+    def __init__(self) -> None:
+        self._atoms: dict[str, int] = {}
+        self._atom_names: dict[int, Atom] = {}
+        self._functors: dict[tuple[str, int], int] = {}
+        self._functor_names: dict[int, str] = {}  # atom handle -> plain str (Struct names)
+        self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
+        self._dead_records: list[int] = []  # records of collected Record objects, to erase
+        self._counter = 0
+
+    def _atom_handle(self, name: str) -> int:
+        """The atom_t for ``name`` (cached and kept registered while the cache has room)."""
+        handle = self._atoms.get(name)
+        if handle is None:
+            data = name.encode("utf-8")
+            handle = PL_new_atom(REP_UTF8, len(data), data)  # returned registered
+            if len(self._atoms) < ATOM_CACHE_MAX:
+                self._atoms[name] = handle
+                self._atom_names[handle] = Atom(name)
+            else:
+                self._transient_atoms.append(handle)
+        return handle
+
+    def _functor(self, name: str, arity: int) -> int:
+        """The functor_t for name/arity (functors are never garbage collected: cache them)."""
+        key = (name, arity)
+        handle = self._functors.get(key)
+        if handle is None:
+            handle = PL_new_functor(self._atom_handle(name), arity)
+            self._functors[key] = handle
+        return handle
+
+    def _put(self, t: int, value: Term, shared: dict[str, int]) -> None:
+        """Stores the Python term ``value`` in term ref ``t``; ``shared`` maps Var names."""
+        kind = type(value)
+        if kind is Atom:
+            handle = self._atoms.get(value)
+            PL_put_atom(t, handle if handle is not None else self._atom_handle(value))
+        elif kind is Struct:
+            arity = len(value.args)
+            if arity == 0:
+                data = format_term(value).encode("utf-8")
+                PL_put_term_from_chars(t, REP_UTF8, len(data), data)
+                return
+            args = PL_new_term_refs(arity)
+            put = self._put
+            for i, arg in enumerate(value.args):
+                put(args + i, arg, shared)
+            functor = self._functors.get((value.name, arity))
+            PL_cons_functor_v(t, functor or self._functor(value.name, arity), args)
+        elif kind is int:
+            if INT64_MIN <= value <= INT64_MAX:
+                PL_put_int64(t, value)
+            else:
+                data = str(value).encode()
+                PL_put_term_from_chars(t, REP_UTF8, len(data), data)
+        elif kind is list or kind is tuple:
+            PL_put_nil(t)
+            if value:
+                head = PL_new_term_ref()
+                put = self._put
+                for item in reversed(value):
+                    put(head, item, shared)
+                    PL_cons_list(t, head, t)
+        elif kind is Kept:
+            PL_recorded(value.handle, t)  # type: ignore[union-attr]
+        elif kind is Var:
+            existing = shared.get(value.name) if value.name != "_" else None
+            if existing is None:
+                PL_put_variable(t)
+                if value.name != "_":
+                    shared[value.name] = PL_copy_term_ref(t)
+            else:
+                PL_put_term(t, existing)
+        elif kind is float:
+            PL_put_float(t, value)
+        elif kind is bool:
+            PL_put_atom(t, self._atom_handle("true" if value else "false"))
+        elif isinstance(value, Atom):
+            self._put(t, Atom(str(value)), shared)
+        elif isinstance(value, str):
+            data = value.encode("utf-8")
+            PL_put_chars(t, PUT_STRING, len(data), data)
+        else:
+            raise KBError(f"not a Prolog term: {value!r}")
+
+    def _get(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        """The Python term in term ref ``t``; ``seen`` keeps unbound variables' identities;
+        with ``marks``, ``'$ga_var'(Name)`` becomes ``Var(Name)`` (see parse/2)."""
+        kind = PL_term_type(t)
+        if kind == PL_ATOM:
+            PL_get_atom(t, ATOM_REF)
+            handle = ATOM_BUF.value
+            return self._atom_names.get(handle) or self._atom_name(handle)
+        if kind == PL_TERM:
+            PL_get_name_arity(t, ATOM_REF, SIZE_REF)
+            handle = ATOM_BUF.value
+            arity = SIZE_BUF.value
+            name = self._functor_names.get(handle)
+            if name is None:
+                name = str(self._atom_names.get(handle) or self._atom_name(handle))
+                self._functor_names[handle] = name
+            arg = PL_new_term_ref()
+            args = []
+            get = self._get
+            for i in range(1, arity + 1):
+                PL_get_arg(i, t, arg)
+                args.append(get(arg, seen, marks))
+            if marks and name == VAR_MARK and arity == 1:
+                return Var(str(args[0]))
+            return Struct(name, tuple(args))
+        if kind == PL_INTEGER:
+            if PL_get_int64(t, INT_REF):
+                return INT_BUF.value
+            return int(text_of(t, CVT_INTEGER))
+        if kind == PL_LIST_PAIR:
+            items: list[Term] = []
+            rest = PL_copy_term_ref(t)
+            head = PL_new_term_ref()
+            get = self._get
+            while PL_get_list(rest, head, rest):
+                items.append(get(head, seen, marks))
+            if PL_term_type(rest) == PL_NIL:
+                return items
+            tail = get(rest, seen, marks)
+            for item in reversed(items):
+                tail = Struct("[|]", (item, tail))
+            return tail
+        if kind == PL_NIL:
+            return []
+        if kind == PL_STRING:
+            return text_of(t, TEXT_FLAGS)
+        if kind == PL_FLOAT:
+            PL_get_float(t, FLOAT_REF)
+            return FLOAT_BUF.value
+        if kind == PL_VARIABLE:
+            for ref, var in seen:
+                if PL_compare(ref, t) == 0:
+                    return var
+            self._counter += 1
+            var = Var("_" if marks else f"_G{self._counter}")
+            seen.append((PL_copy_term_ref(t), var))
+            return var
+        if kind == PL_RATIONAL:
+            numerator, denominator = text_of(t, CVT_WRITEQ | REP_UTF8).split("r")
+            return float(Fraction(int(numerator), int(denominator)))
+        return Atom(text_of(t, CVT_WRITEQ | REP_UTF8))  # blobs (streams, clause refs), dicts
+
+    def _atom_name(self, handle: int) -> Atom:
+        """The name of atom ``handle`` (cache miss path); caching registers the atom."""
+        ref = PL_new_term_ref()
+        PL_put_atom(ref, handle)
+        name = Atom(text_of(ref, TEXT_FLAGS))
+        if len(self._atom_names) < ATOM_CACHE_MAX:
+            PL_register_atom(handle)
+            self._atom_names[handle] = name
+            self._atoms.setdefault(str(name), handle)
+        return name
