@@ -15,7 +15,7 @@ from pyswip import core as _pyswip_core  # loads libswipl and runs PL_initialise
 
 from goalagent.kb.errors import KBError
 
-LIB = ctypes.CDLL(_pyswip_core.LIB._name, mode=ctypes.RTLD_GLOBAL)
+LIB = ctypes.CDLL(_pyswip_core._lib._name, mode=ctypes.RTLD_GLOBAL)
 
 term_t = c_size_t
 atom_t = c_size_t
