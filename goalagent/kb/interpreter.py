@@ -13,6 +13,7 @@ shapes stay inside ``goalagent.kb``.
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol
@@ -20,7 +21,7 @@ from typing import Protocol
 from goalagent import ast
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import Engine, KBError, Kept, Record, define_foreign
-from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.mentalstate import CompiledCondition, MentalState
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
@@ -53,6 +54,10 @@ _rules: list[RuleInfo] = []
 _rule_ids: dict[tuple[str, ast.Rule, tuple[str, ...]], int] = {}
 # Clause names of compiled rules and passes, shared by all agents: key -> name.
 _shared_clauses: dict[tuple, str] = {}
+# Per program object (while it lives): its directives and its modules' compiled passes, so
+# that the agents launched from one program (bench/agents.py: 10,000) compile only their
+# conditions.
+_compiled_programs: dict[int, tuple[weakref.ref, str, dict[int, ModuleCode]]] = {}
 
 
 def listall_variable(rule: ast.Rule) -> str:
@@ -223,8 +228,18 @@ class CompiledProgram:
         self._answerer: _Answerer | None = None
         _define_requests(self._engine)
         state.declare_actions(program.actionspecs)
+        compiled = _compiled_programs.get(id(program))
+        if compiled is not None and compiled[0]() is program and compiled[1] == self._directives:
+            self._codes = compiled[2]  # the rule and pass clauses exist: only the conditions
+            for module in program.modules:  # are this agent's own
+                for rule in ast.iter_rules(module.rules):
+                    self._compile_condition(rule)
+            return
         for module in program.modules:
             self._codes[id(module)] = self._compile_module(module)
+        key = id(program)
+        forget = lambda _: _compiled_programs.pop(key, None)  # noqa: E731 - when it dies
+        _compiled_programs[key] = (weakref.ref(program, forget), self._directives, self._codes)
 
     def code(self, module: ast.Module) -> ModuleCode:
         """The compiled pass of one of the program's modules."""
@@ -256,10 +271,7 @@ class CompiledProgram:
     def _compile_rule(self, module: ast.Module, rule: ast.Rule, given: tuple[str, ...],
                       order: str) -> str:
         """The clause name of ``rule`` (compiled once per text and operators)."""
-        try:
-            condition = self._state.compile(rule.condition)
-        except KBError as err:
-            raise KBError(f"{rule.pos}: {err}", err.pos or rule.pos) from None
+        condition = self._compile_condition(rule)
         if rule.kind == "listall":
             list_var = rule.list_var or ""
             names = tuple(name for name in given if name != list_var) + (list_var,)
@@ -291,6 +303,13 @@ class CompiledProgram:
                 raise KBError(f"{rule.pos}: {err}", rule.pos) from None
             _shared_clauses[key] = name
         return name
+
+    def _compile_condition(self, rule: ast.Rule) -> CompiledCondition:
+        """The rule's condition compiled in this agent (its own clause)."""
+        try:
+            return self._state.compile(rule.condition)
+        except KBError as err:
+            raise KBError(f"{rule.pos}: {err}", err.pos or rule.pos) from None
 
     @staticmethod
     def _rule_info(module: ast.Module, rule: ast.Rule, names: tuple[str, ...],
