@@ -12,6 +12,10 @@ from robot.reproduce.framework import find
 from robot.reproduce.runner import run
 from robot.reproduce.task_runs import experienced_rules, majority_movability, seeds_with
 
+LISTINGS = {"ch3-navigation": ("## Learned movability (Table 3.3", "## XCS rules of seed 0"),
+            "ch3-stacking": ("## Learned movability (Table 3.3, stacking rows)",),
+            "appA-search": ("## XCS rules of seed 0, truth (Table 7.2 style",)}
+
 
 def _run(name: str, tmp_path: Path) -> dict:
     reproduction = find(name)
@@ -21,6 +25,7 @@ def _run(name: str, tmp_path: Path) -> dict:
     assert len(document["seeds"]) == 2
     page = (tmp_path / f"{name}.md").read_text()
     assert "| quantity |" in page
+    assert all(heading in page for heading in LISTINGS[name])  # the tables hook's markdown
     assert sorted(tmp_path.glob(f"{name}-*.png"))
     return document
 

@@ -19,6 +19,9 @@ Adding one, say ``ch5-transfer``:
      source; the gap is computed for you.
    - ``figures(seeds) -> list[Figure]``: panels of ``Series`` (one list per seed; the plot
      shows mean ± sd) and ``Reference`` lines for the thesis's values.
+   - optionally ``listings(summary, seeds) -> str``: markdown after the notes, for tables
+     that depend on what was measured (learned rules, an affordance table beside the
+     thesis's); pass it as ``listings=``.
 
    Keep the module's top-level imports light (``--list`` imports every module); import
    MuJoCo and friends inside ``run_seed``.

@@ -127,7 +127,7 @@ def figures(seeds: list[dict]) -> list[Figure]:
     ])]
 
 
-def tables(summary: dict, seeds: list[dict]) -> str:
+def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: a Table 7.2-style listing of seed 0's most experienced rules."""
     lines = [f"## XCS rules of seed 0, truth (Table 7.2 style: the {RULES_LISTED} most "
              "experienced)", "",
@@ -142,7 +142,7 @@ REPRODUCTION = Reproduction(
     name="appA-search",
     description="Thesis App. A: a head camera learns with XCS to find a target, before and "
                 "after the target moves; Table 7.2-style rules",
-    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, tables=tables,
+    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, listings=listings,
     quick_scale=0.2, default_seeds=10,
     notes="""\
 **Setup** (`sim/search.py`, `behaviours/blob_grid.py`): a pan-tilt head with the NAO's limits

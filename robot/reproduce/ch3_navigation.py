@@ -155,7 +155,7 @@ def figures(seeds: list[dict]) -> list[Figure]:
     return result
 
 
-def tables(summary: dict, seeds: list[dict]) -> str:
+def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: the learned movability (Table 3.3) and a Table 3.2-style rule listing."""
     lines = ["## Learned movability (Table 3.3, navigation rows)", "",
              "| object | action | effect (most seeds) | thesis |", "|---|---|---|---|"]
@@ -176,7 +176,7 @@ REPRODUCTION = Reproduction(
     name="ch3-navigation",
     description="Thesis Figs. 3.5-3.6, Tables 3.2-3.3: affordance-based vs standard XCS in the "
                 "navigation task, boxes exchanged after 10 trials",
-    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, tables=tables,
+    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, listings=listings,
     quick_scale=0.2, default_seeds=10,
     notes="""\
 **Setup** (`sim/navigation.py`, `behaviours/xcs_tasks.py`): a 0.75 x 0.6 m table; the robot

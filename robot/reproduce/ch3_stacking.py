@@ -120,7 +120,7 @@ def figures(seeds: list[dict]) -> list[Figure]:
     ])]
 
 
-def tables(summary: dict, seeds: list[dict]) -> str:
+def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: Table 3.3's stacking rows beside ours, and the chosen objects."""
     lines = ["## Learned movability (Table 3.3, stacking rows)", "",
              "| object | action | effect (most seeds) | thesis |", "|---|---|---|---|"]
@@ -137,7 +137,7 @@ REPRODUCTION = Reproduction(
     name="ch3-stacking",
     description="Thesis Table 3.3 (stacking rows) and §3.5.8: pose-dependent movability of a "
                 "high box and a low foam, and the object the learned policy chooses",
-    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, tables=tables,
+    run_seed=run_seed, summarize=summarize, compare=compare, figures=figures, listings=listings,
     quick_scale=0.2, default_seeds=10,
     notes="""\
 **Setup** (`sim/stacking.py`): a table 36 cm high; the robot stands near its edge; a high box
