@@ -16,6 +16,7 @@ from robot.reproduce.framework import (
     Reference,
     Reproduction,
     Series,
+    markdown_table,
 )
 from robot.reproduce.task_runs import (
     MODES,
@@ -129,13 +130,10 @@ def figures(seeds: list[dict]) -> list[Figure]:
 
 def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: a Table 7.2-style listing of seed 0's most experienced rules."""
-    lines = [f"## XCS rules of seed 0, truth (Table 7.2 style: the {RULES_LISTED} most "
-             "experienced)", "",
-             "| ID | condition | action | prediction | error | fitness | size | exp. | num. |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    for row in summary["rules"]:
-        lines.append("| " + " | ".join(str(v) for v in row) + " |")
-    return "\n".join(lines)
+    return "\n".join([
+        f"## XCS rules of seed 0, truth (Table 7.2 style: the {RULES_LISTED} most experienced)",
+        "", markdown_table(["ID", "condition", "action", "prediction", "error", "fitness",
+                            "size", "exp.", "num."], summary["rules"])])
 
 
 REPRODUCTION = Reproduction(

@@ -15,6 +15,7 @@ from robot.reproduce.framework import (
     Reference,
     Reproduction,
     Series,
+    markdown_table,
     mean_and_std,
 )
 from robot.reproduce.task_runs import (
@@ -157,19 +158,17 @@ def figures(seeds: list[dict]) -> list[Figure]:
 
 def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: the learned movability (Table 3.3) and a Table 3.2-style rule listing."""
-    lines = ["## Learned movability (Table 3.3, navigation rows)", "",
-             "| object | action | effect (most seeds) | thesis |", "|---|---|---|---|"]
     thesis = {(MOVABLE, PUSH): "1000 010 1 (row 3)",
               (FIXED, PUSH): "1100 / 1111 / 1011 010 0 (rows 1, 2, 4)"}
-    for obj, action, effect in summary["affordance_xcs"]["movability"]:
-        lines.append(f"| {obj} | {action} | {effect} | {thesis.get((obj, action), '—')} |")
-    lines += ["", "## XCS rules of seed 0, affordance-based XCS, truth (Table 3.2 style: the "
-              f"{RULES_LISTED} most experienced)", "",
-              "| ID | condition | act. | pred. | error | fit. | size | E. | N |",
-              "|---|---|---|---|---|---|---|---|---|"]
-    for row in summary["rules"]:
-        lines.append("| " + " | ".join(str(v) for v in row) + " |")
-    return "\n".join(lines)
+    movability = [[obj, action, effect, thesis.get((obj, action), "—")]
+                  for obj, action, effect in summary["affordance_xcs"]["movability"]]
+    return "\n".join([
+        "## Learned movability (Table 3.3, navigation rows)", "",
+        markdown_table(["object", "action", "effect (most seeds)", "thesis"], movability), "",
+        "## XCS rules of seed 0, affordance-based XCS, truth (Table 3.2 style: the "
+        f"{RULES_LISTED} most experienced)", "",
+        markdown_table(["ID", "condition", "act.", "pred.", "error", "fit.", "size", "E.", "N"],
+                       summary["rules"])])
 
 
 REPRODUCTION = Reproduction(

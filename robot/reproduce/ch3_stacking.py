@@ -18,6 +18,7 @@ from robot.reproduce.framework import (
     Reference,
     Reproduction,
     Series,
+    markdown_table,
     mean_and_std,
 )
 from robot.reproduce.task_runs import (
@@ -122,12 +123,13 @@ def figures(seeds: list[dict]) -> list[Figure]:
 
 def listings(summary: dict, seeds: list[dict]) -> str:
     """Markdown: Table 3.3's stacking rows beside ours, and the chosen objects."""
-    lines = ["## Learned movability (Table 3.3, stacking rows)", "",
-             "| object | action | effect (most seeds) | thesis |", "|---|---|---|---|"]
+    rows = []
     for obj, action, effect in summary["movability"]:
         thesis = THESIS_ROWS.get((obj, action))
-        lines.append(f"| {obj} | {action} | {effect} | "
-                     f"{'—' if thesis is None else f'{thesis[0]} (row {thesis[1]})'} |")
+        rows.append([obj, action, effect,
+                     "—" if thesis is None else f"{thesis[0]} (row {thesis[1]})"])
+    lines = ["## Learned movability (Table 3.3, stacking rows)", "",
+             markdown_table(["object", "action", "effect (most seeds)", "thesis"], rows)]
     lines += ["", f"Chosen object (first choice of the last exploit trial), truth: "
               f"{summary['chosen_counts']}; camera: {summary['camera']['chosen_counts']}."]
     return "\n".join(lines)

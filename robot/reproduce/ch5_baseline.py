@@ -9,6 +9,7 @@ from robot.reproduce.framework import (
     Progress,
     Reproduction,
     Series,
+    markdown_table,
     mean_and_std,
 )
 
@@ -81,14 +82,15 @@ def listings(summary: dict, seeds: list[dict]) -> str:
     first = seeds[0]
     lines = [f"## Table 5.3 (seed {first['seed']}, truth perception)", "",
              "ĝ(θ) = b + cθ (eq. 5.16) and ĥ(e_ψ) = d + e·e_ψ (eq. 5.17) of every pair tried; "
-             "the functional pair in bold.", "",
-             "| can | part | action | n | ĝ | ĥ |", "|---|---|---|---|---|---|"]
+             "the functional pair in bold.", ""]
+    rows = []
     for can, entry in first["truth"].items():
         for m in entry["models"]:
             bold = "**" if (m["part"], m["action"]) == (entry["part"], entry["action"]) else ""
-            lines.append(f"| {can} | {m['part']} | {bold}{m['action']}{bold} | {m['n']} | "
-                         f"{m['g'][0]:+.3f} {m['g'][1]:+.3f}θ | "
-                         f"{m['h'][0]:+.3f} {m['h'][1]:+.3f}e |")
+            rows.append([can, m["part"], f"{bold}{m['action']}{bold}", m["n"],
+                         f"{m['g'][0]:+.3f} {m['g'][1]:+.3f}θ",
+                         f"{m['h'][0]:+.3f} {m['h'][1]:+.3f}e"])
+    lines.append(markdown_table(["can", "part", "action", "n", "ĝ", "ĥ"], rows))
     return "\n".join(lines)
 
 

@@ -15,6 +15,7 @@ from robot.reproduce.framework import (
     Reference,
     Reproduction,
     Series,
+    markdown_table,
     mean_and_std,
 )
 
@@ -73,16 +74,15 @@ def compare(summary: dict, seeds: list[dict]) -> list[Comparison]:
 def listings(summary: dict, seeds: list[dict]) -> str:
     """Table 5.4 as the thesis prints it: per can (truth perception) N without and with
     transfer, the source, the pair found, Algorithm 6's branch, beside the thesis's row."""
-    lines = ["## Table 5.4 (truth perception)", "",
-             "| can | N without | N with transfer | source | pair found (of seeds) | branch | "
-             "never worse | thesis (N, N_tran, source) |", "|---|---|---|---|---|---|---|---|"]
+    rows = []
     for can, s in summary.items():
         thesis = THESIS.get(can, ("-", "-", "-"))
-        lines.append(f"| {can} | {s['n_without']:.1f} | {s['n_with']:.1f} | "
-                     f"{s['source'] or '-'} | {s['action']}({s['part']}) "
-                     f"({s['found']}/{len(seeds)}) | {s['branch']} | {s['never_worse']} | "
-                     f"{thesis[0]}, {thesis[1] or '-'}, {thesis[2] or '-'} |")
-    return "\n".join(lines)
+        rows.append([can, f"{s['n_without']:.1f}", f"{s['n_with']:.1f}", s["source"] or "-",
+                     f"{s['action']}({s['part']}) ({s['found']}/{len(seeds)})", s["branch"],
+                     s["never_worse"], f"{thesis[0]}, {thesis[1] or '-'}, {thesis[2] or '-'}"])
+    return "\n".join(["## Table 5.4 (truth perception)", "", markdown_table(
+        ["can", "N without", "N with transfer", "source", "pair found (of seeds)", "branch",
+         "never worse", "thesis (N, N_tran, source)"], rows)])
 
 
 def figures(seeds: list[dict]) -> list[Figure]:

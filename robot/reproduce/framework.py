@@ -172,3 +172,10 @@ def mean_and_std(values: Sequence[float | None]) -> tuple[float | None, float | 
         return None, None
     mean = sum(present) / len(present)
     return mean, math.sqrt(sum((value - mean) ** 2 for value in present) / len(present))
+
+
+def markdown_table(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
+    """A Markdown table; cells as ``str`` gives them, a ``|`` inside a cell escaped."""
+    def line(cells: Sequence[object]) -> str:
+        return "| " + " | ".join(str(cell).replace("|", "\\|") for cell in cells) + " |"
+    return "\n".join([line(headers), "|" + "---|" * len(headers)] + [line(r) for r in rows])

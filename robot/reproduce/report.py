@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from robot.reproduce.framework import Comparison, Figure, Reproduction
+from robot.reproduce.framework import Comparison, Figure, Reproduction, markdown_table
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)
@@ -76,11 +76,11 @@ def markdown(reproduction: Reproduction, comparisons: Sequence[Comparison],
     lines = [f"# {reproduction.name}", "", reproduction.description, "",
              f"Produced by `{command}` ({n_seeds} seeds"
              + ("" if scale == 1.0 else f", scale {scale:g} of the full run") + ").", "",
-             f"| quantity | measured (mean ± sd over {n_seeds} seeds) | reference | gap | "
-             "source |", "|---|---|---|---|---|"]
-    for row in comparisons:
-        lines.append(f"| {row.quantity} | {measured_text(row)} | {number(row.reference)} | "
-                     f"{gap_text(row)} | {row.source or '—'} |")
+             markdown_table(
+                 ["quantity", f"measured (mean ± sd over {n_seeds} seeds)", "reference", "gap",
+                  "source"],
+                 [[row.quantity, measured_text(row), number(row.reference), gap_text(row),
+                   row.source or "—"] for row in comparisons])]
     if reproduction.notes:
         lines += ["", reproduction.notes.strip()]
     if listings.strip():
