@@ -10,19 +10,17 @@ from __future__ import annotations
 
 import contextlib
 import inspect
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
 from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.beliefs import BeliefSaver, load_beliefs
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.eis.exceptions import EnvironmentInterfaceException
-from goalagent.events import EventKind
 from goalagent.extensions import (
     Extension,
     RunContext,
@@ -43,6 +41,7 @@ from goalagent.parser import (
     parse_prolog_file,
     parse_test_file,
 )
+from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 
@@ -70,15 +69,23 @@ def _saved_predicates(indicators: list[str],
     return tuple(chosen.values())
 
 
-class _TracePrinter:
-    """Prints ``--trace`` events on stdout, one line each."""
+def _trace_printer(kinds: str | None, file: Path | None) -> TracePrinter | None:
+    """The ``--trace[=KINDS]`` / ``--trace-file F`` listener (None: no trace)."""
+    if kinds is None and file is None:
+        return None
+    try:
+        chosen, idle = parse_kinds(kinds or "all")
+        return TracePrinter(chosen, idle, file=file)
+    except TraceKindError as err:
+        raise user_error(str(err)) from None
+    except OSError as err:
+        raise user_error(f"--trace-file {file}: {err.strerror or err}") from None
 
-    def __init__(self) -> None:
-        self.console = Console(highlight=False, soft_wrap=True)
 
-    def __call__(self, agent: str, kind: EventKind, text: str) -> None:
-        self.console.print(f"[dim]{escape(agent)}[/] [cyan]{kind:>12}[/] {escape(text)}",
-                           markup=True)
+def _trace_argument(argv: list[str]) -> list[str]:
+    """``--trace`` alone means ``--trace=all`` (Typer has no option whose value may be left
+    out, and ``--trace`` was a plain flag before it took kinds)."""
+    return ["--trace=all" if arg == "--trace" else arg for arg in argv]
 
 
 def _language_run_options(
@@ -90,7 +97,13 @@ def _language_run_options(
     ] = None,
     max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
-    trace: Annotated[bool, typer.Option(help="Show rules, bindings, actions per cycle.")] = False,
+    trace: Annotated[str | None, typer.Option(
+        help="Show what the agents do, per agent and cycle: --trace for everything, "
+             "--trace=KINDS to choose (percepts, rules, actions, beliefs, goals, messages, "
+             "warnings, modules; idle adds rules tried with no instantiation).")] = None,
+    trace_file: Annotated[Path | None, typer.Option(
+        help="Write the trace to this file instead of stdout (JSON lines when it ends in "
+             ".jsonl).")] = None,
     load_beliefs: Annotated[
         Path | None, typer.Option(help="Prolog facts (e.g. saved afford/6) to add to the "
                                        "agents' beliefs before they start.")] = None,
@@ -133,13 +146,14 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     """What ``goalagent run`` does with its option ``values``."""
     path: Path = values["path"]
     env: str | None = values["env"]
-    trace: bool = values["trace"]
+    printer = _trace_printer(values["trace"], values["trace_file"])
+    trace = printer is not None and values["trace_file"] is None  # on stdout
     params = _env_params(values["env_param"] or [])
     predicates = _saved_predicates(values["save_predicate"] or [], extensions)
     if values["save_beliefs"] is not None and not predicates:
         raise user_error("--save-beliefs: no predicate to save; name one with "
                          "--save-predicate NAME/ARITY")
-    options = dict(seed=values["seed"], tracer=_TracePrinter() if trace else None,
+    options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False))
     try:
         if path.suffix == ".mas2g":
@@ -186,6 +200,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         summaries = system.summaries()
     finally:
         system.close()
+        if printer is not None:
+            printer.close()
     for summary in summaries:
         err_console.print(str(summary), markup=False)
     if interrupted:
@@ -254,4 +270,4 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
 
 def main() -> None:
     """The ``goalagent`` console script."""
-    create_app()()
+    create_app()(args=_trace_argument(sys.argv[1:]))

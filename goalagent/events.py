@@ -33,6 +33,7 @@ class EventKind(_Named):
     GOAL_ACHIEVED = "achieved"  # removed by blind commitment
     MODULE_ENTERED = "entered"
     MODULE_LEFT = "left"
+    WARNING = "warning"  # a problem the agent warns about and goes on (its text)
 
 
 class ProblemKind(_Named):

@@ -8,13 +8,13 @@ terminates or fails is reported and the others go on.
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
 
 from goalagent import ast
-from goalagent.agent import ActionFailed, Agent, AgentError, LocalPostman, Tracer
+from goalagent.agent import ActionFailed, Agent, AgentError, Listener, LocalPostman, Tracer
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.eis.interface import Environment, EnvironmentState
 from goalagent.eis.registry import load_environment
@@ -100,11 +100,13 @@ class MultiAgentSystem:
         output: TextIO | None = None,
         tracer: Tracer | None = None,
         warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
     ) -> None:
         self.environment = environment
         self.seed = seed
         self.output = output or sys.stdout
         self.tracer = tracer
+        self.listeners = list(listeners)  # told every event of every agent (--trace, inspector)
         self.warn = warn or (lambda message: print(message, file=sys.stderr))
         self.postman = LocalPostman()
         self._directory = AgentDirectory()  # agent/1 of every member, stored once
@@ -181,6 +183,8 @@ class MultiAgentSystem:
         agent = Agent(program, name=name, io=io, postman=self.postman,
                       seed=self.seed + len(self.agents), output=self.output,
                       tracer=self.tracer, warn=self.warn)
+        for listener in self.listeners:
+            agent.listen(listener)
         self.agents.append(agent)
         self._directory.add(name)
         agent.ms.join(name, self._directory)

@@ -9,6 +9,7 @@ are in docs/goal-language.md. Environments and other agents are reached through
 
 from __future__ import annotations
 
+import dataclasses
 import random
 import sys
 from collections.abc import Callable
@@ -163,14 +164,18 @@ class Agent:
         self.listeners.append(listener)
 
     def tell(self, event: Event) -> None:
-        """Tell the listeners an event."""
+        """Tell the listeners an event (stamped with the current cycle)."""
+        event = dataclasses.replace(event, cycle=self.cycle)
         for listener in self.listeners:
             listener(event)
 
     def warn(self, message: str) -> None:
-        """A warning: kept in the cycle report and shown (``warning: agent NAME: ...``)."""
+        """A warning: kept in the cycle report, shown (``warning: agent NAME: ...``) and
+        told to the listeners."""
         self.report.warnings.append(message)
         self._warn(f"warning: agent {self.name}: {message}")
+        if self.listeners:
+            self.tell(Event(EventKind.WARNING, self.name, message))
 
     def log(self, message: str) -> None:
         """A line where warnings go (``log/1``), not a warning."""

@@ -5,6 +5,7 @@ line of text for people."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
@@ -22,7 +23,8 @@ _SHOWN_INSTANTIATIONS = 5  # a tried rule's line shows this many instantiations 
 class Event:
     """One thing that happened in an agent. ``module`` and ``pos`` locate the rule (rule
     events); ``bindings`` has one entry per instantiation (RULE_TRIED) or the firing's;
-    ``term`` is the percept list, belief, goal or action concerned."""
+    ``term`` is the percept list, belief, goal or action concerned; ``cycle`` the agent's
+    cycle (set when the agent tells the event)."""
 
     kind: EventKind
     agent: str
@@ -31,6 +33,7 @@ class Event:
     pos: ast.Pos | None = None
     bindings: tuple[dict[str, Term], ...] = ()
     term: Term | None = None
+    cycle: int = 0
 
 
 Listener = Callable[[Event], None]
@@ -43,8 +46,19 @@ class Tracer(Protocol):
     def __call__(self, agent: str, kind: EventKind, text: str) -> None: ...
 
 
+_MACRO_SUFFIX = re.compile(r"_M\d+$")  # a macro's own variable, renamed where it is used
+
+
 def _shown(bindings: dict[str, Term]) -> str:
-    return ", ".join(f"{name}={format_term(value)}" for name, value in bindings.items())
+    """``X=a, T=[c]``: a macro's variables under the names its definition gives them
+    (``T``, not ``T_M1``) unless the rule has one of that name too."""
+    names = set(bindings)
+
+    def display(name: str) -> str:
+        plain = _MACRO_SUFFIX.sub("", name)
+        return plain if plain not in names else name
+
+    return ", ".join(f"{display(name)}={format_term(value)}" for name, value in bindings.items())
 
 
 def _goal_text(goal: Term) -> str:
