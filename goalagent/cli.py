@@ -20,6 +20,7 @@ import typer
 from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.beliefs import BeliefSaver, load_beliefs
 from goalagent.console import USER_ERROR, err_console, user_error
+from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.extensions import (
     Extension,
@@ -41,6 +42,7 @@ from goalagent.parser import (
     parse_prolog_file,
     parse_test_file,
 )
+from goalagent.stepper import TerminalStepper
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
@@ -114,6 +116,19 @@ def _language_run_options(
     save_predicate: Annotated[
         list[str] | None, typer.Option("--save-predicate", help="NAME/ARITY of a predicate "
                                        "--save-beliefs also writes (repeatable).")] = None,
+    step: Annotated[bool, typer.Option(
+        help="Stop after each cycle with a prompt on the terminal (? lists its commands).")
+    ] = False,
+    breakpoint: Annotated[list[str] | None, typer.Option(
+        "--break", help="Stop when the rule at FILE:LINE applies or when a condition such as "
+                        "bel(done) becomes true, then prompt (repeatable).")] = None,
+    inspect: Annotated[bool, typer.Option(
+        help="Serve the mind inspector, a web page showing each agent live with pause, "
+             "step, breakpoints and queries; the run starts paused.")] = False,
+    port: Annotated[int, typer.Option(help="The inspector's port (0: any free one).")] = 8765,
+    host: Annotated[str, typer.Option(
+        help="The address the inspector listens on (only this machine by default).")
+    ] = "127.0.0.1",
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -174,12 +189,15 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     hooks: list[RunHook] = [make() for extension in extensions for make in extension.run_hooks]
     if values["save_beliefs"] is not None:
         hooks.append(BeliefSaver(values["save_beliefs"], predicates))
+    debugger = _debugger(values, system, extensions)
+    if debugger is not None:
+        hooks.append(debugger)
     context = RunContext(system, values, err_console)
-    for hook in hooks:
-        hook.start(context)
     interrupted = False
-    # A live status line on an interactive stderr (never with --trace, never in pipes).
-    status = (err_console.status("starting") if err_console.is_terminal and not trace
+    # A live status line on an interactive stderr (never with --trace, a prompt or the
+    # inspector, never in pipes).
+    status = (err_console.status("starting")
+              if err_console.is_terminal and not trace and debugger is None
               else contextlib.nullcontext())
 
     def after_cycle(agent: Agent) -> None:
@@ -189,6 +207,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
             status.update(f"{agent.name}: cycle {agent.cycle}, {agent.total_actions} actions")
 
     try:
+        for hook in hooks:
+            hook.start(context)
         with status:
             system.run(values["max_cycles"], after_cycle=after_cycle)
     except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
@@ -208,6 +228,32 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise typer.Exit(code=130)
     if any(summary.status == "failed" for summary in summaries):
         raise typer.Exit(code=1)
+
+
+def _debugger(values: dict[str, Any], system: MultiAgentSystem,
+              extensions: Sequence[Extension]) -> Debugger | None:
+    """The hook of ``--step``, ``--break`` or ``--inspect`` (None without them)."""
+    breaks = values["breakpoint"] or []
+    if not (values["step"] or breaks or values["inspect"]):
+        return None
+    if values["step"] and values["inspect"]:
+        system.close()
+        raise user_error("--step and --inspect: choose one (the inspector steps too)")
+    if values["inspect"]:
+        from goalagent.inspector import Inspector
+
+        front: FrontEnd = Inspector(values["host"], values["port"], extensions, err_console)
+    else:
+        front = TerminalStepper()
+    debugger = Debugger(front, stepping=values["step"] or values["inspect"])
+    debugger.system = system
+    try:
+        for text in breaks:
+            debugger.add_breakpoint(text)
+    except DebuggerError as err:
+        system.close()
+        raise user_error(f"--break {err}") from None
+    return debugger
 
 
 def _programs_to_check(path: Path) -> list:
