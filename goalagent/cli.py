@@ -212,7 +212,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         with status:
             system.run(values["max_cycles"], after_cycle=after_cycle)
     except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
-        interrupted = True
+        interrupted = system.interrupted = True  # type: ignore[attr-defined]
         err_console.print("interrupted", markup=False)
     try:
         for hook in hooks:
@@ -250,9 +250,14 @@ def _debugger(values: dict[str, Any], system: MultiAgentSystem,
     try:
         for text in breaks:
             debugger.add_breakpoint(text)
+        if values["inspect"]:
+            front.attach(debugger)  # type: ignore[attr-defined]
     except DebuggerError as err:
         system.close()
         raise user_error(f"--break {err}") from None
+    except OSError as err:
+        system.close()
+        raise user_error(f"--inspect: {err}") from None
     return debugger
 
 

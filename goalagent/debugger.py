@@ -100,9 +100,12 @@ class Stop:
 
 
 class FrontEnd(Protocol):
-    """Where a stopped run waits: returns when the user says step or continue."""
+    """Where a stopped run waits (``wait`` returns when the user says step or continue) and
+    what it does when the agents have ended (``ended``: the inspector stays up)."""
 
     def wait(self, debugger: Debugger, stop: Stop) -> None: ...
+
+    def ended(self, debugger: Debugger) -> None: ...
 
 
 @dataclass
@@ -141,6 +144,11 @@ class Debugger(RunHook):
             self.front.wait(self, Stop(agent, reason))
         elif self.stepping:
             self.front.wait(self, Stop(agent, f"after cycle {agent.cycle}"))
+
+    def finish(self, run: RunContext) -> None:
+        """The agents ended (not when the run was interrupted): tell the front end."""
+        if not getattr(run.system, "interrupted", False):
+            self.front.ended(self)
 
     # ------------------------------------------------------------------ commands
     def resume(self, step: bool) -> None:

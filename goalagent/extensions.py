@@ -95,6 +95,27 @@ class RunHook:
 
 
 @dataclass(frozen=True)
+class PanelView:
+    """What one inspector panel shows for one agent: a table (cells as plain text), a PNG
+    image, a caption. Never markup: the page shows every string as text."""
+
+    title: str
+    columns: tuple[str, ...] = ()
+    rows: tuple[tuple[str, ...], ...] = ()
+    png: bytes | None = None
+    caption: str = ""
+
+
+class InspectorPanel:
+    """A panel of ``goalagent run --inspect`` (the mind inspector): an application's view of
+    an agent, asked for after the agent's cycles on the thread that runs the agents."""
+
+    def view(self, run: RunContext, agent: Agent) -> PanelView | None:
+        """What to show for ``agent`` now (None: nothing for this agent)."""
+        return None
+
+
+@dataclass(frozen=True)
 class Extension:
     """What an application adds to goalagent (the object an entry point names).
 
@@ -107,6 +128,7 @@ class Extension:
         saved_predicates: what ``--save-beliefs`` writes (besides ``--save-predicate``).
         prepare: called once before the first of its environments is imported (e.g. to
             choose MuJoCo's headless renderer, which must happen before mujoco is imported).
+        inspector_panels: factories of the panels the mind inspector (``--inspect``) adds.
     """
 
     name: str
@@ -116,6 +138,7 @@ class Extension:
     run_hooks: Sequence[Callable[[], RunHook]] = ()
     saved_predicates: Sequence[SavedPredicate] = ()
     prepare: Callable[[], None] | None = None
+    inspector_panels: Sequence[Callable[[], InspectorPanel]] = ()
 
     def ensure_prepared(self) -> None:
         """Run ``prepare`` the first time it is asked for, never again."""

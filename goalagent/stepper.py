@@ -71,6 +71,9 @@ class TerminalStepper:
             except DebuggerError as err:
                 self.say(f"error: {err}")
 
+    def ended(self, debugger: Debugger) -> None:
+        """Nothing to keep: the summaries follow."""
+
     def _command(self, debugger: Debugger, stop: Stop, command: str, argument: str) -> None:
         """A command that does not go on."""
         if command == "b" and argument:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, BinaryIO
 
 from goalagent.extensions import SavedPredicate
 from goalagent.kb.terms import Atom, Term
@@ -75,8 +75,9 @@ class ReliabilityHistory:
             if not series or series[-1][1] != affordance.rel:
                 series.append((agent.total_actions, affordance.rel))
 
-    def plot(self, path: Path, title: str, tau: float = 0.6) -> None:
-        """A step plot of every affordance's reliability over the actions taken (PNG)."""
+    def plot(self, path: Path | BinaryIO, title: str, tau: float = 0.6) -> None:
+        """A step plot of every affordance's reliability over the actions taken (PNG, to a
+        file or a binary stream)."""
         import matplotlib
 
         matplotlib.use("Agg")
@@ -98,6 +99,7 @@ class ReliabilityHistory:
         axes.set_title(title)
         axes.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
         figure.tight_layout()
-        path.parent.mkdir(parents=True, exist_ok=True)
-        figure.savefig(path, dpi=110)
+        if isinstance(path, Path):
+            path.parent.mkdir(parents=True, exist_ok=True)
+        figure.savefig(path, dpi=110, format="png")
         plt.close(figure)

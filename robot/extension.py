@@ -4,7 +4,8 @@
 Everything the robot adds to the language is declared here and nowhere else: the ``garbage``
 environment (and the ch.3-5 task worlds as they arrive under ``robot/envs/``), the robot
 commands (``robot/cli.py``), the afford/6 report and ``--plot`` of ``goalagent run``
-(``robot/report.py``), and ``afford/6`` as a predicate ``--save-beliefs`` writes. This module
+(``robot/report.py``), ``afford/6`` as a predicate ``--save-beliefs`` writes, and the
+mind inspector's panels (``robot/inspector.py``). This module
 and what it imports stay light (no MuJoCo, no OpenCV): goalagent loads it for every command.
 """
 
@@ -13,6 +14,7 @@ from __future__ import annotations
 from goalagent.extensions import Extension
 from robot.affordance import AFFORD
 from robot.cli import add_commands
+from robot.inspector import AffordancePanel, CameraPanel
 from robot.report import PLOT_OPTION, AffordanceReport
 from sim.headless import use_headless_rendering
 
@@ -27,4 +29,5 @@ EXTENSION = Extension(
     run_hooks=(AffordanceReport,),
     saved_predicates=(AFFORD,),
     prepare=use_headless_rendering,
+    inspector_panels=(AffordancePanel, CameraPanel),
 )

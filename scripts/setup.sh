@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything goalagent needs on a bare Debian machine: SWI-Prolog (when swipl is
-# missing), a virtualenv in .venv, and the package with its dev and bench extras.
+# missing), EGL/Mesa, Chromium and its driver (for the inspector's browser test), a
+# virtualenv in .venv, and the package with its dev and bench extras.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -11,6 +12,9 @@ libraries=$(ldconfig -p)  # (grep -q on a pipe would SIGPIPE ldconfig under pipe
 grep -q 'libEGL.so.1 ' <<<"$libraries" || missing+=(libegl1)
 grep -q 'libOpenGL.so.0 ' <<<"$libraries" || missing+=(libopengl0)
 [ -e /usr/share/glvnd/egl_vendor.d/50_mesa.json ] || missing+=(libegl-mesa0 libgl1-mesa-dri)
+# The mind inspector's end-to-end test drives Debian's headless Chromium through chromedriver.
+command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+command -v chromedriver >/dev/null 2>&1 || missing+=(chromium-driver)
 if [ ${#missing[@]} -gt 0 ]; then
     echo "setup: installing ${missing[*]} with apt-get"
     $SUDO apt-get update -qq

@@ -1,0 +1,154 @@
+"""``goalagent run --inspect`` end to end in Debian's headless Chromium (driven through
+chromedriver by Selenium): the page loads paused, steps a cycle, takes a breakpoint on a
+rule and stops there, answers a query, scrolls back through the history, and stays up
+after the agents end until Ctrl-C. Also: the robot's panels through the extension seam."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support import expected_conditions as when
+from selenium.webdriver.support.ui import WebDriverWait
+
+ROOT = Path(__file__).resolve().parents[1]
+CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
+FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+         "--disable-component-update", "--no-first-run", "--window-size=1400,1100")
+# A list, a quoted atom with brackets and a tag: the page must show them as written.
+AGENT = """
+init module {
+    beliefs { count(0). label('<b>x</b> [c]'). }
+    goals { count(3). }
+}
+main module [exit=nogoals] { program {
+    if bel(count(N), N < 3, M is N + 1) then delete(count(N)) + insert(count(M)).
+} }
+"""
+
+
+@pytest.fixture
+def inspected(tmp_path: Path) -> Iterator[tuple[subprocess.Popen, str]]:
+    """``goalagent run counter.goal --inspect --port 0`` and the page's address."""
+    program = tmp_path / "counter.goal"
+    program.write_text(AGENT)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "goalagent", "run", str(program), "--inspect", "--port", "0"],
+        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stderr.readline()
+        match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert match, line + process.stderr.read()
+        yield process, match.group(0)
+    finally:
+        if process.poll() is None:
+            process.kill()
+        process.communicate(timeout=30)
+
+
+@pytest.fixture
+def browser(tmp_path: Path) -> Iterator[webdriver.Chrome]:
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for flag in FLAGS:
+        options.add_argument(flag)
+    options.add_argument(f"--user-data-dir={tmp_path / 'chromium-profile'}")
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+
+
+def _text(driver: webdriver.Chrome, css: str) -> str:
+    """The element's text as the page holds it (not as styled, e.g. upper-cased)."""
+    return driver.find_element(By.CSS_SELECTOR, css).get_attribute("textContent")
+
+
+def test_page_steps_breaks_queries_and_scrolls_back(inspected, browser, tmp_path: Path):
+    process, url = inspected
+    wait = WebDriverWait(browser, 60)
+    browser.get(url)
+    wait.until(when.text_to_be_present_in_element((By.ID, "status"), "before the first cycle"))
+    assert "count(0)" in _text(browser, ".agent .beliefs")
+    assert "'<b>x</b> [c]'" in _text(browser, ".agent .beliefs")  # shown as written
+
+    browser.find_element(By.ID, "step").click()
+    wait.until(when.text_to_be_present_in_element((By.ID, "status"), "after cycle 1"))
+    assert "count(1)" in _text(browser, ".agent .beliefs")
+    assert "fired main" in _text(browser, ".agent .events")
+    assert "N=0, M=1" in _text(browser, ".agent .events")
+
+    field = browser.find_element(By.ID, "break-input")
+    field.send_keys("counter.goal:7")
+    browser.find_element(By.ID, "break-add").click()
+    wait.until(when.text_to_be_present_in_element((By.ID, "breakpoints"), "counter.goal:7"))
+    browser.find_element(By.ID, "run").click()
+    wait.until(when.text_to_be_present_in_element((By.ID, "status"),
+                                                  "breakpoint counter.goal:7"))
+    assert "counter #2" in _text(browser, "#status") or "cycle 2" in _text(browser, ".agent h2")
+    assert "this cycle so far" in _text(browser, ".agent .events")
+
+    query = browser.find_element(By.ID, "query-input")
+    query.send_keys("bel(count(X))")
+    browser.find_element(By.ID, "query-send").click()
+    wait.until(when.text_to_be_present_in_element((By.ID, "query-result"), "X=1"))
+    query.clear()
+    query.send_keys("bel(count(X)")
+    browser.find_element(By.ID, "query-send").click()
+    wait.until(lambda driver: "error" in driver.find_element(By.ID, "query-result")
+               .get_attribute("class"))
+
+    browser.find_element(By.CSS_SELECTOR, "#breakpoints button").click()  # remove it
+    wait.until(lambda driver: not driver.find_elements(By.CSS_SELECTOR, "#breakpoints li"))
+    browser.find_element(By.ID, "run").click()
+    wait.until(when.text_to_be_present_in_element((By.ID, "status"), "ended"))
+    assert "count(3)" in _text(browser, ".agent .beliefs")
+    assert "goals (0)" in _text(browser, ".agent .goals")
+
+    browser.execute_script(  # scroll the history back to the first cycle
+        "const h = document.getElementById('history'); h.value = h.min;"
+        "h.dispatchEvent(new Event('input'));")
+    wait.until(when.text_to_be_present_in_element((By.ID, "history-label"), "cycle 1"))
+    assert "count(1)" in _text(browser, ".agent .beliefs")
+    assert "count(3)" not in _text(browser, ".agent .beliefs")
+    browser.find_element(By.ID, "live").click()
+    browser.save_screenshot(str(tmp_path / "inspector.png"))
+    assert (tmp_path / "inspector.png").stat().st_size > 10_000
+
+    assert process.poll() is None  # the page stays up after the agents end
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=30)
+    assert process.returncode == 0, err
+    assert "the page stays up" in err and "inspector: stopped" in err
+    assert "counter: terminated after 3 cycles" in err
+
+
+def test_the_inspector_listens_on_this_machine_only_by_default(inspected) -> None:
+    _, url = inspected
+    assert url.startswith("http://127.0.0.1:")
+
+
+def test_a_taken_port_is_a_clear_error(tmp_path: Path) -> None:
+    import socket
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        program = tmp_path / "a.goal"
+        program.write_text("main module { program { if true then print(x). } }\n")
+        result = subprocess.run([sys.executable, "-m", "goalagent", "run", str(program),
+                                 "--inspect", "--port", str(port)], capture_output=True,
+                                text=True, timeout=120, env={**os.environ})
+    assert result.returncode == 2, result.stderr
+    assert "error: --inspect" in result.stderr and "Traceback" not in result.stderr
