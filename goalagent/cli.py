@@ -10,15 +10,19 @@ from __future__ import annotations
 
 import contextlib
 import inspect
+import io
 import sys
 from collections.abc import Callable, Sequence
+from importlib import metadata
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
+from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.beliefs import BeliefSaver, load_beliefs
+from goalagent.checking import check_environment, files_to_check, undefined_calls
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
@@ -287,17 +291,24 @@ def _programs_to_check(path: Path) -> list:
 
 def check(
     paths: Annotated[list[Path], typer.Argument(help="Program files to check: .goal, "
-                                                ".mas2g, .mod2g, .act2g, .pl, .test2g.")],
+                                                ".mas2g, .mod2g, .act2g, .pl, .test2g; a "
+                                                "directory: every one under it.")],
 ) -> None:
-    """Parse and validate programs: syntax, undefined actions and modules, macros, the files
-    GOAL 6+ programs use; singleton variables are reported as warnings."""
+    """Parse and validate programs: syntax, undefined actions and modules, macros, ground
+    goals, a system's environment and its init parameters, the files GOAL 6+ programs use;
+    singleton variables and calls of predicates defined nowhere are reported as warnings."""
     failed = False
-    for path in paths:
+    for path in (file for given in paths for file in files_to_check(given)):
         try:
+            if path.suffix == ".mas2g":
+                check_environment(parse_mas_file(path))
             for program in _programs_to_check(path):
                 validate_program(program)
                 for warning in program.warnings:
                     err_console.print(warning, markup=False)
+                if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
+                    for warning in _undefined_calls(program):
+                        err_console.print(warning, markup=False)
         except (GoalSyntaxError, AgentError) as err:
             err_console.print(str(err), markup=False)
             failed = True
@@ -307,10 +318,33 @@ def check(
         raise typer.Exit(code=USER_ERROR)
 
 
+def _undefined_calls(program: ast.AgentProgram) -> list[str]:
+    """Calls of predicates the agent defines nowhere (the agent is loaded, not run)."""
+    agent = Agent(program, output=io.StringIO(), warn=lambda message: None)
+    try:
+        return undefined_calls(agent)
+    finally:
+        agent.close()
+
+
+def _show_version(shown: bool) -> None:
+    if shown:
+        print(f"goalagent {metadata.version('goalagent')}")
+        raise typer.Exit()
+
+
+def _version_option(
+    version: Annotated[bool, typer.Option("--version", callback=_show_version, is_eager=True,
+                                          help="Show the version and exit.")] = False,
+) -> None:
+    """Run GOAL agent programs whose beliefs live in SWI-Prolog."""
+
+
 def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
     """The ``goalagent`` command line: ``run`` and ``check``, then the extensions' commands."""
     extensions = installed_extensions() if extensions is None else extensions
     app = typer.Typer(add_completion=False, no_args_is_help=True, help=HELP)
+    app.callback()(_version_option)
     app.command(name="run")(_run_command(extensions))
     app.command()(check)
     for extension in extensions:

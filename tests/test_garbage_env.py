@@ -57,10 +57,12 @@ def test_refused_actions_say_why_and_leave_the_world_unchanged(tmp_path, action,
     env.kill()
 
 
-def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path):
+def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path, capsys):
     env = environment(tmp_path, can="o1")
     act(env, "grasp", "ball")
     act(env, "learn", "lid", "sweep_left", "opened", "random")
+    told = capsys.readouterr().err  # where learning keeps its models, said once
+    assert told == f"garbage: learned effect models are kept in {tmp_path / 'models.json'}\n"
     seen = percepts(env)
     assert "afford(lid,sweep_left,opened,0,0,0.05)" in seen
     assert any(p.startswith("exploration(lid,sweep_left,random,") for p in seen)
@@ -68,6 +70,7 @@ def test_learn_then_apply_reports_the_thesis_percepts(tmp_path: Path):
     seen = percepts(env)
     assert "afford(lid,extend_arm,opened,0,0,0.3)" in seen
     assert any(p.startswith("model(lid,extend_arm,") for p in seen)
+    assert "kept in" not in capsys.readouterr().err
     act(env, "apply", "lid", "extend_arm")
     seen = percepts(env)
     assert {"afford(lid,extend_arm,opened,1,1,1)", "opened", "holding(ball)"} <= seen

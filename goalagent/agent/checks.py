@@ -3,8 +3,10 @@ rule performs is built in (with its arity), declared in an actionspec, or a modu
 
 from __future__ import annotations
 
+import difflib
+
 from goalagent import ast
-from goalagent.parser import GoalSyntaxError
+from goalagent.parser import GoalSyntaxError, variable_occurrences
 
 # Built-in actions and their number of arguments (None: one formula, commas allowed).
 _BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
@@ -15,6 +17,7 @@ _UPDATES = frozenset({"insert", "delete", "adopt", "drop"})
 def validate_program(program: ast.AgentProgram) -> None:
     """Every action in a rule must be built in, specified or a user module (with its arity);
     raises ``GoalSyntaxError`` at the first one that is not."""
+    _check_ground_goals(program)
     specs = {(spec.name, spec.arity) for spec in program.actionspecs}
     modules = {(m.name, m.arity) for m in program.modules}
     for module in program.modules:
@@ -39,11 +42,26 @@ def validate_program(program: ast.AgentProgram) -> None:
                                                  "action of GOAL 7 that goalagent does not "
                                                  "support yet")
                     known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
+                    names = sorted({n for n, _ in (*specs, *modules)} | ast.BUILTIN_ACTIONS)
+                    close = difflib.get_close_matches(action.name, names, n=1)
+                    hint = f"did you mean {close[0]}? " if close else ""
                     raise GoalSyntaxError.at(
                         action.pos,
                         f"unknown action {action.name}/{action.arity}: not built in, not in an "
-                        f"actionspec and not a module (known: {', '.join(known) or 'none'})",
+                        f"actionspec and not a module ({hint}known: "
+                        f"{', '.join(known) or 'none'})",
                     )
+
+
+def _check_ground_goals(program: ast.AgentProgram) -> None:
+    """Goals in a ``goals`` section must be ground: located here, not when adopted."""
+    for goal in program.goals:
+        names = list(dict.fromkeys(variable_occurrences(goal.text)))
+        if names:
+            raise GoalSyntaxError.at(
+                goal.pos, f"goal {goal.text.strip()} is not ground (variable(s) "
+                f"{', '.join(names)}): a goals section holds ground goals; adopt a goal with "
+                "variables from a rule whose condition binds them")
 
 
 def _check_condition(condition: ast.Condition) -> None:

@@ -36,7 +36,7 @@ from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter import Problem
 from goalagent.kb.mentalstate import MentalState
-from goalagent.kb.terms import Term
+from goalagent.kb.terms import Term, format_term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
@@ -44,6 +44,10 @@ Bindings = dict[str, Term]
 
 class AgentError(Exception):
     """A user error found when loading an agent (unknown action, bad clause, ...)."""
+
+
+IDLE_WARNING_CYCLES = 100
+"""An agent with goals left that has done nothing for this many cycles is warned about once."""
 
 
 class Agent:
@@ -60,6 +64,7 @@ class Agent:
         output: TextIO | None = None,
         tracer: Tracer | None = None,
         warn: Callable[[str], None] | None = None,
+        idle_warning: int | None = IDLE_WARNING_CYCLES,
     ) -> None:
         self.program = program
         self.name = name or program.name
@@ -78,6 +83,9 @@ class Agent:
         self.last_report: CycleReport | None = None
         self.report = CycleReport(0)  # the cycle in progress (the last one between cycles)
         self.focus: list[Focus] = []  # user modules the agent stays in, innermost last
+        self.idle_warning = idle_warning
+        self.idle_cycles = 0  # cycles in a row without action, new percept or message
+        self._warned: dict[str, int] = {}  # each warning given: how often
         validate_program(program)
         try:
             self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs)
@@ -136,6 +144,7 @@ class Agent:
                 self.terminated = True  # nothing left to do without a main module
         if self.ms.goals_unchecked:
             self._blind_commitment()
+        self._note_idleness()
         self.last_report = self.report
         return self.report
 
@@ -171,9 +180,16 @@ class Agent:
 
     def warn(self, message: str) -> None:
         """A warning: kept in the cycle report, shown (``warning: agent NAME: ...``) and
-        told to the listeners."""
+        told to the listeners. A warning given before is shown again once, saying so, and
+        then no more (a rule failing every cycle would otherwise fill the screen)."""
         self.report.warnings.append(message)
-        self._warn(f"warning: agent {self.name}: {message}")
+        seen = self._warned.get(message, 0)
+        self._warned[message] = seen + 1
+        if seen == 0:
+            self._warn(f"warning: agent {self.name}: {message}")
+        elif seen == 1:
+            self._warn(f"warning: agent {self.name}: again in cycle {self.cycle} (not shown "
+                       f"again): {message}")
         if self.listeners:
             self.tell(Event(EventKind.WARNING, self.name, message))
 
@@ -210,6 +226,25 @@ class Agent:
             self.terminated = True
         elif exit_option == "always":
             self.terminated = True
+
+    def _note_idleness(self) -> None:
+        """Count cycles in which nothing happened; say once when there have been
+        ``idle_warning`` of them in a row while goals are left (an agent that would
+        otherwise run on without a word)."""
+        report, last = self.report, self.last_report
+        if (report.acted or report.messages or self.terminated or last is None
+                or report.percepts != last.percepts):
+            self.idle_cycles = 0
+            return
+        self.idle_cycles += 1
+        if self.idle_cycles == self.idle_warning:
+            goals = self.goals()
+            if goals:
+                first = ", ".join(format_term(fact) for fact in goals[0])
+                self.warn(f"has done nothing for {self.idle_cycles} cycles (no action, no new "
+                          f"percept or message) and has {len(goals)} goal(s) left, e.g. "
+                          f"{first}: no rule applies to them; it runs on until --max-cycles "
+                          "or Ctrl-C")
 
     def _blind_commitment(self) -> None:
         for goal in self.ms.blind_commitment():

@@ -12,9 +12,11 @@ environments goalagent has in Python to their registered names.
 from __future__ import annotations
 
 import importlib
+import os
 import re
 import sys
 from collections.abc import Callable
+from types import ModuleType
 from typing import TypeVar, overload
 
 from goalagent.eis.exceptions import ManagementException, NoEnvironmentException
@@ -126,6 +128,20 @@ def known_environments() -> list[str]:
     return sorted(_REGISTRY)
 
 
+def _import_here_too(module_name: str) -> ModuleType:
+    """Import a module, also from the current directory: ``goalagent`` is a console script,
+    whose ``sys.path`` starts at its own folder, not where the user runs it."""
+    try:
+        return importlib.import_module(module_name)
+    except ModuleNotFoundError as error:
+        here = os.getcwd()
+        top = module_name.partition(".")[0]
+        if error.name != top or here in sys.path or "" in sys.path:
+            raise
+        sys.path.append(here)
+        return importlib.import_module(module_name)
+
+
 def _import_path(spec: str) -> type[Environment]:
     """Import ``package.module:Class`` and check it is an Environment subclass."""
     module_name, _, attr = spec.partition(":")
@@ -134,7 +150,7 @@ def _import_path(spec: str) -> type[Environment]:
             f"'{spec}' is not of the form package.module:Class"
         )
     try:
-        module = importlib.import_module(module_name)
+        module = _import_here_too(module_name)
     except ImportError as error:
         raise NoEnvironmentException(
             f"cannot load environment '{spec}': {error}"

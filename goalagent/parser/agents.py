@@ -13,6 +13,7 @@ environment, and turns its percept rules (``replace p/1.``) into event rules.
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import replace
 from pathlib import Path
 
@@ -54,7 +55,12 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
                 return candidate
     how = f" as {use.case}" if use.case else ""
     tried = " or ".join(str(c) for c in candidates)
-    raise GoalSyntaxError.at(use.pos, f"use {use.ref}{how}: no such file ({tried})")
+    suffixes = {c.suffix for c in candidates} | ({path.suffix} - {""})
+    present = ([p.stem for p in path.parent.iterdir() if p.suffix in suffixes]
+               if path.parent.is_dir() else [])
+    close = difflib.get_close_matches(Path(ref).stem, present, n=1)
+    hint = f"; did you mean {close[0]}?" if close else ""
+    raise GoalSyntaxError.at(use.pos, f"use {use.ref}{how}: no such file ({tried}){hint}")
 
 
 def parse_module_file(path: str | Path, *, plain_beliefs: bool = False) -> ModuleFile:

@@ -10,6 +10,7 @@ not available) raises ``ActionRefused`` before the world is touched.
 from __future__ import annotations
 
 import contextlib
+import sys
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -114,6 +115,7 @@ class GarbageEnvironment(PythonEnvironment):
         self.disposed = 0
         self._events: list[PerceptLike] = []
         self._observation: Observation | None = None
+        self._told: set[str] = set()
 
     def on_kill(self) -> None:
         """Finish the recording and free the renderer."""
@@ -151,6 +153,13 @@ class GarbageEnvironment(PythonEnvironment):
 
     def _changed(self) -> None:
         self._observation = None
+
+    def _tell_where(self, what: str, path: Path) -> None:
+        """Say once per run where learning keeps what it wrote (stderr), so a user can find,
+        keep or delete it."""
+        if what not in self._told:
+            self._told.add(what)
+            print(f"garbage: {what} are kept in {path}", file=sys.stderr)
 
     # ------------------------------------------------------------------ ball
     @action("grasp")
@@ -271,6 +280,9 @@ class GarbageEnvironment(PythonEnvironment):
         except LearningModeUnavailable as error:
             raise ActionRefused(str(error)) from None
         self._changed()
+        store = self.behaviours.store
+        if store is not None:
+            self._tell_where("learned effect models", store.path)
         self._events.append(afford_percept(result.evidence))
         self._events.append(Struct("model", (Atom(first), Atom(second),
                                              round(result.theta_max, 4),
@@ -283,6 +295,7 @@ class GarbageEnvironment(PythonEnvironment):
         result = learn_by_transfer(self.world, self.perception, self.objects, delta=self.delta,
                                    effect_name=effect, random_state=self._transfer_rng)
         self._changed()
+        self._tell_where("known objects", self.objects.path)
         for report in result.reports:
             evidence = report.evidence
             if evidence.suc:

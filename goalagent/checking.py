@@ -1,0 +1,130 @@
+"""What ``goalagent check`` finds before anything runs, beyond the checks made when an agent is
+loaded (``goalagent.agent.validate_program``): the environment a ``.mas2g`` names and its
+init parameters, calls in ``bel``/precondition queries of predicates defined nowhere
+(warnings), and the files under a directory given as an argument.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from goalagent import ast
+from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.registry import known_environments, load_environment
+from goalagent.kb.engine import KBError, get_engine
+from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.parser import GoalSyntaxError
+
+if TYPE_CHECKING:
+    from goalagent.agent import Agent
+
+SYSTEM_SUFFIXES = (".goal", ".mas2g", ".test2g")
+# Control constructs whose arguments are goals (argument positions), and meta-calls.
+_CONTROL = {(",", 2): (0, 1), (";", 2): (0, 1), ("->", 2): (0, 1), ("*->", 2): (0, 1),
+            ("\\+", 1): (0,), ("not", 1): (0,), ("call", 1): (0,), ("once", 1): (0,),
+            ("ignore", 1): (0,), ("forall", 2): (0, 1), ("findall", 3): (1,),
+            ("findall", 4): (1,), ("bagof", 3): (1,), ("setof", 3): (1,),
+            ("aggregate_all", 3): (1,), ("aggregate_all", 4): (2,), ("^", 2): (1,)}
+# Predicates every belief base has (the mental state defines them).
+_MENTAL_STATE = {("percept", 1), ("received", 2), ("sent", 2), ("me", 1), ("agent", 1)}
+
+
+def did_you_mean(name: str, known: list[str]) -> str:
+    """`` (did you mean X?)`` for the closest known name, or nothing."""
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def files_to_check(path: Path) -> list[Path]:
+    """``path`` itself, or every agent and system under a directory (sorted): ``.goal``,
+    ``.mas2g`` and ``.test2g`` files (module, action and Prolog files are checked as the
+    systems that use them)."""
+    if not path.is_dir():
+        return [path]
+    return sorted(p for p in path.rglob("*") if p.suffix in SYSTEM_SUFFIXES and p.is_file())
+
+
+def check_environment(mas: ast.MasProgram) -> None:
+    """The environment a ``.mas2g`` names exists and takes the init parameters it is given
+    (``GoalSyntaxError`` at the environment or the parameter otherwise)."""
+    if not mas.environment:
+        return
+    pos = mas.env_pos or mas.pos
+    try:
+        environment = load_environment(mas.environment)
+    except EnvironmentInterfaceException as err:
+        hint = did_you_mean(mas.environment, known_environments())
+        raise GoalSyntaxError.at(pos, f"{err}{hint}") from None
+    parameters = getattr(environment, "parameters", None)
+    if parameters is None:
+        return
+    for key, value in mas.env_init:
+        if key not in parameters:
+            known = sorted(parameters)
+            raise GoalSyntaxError.at(
+                value.pos, f"environment '{mas.environment}' has no init parameter {key!r}"
+                f"{did_you_mean(key, known)}; its parameters: {', '.join(known) or 'none'}")
+
+
+def undefined_calls(agent: Agent) -> list[str]:
+    """Warnings for calls, in ``bel`` queries and preconditions, of predicates that are not
+    built in (nor in a library) and that no knowledge, belief, dynamic declaration or update
+    of the agent defines."""
+    warnings: list[str] = []
+    seen: set[tuple[str, int]] = set()
+    known = sorted({str(answer["N"]) for answer in agent.query(
+        "bel", "current_predicate(N/A), \\+ sub_atom(N, 0, _, _, '$'), functor(H, N, A), "
+        "\\+ predicate_property(H, imported_from(_)), \\+ predicate_property(H, built_in)")})
+    for query in _queries(agent.program):
+        try:
+            term = get_engine().parse_term(query.text)
+        except KBError:
+            continue  # unreadable texts are reported where they are compiled
+        for name, arity in _calls(term):
+            key = (name, arity)
+            if key in _MENTAL_STATE or key in seen:
+                continue
+            seen.add(key)
+            head = format_term(Struct(name, (Var("_"),) * arity) if arity else Atom(name))
+            if agent.query("bel", f"predicate_property({head}, defined)"):
+                continue
+            warnings.append(f"{query.pos}: warning: {name}/{arity} is called but defined "
+                            f"nowhere (not built in, not in knowledge or beliefs, never "
+                            f"inserted){did_you_mean(name, known)}")
+    return warnings
+
+
+def _queries(program: ast.AgentProgram) -> Iterator[ast.PrologText]:
+    """The Prolog queries run against the belief base: bel(...) and preconditions."""
+    for module in program.modules:
+        for rule in ast.iter_rules(module.rules):
+            yield from _bel_queries(rule.condition)
+    for spec in program.actionspecs:
+        yield spec.pre
+
+
+def _bel_queries(condition: ast.Condition) -> Iterator[ast.PrologText]:
+    for literal in condition:
+        if isinstance(literal, ast.NotLiteral):
+            yield from _bel_queries(literal.condition)
+        elif literal.op == "bel" and literal.query is not None:
+            yield literal.query
+
+
+def _calls(term: Term) -> Iterator[tuple[str, int]]:
+    """The predicates a goal calls (through control constructs; not inside meta-calls whose
+    goal is a variable)."""
+    if isinstance(term, Var) or not isinstance(term, (Atom, Struct)):
+        return
+    name, args = (str(term), ()) if isinstance(term, Atom) else (term.name, term.args)
+    if name == ":" and len(args) == 2:  # module-qualified: someone else's predicate
+        return
+    goals = _CONTROL.get((name, len(args)))
+    if goals is None:
+        yield name, len(args)
+        return
+    for index in goals:
+        yield from _calls(args[index])

@@ -1,0 +1,98 @@
+"""``goalagent check`` catches more before anything runs: non-ground goals (located),
+unknown environments and init parameters in a .mas2g, calls of predicates defined nowhere
+(warnings), "did you mean" for misspelt actions, modules and environments, and directories
+(every agent under them)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "goalagent", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_non_ground_goals_are_located_by_check_and_by_run(tmp_path: Path) -> None:
+    program = tmp_path / "deal.goal"
+    program.write_text("init module {\n  goals { deal(X). }\n}\n"
+                       "main module { program { if true then print(x). } }\n")
+    for command in ("check", "run"):
+        result = goalagent(command, str(program))
+        assert result.returncode == 2
+        assert f"{program}:2:11: goal deal(X) is not ground (variable(s) X)" in result.stderr
+        assert "_G" not in result.stderr and "Traceback" not in result.stderr
+
+
+def test_unknown_environment_and_init_parameter_in_a_mas2g(tmp_path: Path) -> None:
+    agent = tmp_path / "a.goal"
+    agent.write_text("main module { program { if true then print(x). } }\n")
+    system = tmp_path / "s.mas2g"
+    system.write_text('environment {\n  env = "blockworld".\n}\n'
+                      'agentfiles { "a.goal". }\nlaunchpolicy { launch a : a. }\n')
+    result = goalagent("check", str(system))
+    assert result.returncode == 2
+    assert f"{system}:2:" in result.stderr and "unknown environment 'blockworld'" in result.stderr
+    assert "did you mean blocksworld?" in result.stderr
+    system.write_text('environment {\n  env = "blocksworld".\n  init = [stat = [], robots = 1].'
+                      '\n}\nagentfiles { "a.goal". }\nlaunchpolicy { launch a : a. }\n')
+    result = goalagent("check", str(system))
+    assert result.returncode == 2
+    assert f"{system}:3:" in result.stderr and "no init parameter 'stat'" in result.stderr
+    assert "did you mean state?" in result.stderr
+
+
+def test_calls_of_predicates_defined_nowhere_are_warnings_with_suggestions(tmp_path: Path):
+    program = tmp_path / "typo.goal"
+    program.write_text("""init module {
+    knowledge { clear(X) :- block(X), \\+ on(_, X). }
+    beliefs { block(a). on(a, table). }
+    actionspec { move(X, Y) { pre { clear(X), clearr(Y) } post { true } } }
+}
+main module { program {
+    if bel(block(X), claer(X), member(X, [a]), findall(Y, blok(Y), _), seen(X)) then move(X, a).
+    if true then insert(seen(a)).
+} }
+""")
+    result = goalagent("check", str(program))
+    assert result.returncode == 0, result.stderr
+    lines = [line for line in result.stderr.splitlines() if "defined nowhere" in line]
+    assert len(lines) == 3
+    assert f"{program}:7:12: warning: claer/1" in lines[0] and "did you mean clear?" in lines[0]
+    assert "blok/1" in lines[1] and "did you mean block?" in lines[1]
+    assert f"{program}:4:37: warning: clearr/1" in lines[2]
+    # built-ins, library predicates (member/2), inserted ones (seen/1) are not reported
+
+
+def test_misspelt_actions_and_module_files_get_suggestions(tmp_path: Path) -> None:
+    program = tmp_path / "act.goal"
+    program.write_text("init module { actionspec { move(X) { pre { true } post { true } } } }\n"
+                       "main module { program { if true then mvoe(a). } }\n")
+    result = goalagent("check", str(program))
+    assert result.returncode == 2 and "unknown action mvoe/1" in result.stderr
+    assert "did you mean move?" in result.stderr
+    (tmp_path / "mymain.mod2g").write_text("module mymain { if true then print(x). }\n")
+    system = tmp_path / "s.mas2g"
+    system.write_text("define a as agent {\n  use mymian as main module.\n}\n"
+                      "launchpolicy { launch a. }\n")
+    result = goalagent("check", str(system))
+    assert result.returncode == 2
+    assert f"{system}:2:" in result.stderr and "did you mean mymain?" in result.stderr
+
+
+def test_a_directory_checks_every_agent_and_system_under_it(tmp_path: Path) -> None:
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "good.goal").write_text("main module { program { if true then print(x). } }\n")
+    (tmp_path / "sub" / "bad.goal").write_text("main module { program { if true then fly. } }\n")
+    result = goalagent("check", str(tmp_path))
+    assert result.returncode == 2
+    assert f"{tmp_path / 'good.goal'}: ok" in result.stderr
+    assert f"{tmp_path / 'sub' / 'bad.goal'}:1:" in result.stderr
+    shipped = goalagent("check", "agents")
+    assert shipped.returncode == 0, shipped.stderr
+    assert "defined nowhere" not in shipped.stderr
+    assert shipped.stderr.count(": ok") >= 20

@@ -1,0 +1,102 @@
+"""Runs that explain themselves: an idle agent with goals left is warned about once, a
+warning repeated every cycle is not shown every cycle, ``--version``, ``--env module:Class``
+from the current directory, and the README's description of ``make demo``."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from goalagent.agent import Agent
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "goalagent", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_an_idle_agent_with_goals_left_is_warned_about_once() -> None:
+    shown: list[str] = []
+    agent = Agent.from_string("""
+        init module { goals { done. } knowledge { :- dynamic ready/0. } }
+        main module { program { if bel(ready) then insert(done). } }
+    """, name="idler", warn=shown.append, idle_warning=5)
+    agent.run(20)
+    idle = [line for line in shown if "has done nothing" in line]
+    assert idle == ["warning: agent idler: has done nothing for 5 cycles (no action, no new "
+                    "percept or message) and has 1 goal(s) left, e.g. done: no rule applies to "
+                    "them; it runs on until --max-cycles or Ctrl-C"]
+
+
+def test_a_busy_or_goal_free_agent_is_not_warned_about() -> None:
+    shown: list[str] = []
+    busy = Agent.from_string("""
+        init module { beliefs { n(0). } goals { n(1000). } }
+        main module { program { if bel(n(N), M is N + 1) then delete(n(N)) + insert(n(M)). } }
+    """, name="busy", warn=shown.append, idle_warning=5)
+    busy.run(20)
+    content = Agent.from_string("init module { knowledge { x :- fail. } } "
+                                "main module { program { if bel(x) then print(x). } }",
+                                name="content", warn=shown.append, idle_warning=5)
+    content.run(20)
+    assert not shown
+
+
+def test_a_warning_repeated_every_cycle_is_shown_twice_at_most() -> None:
+    shown: list[str] = []
+    agent = Agent.from_string("main module { program { if bel(undefined_thing) then "
+                              "print(x). } }", name="noisy", warn=shown.append)
+    agent.run(30)
+    assert len(agent.last_report.warnings) == 1  # every cycle keeps its own
+    assert len(shown) == 2 and "again in cycle 2 (not shown again)" in shown[1]
+
+
+def test_version() -> None:
+    result = goalagent("--version")
+    assert result.returncode == 0 and re.fullmatch(r"goalagent \d+\.\d+\.\d+\n", result.stdout)
+
+
+def test_env_module_class_is_found_in_the_current_directory(tmp_path: Path) -> None:
+    (tmp_path / "counterenv.py").write_text('''
+from goalagent.eis.pyenv import PythonEnvironment, action
+
+class Counter(PythonEnvironment):
+    name = "counter"
+    entity_names = ("c",)
+
+    def on_init(self, params):
+        self.n = 0
+
+    def percepts(self, entity):
+        return [("n", self.n)]
+
+    @action("inc")
+    def inc(self, entity: str) -> None:
+        self.n += 1
+''')
+    (tmp_path / "count.goal").write_text("""
+        init module { goals { counted. } actionspec { inc { pre { true } post { true } } } }
+        main module [exit=nogoals] { program {
+            if bel(percept(n(N)), N < 3) then inc.
+            if bel(percept(n(3))) then print(three) + insert(counted).
+        } }
+    """)
+    result = goalagent("run", "count.goal", "--env", "counterenv:Counter", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == "three\n"
+
+
+def test_readme_says_what_make_demo_writes() -> None:
+    makefile = (ROOT / "Makefile").read_text()
+    recipe = makefile.split("\ndemo:", 1)[1].split("\n\n", 1)[0]
+    written = re.findall(r"--(?:save-beliefs|plot) (\S+)", recipe)
+    assert len(written) == 4
+    readme = (ROOT / "README.md").read_text()
+    demo = readme.split("`.ci/run` runs exactly `make test`.", 1)[1].split("\n\n", 1)[0]
+    for path in written:
+        assert f"`{path}`" in demo, path
+    assert "afford-robot.png" not in demo
