@@ -11,13 +11,14 @@ from __future__ import annotations
 import contextlib
 import inspect
 import io
-import sys
 from collections.abc import Callable, Sequence
 from importlib import metadata
 from pathlib import Path
 from typing import Annotated, Any
 
+import click
 import typer
+from typer.core import TyperCommand
 
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
@@ -88,10 +89,13 @@ def _trace_printer(kinds: str | None, file: Path | None) -> TracePrinter | None:
         raise user_error(f"--trace-file {file}: {err.strerror or err}") from None
 
 
-def _trace_argument(argv: list[str]) -> list[str]:
-    """``--trace`` alone means ``--trace=all`` (Typer has no option whose value may be left
-    out, and ``--trace`` was a plain flag before it took kinds)."""
-    return ["--trace=all" if arg == "--trace" else arg for arg in argv]
+class _RunCommand(TyperCommand):
+    """``run``, where ``--trace`` alone means ``--trace=all`` (Typer has no option whose
+    value may be left out, and ``--trace`` was a plain flag before it took kinds)."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        return super().parse_args(ctx, ["--trace=all" if arg == "--trace" else arg
+                                        for arg in args])
 
 
 def _language_run_options(
@@ -345,7 +349,7 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
     extensions = installed_extensions() if extensions is None else extensions
     app = typer.Typer(add_completion=False, no_args_is_help=True, help=HELP)
     app.callback()(_version_option)
-    app.command(name="run")(_run_command(extensions))
+    app.command(name="run", cls=_RunCommand)(_run_command(extensions))
     app.command()(check)
     for extension in extensions:
         if extension.add_commands is not None:
@@ -355,4 +359,4 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
 
 def main() -> None:
     """The ``goalagent`` console script."""
-    create_app()(args=_trace_argument(sys.argv[1:]))
+    create_app()()
