@@ -1,10 +1,12 @@
 """Runs that explain themselves: an idle agent with goals left is warned about once, a
 warning repeated every cycle is not shown every cycle, ``--version``, ``--env module:Class``
-from the current directory, and the README's description of ``make demo``."""
+from the current directory, the README's description of ``make demo``, and where the
+afford/6 reliability plot goes without ``--plot`` (never the current directory)."""
 
 from __future__ import annotations
 
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -100,3 +102,28 @@ def test_readme_says_what_make_demo_writes() -> None:
     for path in written:
         assert f"`{path}`" in demo, path
     assert "afford-robot.png" not in demo
+
+
+AFFORD_AGENT = """
+init module { beliefs { afford(lid, push, opened, 2, 1, 0.5). } }
+main module [exit=always] { program { if true then print(done). } }
+"""
+
+
+def test_the_reliability_plot_never_lands_in_the_current_directory(tmp_path: Path) -> None:
+    program = tmp_path / "learner.goal"
+    program.write_text(AFFORD_AGENT)
+    work = tmp_path / "work"
+    work.mkdir()
+    plain = goalagent("run", str(program), cwd=work)
+    assert plain.returncode == 0, plain.stderr
+    written = Path(re.search(r"reliability plot: (\S+)", plain.stderr).group(1))
+    assert written.name == "afford-learner.png" and written.stat().st_size > 1000
+    assert written.parent != work and written.parent.name.startswith("goalagent-plots-")
+    shutil.rmtree(written.parent)
+    saved = tmp_path / "out" / "learned.pl"
+    beside = goalagent("run", str(program), "--save-beliefs", str(saved), cwd=work)
+    assert beside.returncode == 0, beside.stderr
+    assert f"reliability plot: {saved.parent / 'afford-learner.png'}" in beside.stderr
+    assert (saved.parent / "afford-learner.png").is_file()
+    assert list(work.iterdir()) == []
