@@ -23,7 +23,8 @@ from rich.console import Console
 from rich.text import Text
 
 from goalagent.agent import Event, EventKind
-from goalagent.kb.terms import Struct, Term, Var, format_term
+from goalagent.agent.events import show_term
+from goalagent.kb.terms import Term
 
 KINDS: dict[str, frozenset[EventKind]] = {
     "percepts": frozenset({EventKind.PERCEPTS}),
@@ -67,20 +68,9 @@ def parse_kinds(text: str) -> tuple[frozenset[EventKind], bool]:
     return frozenset(chosen), idle
 
 
-def _anonymous(term: Term) -> Term:
-    """``term`` with Prolog's fresh variables (``_G123``) shown as ``_``."""
-    if isinstance(term, Var):
-        return Var("_") if term.name.startswith("_") else term
-    if isinstance(term, list):
-        return [_anonymous(item) for item in term]
-    if isinstance(term, Struct):
-        return Struct(term.name, tuple(_anonymous(arg) for arg in term.args))
-    return term
-
-
 def show(term: Term) -> str:
     """A term as trace text: Prolog syntax, fresh variables as ``_``."""
-    return format_term(_anonymous(term))
+    return show_term(term)
 
 
 def _record(event: Event, text: str) -> dict:
@@ -173,9 +163,6 @@ class TracePrinter:
             return " ".join(changes) or None
         if event.kind is EventKind.RULE_TRIED and not event.bindings and not self.idle:
             return None
-        if event.bindings and event.kind in (EventKind.RULE_TRIED, EventKind.RULE_FIRED,
-                                             EventKind.ACTION_REFUSED):
-            return _without_fresh_names(event)
         return event.text
 
     def close(self) -> None:
@@ -184,23 +171,3 @@ class TracePrinter:
             self._file.close()
             self._file = None
 
-
-def _without_fresh_names(event: Event) -> str:
-    """The event's text with Prolog's fresh variable names (``_G123``) shown as ``_``."""
-    names = {name for bindings in event.bindings for value in bindings.values()
-             for name in _fresh_names(value)}
-    text = event.text
-    for name in sorted(names, key=len, reverse=True):  # _G12 after _G123
-        text = text.replace(name, "_")
-    return text
-
-
-def _fresh_names(term: Term) -> Iterable[str]:
-    if isinstance(term, Var) and term.name.startswith("_") and term.name != "_":
-        yield term.name
-    elif isinstance(term, list):
-        for item in term:
-            yield from _fresh_names(item)
-    elif isinstance(term, Struct):
-        for arg in term.args:
-            yield from _fresh_names(arg)

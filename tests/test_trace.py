@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import json
 import os
+import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -133,3 +135,29 @@ def test_refused_actions_and_warnings_are_traced_with_fresh_variables_as_undersc
     assert "fired main" in text and "Y=f(_)" in text and "_G" not in text
     assert "warning module main, rule at <string>:6:" in text
     assert EventKind.WARNING.value == "warning"
+
+
+def readme_run_commands() -> list[list[str]]:
+    """The ``goalagent run`` commands of the README's "Running agents" block, as written."""
+    readme = (ROOT / "README.md").read_text()
+    block = readme.split("## Running agents", 1)[1].split("```sh\n", 1)[1].split("```", 1)[0]
+    lines = block.replace("\\\n", " ").splitlines()
+    return [shlex.split(line, comments=True)[1:] for line in lines
+            if shlex.split(line, comments=True)[1:2] == ["run"]]
+
+
+def test_the_readme_trace_examples_show_their_lists() -> None:
+    """The issue's complaints, on the README's own commands traced: ``T_M1=`` for the
+    blocks builder's macro variable, ``canMake(grinder,)`` for coffee, ``_5988``."""
+    commands = {Path(command[1]).name: command for command in readme_run_commands()}
+    blocks = commands["blocks_builder.goal"]
+    assert "--trace" in blocks  # the README shows this one traced
+    traced = goalagent(*blocks)
+    assert traced.returncode == 0, traced.stderr
+    assert "[X=a, Y=b, T=[c]]" in traced.stdout and "T_M1" not in traced.stdout
+    coffee = goalagent(*commands["coffee.mas2g"], "--trace")
+    assert coffee.returncode == 0, coffee.stderr
+    assert "maker.sendonce(:canMake(grinder,[grounds]))" in coffee.stdout
+    assert "received grinder: :canMake(grinder,[grounds])" in coffee.stdout
+    assert "received maker: ?canMake(_,_)" in coffee.stdout  # fresh variables as _
+    assert not re.search(r"_G?\d", coffee.stdout + traced.stdout)

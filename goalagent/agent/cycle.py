@@ -26,6 +26,7 @@ from goalagent.agent.events import (
     goal_event,
     message_event,
     percepts_event,
+    readable_text,
 )
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
@@ -173,8 +174,9 @@ class Agent:
         self.listeners.append(listener)
 
     def tell(self, event: Event) -> None:
-        """Tell the listeners an event (stamped with the current cycle)."""
-        event = dataclasses.replace(event, cycle=self.cycle)
+        """Tell the listeners an event (stamped with the current cycle; fresh variables in its
+        text shown as ``_``)."""
+        event = dataclasses.replace(event, cycle=self.cycle, text=readable_text(event))
         for listener in self.listeners:
             listener(event)
 

@@ -6,7 +6,7 @@ line of text for people."""
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -14,7 +14,7 @@ from goalagent import ast
 from goalagent.agent.reports import describe, describe_firing
 from goalagent.events import EventKind
 from goalagent.kb.interpreter import Step
-from goalagent.kb.terms import Term, format_term
+from goalagent.kb.terms import Struct, Term, Var, format_term
 
 _SHOWN_INSTANTIATIONS = 5  # a tried rule's line shows this many instantiations at most
 
@@ -121,3 +121,43 @@ def module_event(agent: str, kind: EventKind, module: ast.Module, description: s
 def goal_event(agent: str, kind: EventKind, goal: list[Term]) -> Event:
     """A goal (its facts) adopted, dropped or achieved."""
     return Event(kind, agent, _goal_text(goal), term=goal)
+
+
+def anonymous(term: Term) -> Term:
+    """``term`` with Prolog's fresh variables (``_G123``) as ``_``: their numbers mean
+    nothing to the reader and differ from run to run."""
+    if isinstance(term, Var):
+        return Var("_") if term.name.startswith("_") else term
+    if isinstance(term, list):
+        return [anonymous(item) for item in term]
+    if isinstance(term, Struct):
+        return Struct(term.name, tuple(anonymous(arg) for arg in term.args))
+    return term
+
+
+def show_term(term: Term) -> str:
+    """A term as people read it in traces and the inspector: fresh variables as ``_``."""
+    return format_term(anonymous(term))
+
+
+def _fresh_names(term: Term | None) -> Iterable[str]:
+    if isinstance(term, Var) and term.name.startswith("_") and term.name != "_":
+        yield term.name
+    elif isinstance(term, list):
+        for item in term:
+            yield from _fresh_names(item)
+    elif isinstance(term, Struct):
+        for arg in term.args:
+            yield from _fresh_names(arg)
+
+
+def readable_text(event: Event) -> str:
+    """The event's text with the fresh variable names of its bindings and term (a message's
+    ``?canMake(_G31,_G32)``, a firing's ``Y=f(_G7)``) shown as ``_``."""
+    names = {name for bindings in event.bindings for value in bindings.values()
+             for name in _fresh_names(value)}
+    names.update(_fresh_names(event.term))
+    text = event.text
+    for name in sorted(names, key=len, reverse=True):  # _G123 before _G12
+        text = text.replace(name, "_")
+    return text

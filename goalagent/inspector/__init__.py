@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from rich.console import Console
 
 from goalagent.agent import Event, EventKind
+from goalagent.agent.events import show_term
 from goalagent.debugger import Debugger, DebuggerError, Stop
 from goalagent.extensions import Extension, InspectorPanel, PanelView
 from goalagent.inspector.server import Command, InspectorServer
@@ -40,7 +41,7 @@ _SHOWN = {kind for kind in EventKind if kind is not EventKind.PERCEPTS}
 def _event_json(event: Event) -> dict[str, Any]:
     return {"kind": event.kind.value, "text": event.text,
             "pos": str(event.pos) if event.pos is not None else "",
-            "bindings": [{name: format_term(value) for name, value in b.items()}
+            "bindings": [{name: show_term(value) for name, value in b.items()}
                          for b in event.bindings]}
 
 
