@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 from goalagent.agent import Agent
+from goalagent.agent.events import plain_variables
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -55,6 +56,21 @@ def test_a_warning_repeated_every_cycle_is_shown_twice_at_most() -> None:
     agent.run(30)
     assert len(agent.last_report.warnings) == 1  # every cycle keeps its own
     assert len(shown) == 2 and "again in cycle 2 (not shown again)" in shown[1]
+
+
+def test_warnings_show_no_prolog_variable_numbers_so_repeats_read_the_same() -> None:
+    shown: list[str] = []
+    agent = Agent.from_string("""
+        main module { program {
+            if bel(X = f(_), atom_length(X, _)) then print(x).
+            if true then adopt(handled(_)).
+        } }
+    """, name="fresh", warn=shown.append)
+    agent.run(5)
+    assert "found `f(_)' (a compound)" in shown[0]  # was f(_86), f(_1204), ... each cycle
+    assert "adopt: handled(_) is not ground" in shown[1]
+    assert len(shown) == 4 and all("again in cycle 2" in line for line in shown[2:])
+    assert plain_variables("p(_12, _G3, _12) foo_12 '_7'") == "p(_G1, _, _G1) foo_12 '_7'"
 
 
 def test_version() -> None:

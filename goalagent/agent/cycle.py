@@ -26,6 +26,7 @@ from goalagent.agent.events import (
     goal_event,
     message_event,
     percepts_event,
+    plain_variables,
     readable_text,
 )
 from goalagent.agent.messages import Postman
@@ -183,7 +184,9 @@ class Agent:
     def warn(self, message: str) -> None:
         """A warning: kept in the cycle report, shown (``warning: agent NAME: ...``) and
         told to the listeners. A warning given before is shown again once, saying so, and
-        then no more (a rule failing every cycle would otherwise fill the screen)."""
+        then no more (a rule failing every cycle would otherwise fill the screen). Prolog's
+        variable numbers are left out of it (``f(_)``), so a repeat reads the same."""
+        message = plain_variables(message)
         self.report.warnings.append(message)
         seen = self._warned.get(message, 0)
         self._warned[message] = seen + 1

@@ -161,3 +161,17 @@ def readable_text(event: Event) -> str:
     for name in sorted(names, key=len, reverse=True):  # _G123 before _G12
         text = text.replace(name, "_")
     return text
+
+
+_PROLOG_VARIABLE = re.compile(r"(?<![\w'])_G?\d+\b")  # _123 or _G123, not in an atom
+
+
+def plain_variables(text: str) -> str:
+    """Prolog's own variable names in a message (``f(_1204)``, ``handled(_G7)``) as ``_``,
+    or ``_G1``, ``_G2``... (numbered in this message) for one that occurs more than once:
+    their numbers change every cycle, so a warning repeated each cycle would not read as
+    the same warning, and they mean nothing to the reader."""
+    found = _PROLOG_VARIABLE.findall(text)
+    shared = [name for name in dict.fromkeys(found) if found.count(name) > 1]
+    names = {name: f"_G{number}" for number, name in enumerate(shared, 1)}
+    return _PROLOG_VARIABLE.sub(lambda match: names.get(match.group(0), "_"), text)
