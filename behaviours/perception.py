@@ -339,11 +339,12 @@ def filled_hull(pixels: np.ndarray, width: int, height: int,
     return mask
 
 
-def make_perception(mode: str) -> Perception:
-    """The perception of a mode name: "camera" (rendered frames) or "truth" (ground truth)."""
+def make_perception(mode: str, camera: str = "head") -> Perception:
+    """The perception of a mode name: "camera" (rendered frames) or "truth" (ground truth),
+    through ``camera``."""
     if mode == "camera":
-        return CameraPerception()
+        return CameraPerception(camera)
     if mode == "truth":
-        return TruthPerception()
+        return TruthPerception(camera)
     raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
 

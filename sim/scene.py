@@ -66,10 +66,19 @@ ARM_RANGE = ((-0.42, 0.25), (-0.28, 0.45), (0.40, 1.05))
 """World-frame box (x, y, z bounds) the hand can reach."""
 ARM_FORCE = 60.0
 """Force limit of each arm actuator (N): strong enough to open a lid, too weak to break one."""
+ARM_KP = 3000.0
+"""Stiffness (N/m) of each arm actuator's position control."""
 HEAD_CAMERA_POS = (-0.75, 0.0, 0.87)
 HEAD_CAMERA_TARGET = (0.08, 0.0, 0.67)
 """The head camera is the same in every scene: it looks at the can's upper front."""
 HEAD_CAMERA_FOVY = 45.0
+CLOSE_CAMERA_SCALE = 0.6
+CLOSE_CAMERA_POS = tuple(t + CLOSE_CAMERA_SCALE * (h - t)
+                         for h, t in zip(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET, strict=True))
+"""Chapter 4's camera, ``close``: on the head camera's line of sight, 0.6 times as far from
+its target, so it sees the opening from the same angle 2.8 times as large; a fully opened can
+fills about 0.12-0.13 of its image, as the thesis's NAO bottom camera, 10-12 cm from the
+can, saw it (eq. 4.19, Table 4.1). The head camera stays where the other chapters need it."""
 
 RGBA = {
     "dark": "0.02 0.02 0.02 1",
@@ -170,6 +179,8 @@ SITE = 'size="0.003" rgba="0 0 0 0"'
 """Reference points (rim and lid front edges) are invisible."""
 LID_RANGE = 1.75
 """Upper limit of every lid hinge (rad)."""
+HOLD_SOLREF = (0.005, 1.0)
+"""solref (time constant s, damping ratio) of the hand's hold on a part."""
 HOLDABLE = ("lid", "handle")
 """Parts the hand can keep hold of (a ball-joint constraint, off until ``hold``; thesis ch. 4)."""
 SLIDE_TRAVEL = 0.75
@@ -336,7 +347,9 @@ def build_mjcf(can: str | CanSpec) -> str:
              _box("table", (0.05, 0, TABLE_TOP / 2), (0.40, 0.55, TABLE_TOP / 2), RGBA["table"]),
              _box("backdrop", (1.2, 0, 1.0), (0.01, 2.0, 1.0), RGBA["wall"], collide=False),
              f'<camera name="head" pos="{_v(*HEAD_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
-             f'xyaxes="{_look_at(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>']
+             f'xyaxes="{_look_at(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>',
+             f'<camera name="close" pos="{_v(*CLOSE_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
+             f'xyaxes="{_look_at(CLOSE_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>']
     parts += _body_xml(c)
     parts += _lid_xml(c)
     if "handle" in c.parts:
@@ -378,11 +391,11 @@ def build_mjcf(can: str | CanSpec) -> str:
     for part in HOLDABLE:  # anchors are set when the hand takes hold (GarbageWorld.hold)
         if part in c.parts:
             parts.append(f'<connect name="hold_{part}" body1="hand" body2="{part}" '
-                         'anchor="0 0 0" active="false" solref="0.005 1"/>')
+                         f'anchor="0 0 0" active="false" solref="{_v(*HOLD_SOLREF)}"/>')
     parts.append("</equality>")
     parts.append("<actuator>")
     for axis, (lo, hi), home in zip("xyz", ARM_RANGE, HOME, strict=True):
-        parts.append(f'<position name="act_{axis}" joint="arm_{axis}" kp="3000" '
+        parts.append(f'<position name="act_{axis}" joint="arm_{axis}" kp="{ARM_KP:g}" '
                      f'ctrlrange="{_v(lo - home, hi - home)}" '
                      f'forcerange="{_v(-ARM_FORCE, ARM_FORCE)}"/>')
     parts.append("</actuator>")

@@ -27,10 +27,12 @@ import numpy as np
 
 from sim.base import CameraModel
 from sim.scene import (
+    ARM_KP,
     ARM_RANGE,
     BALL_RADIUS,
     CANS,
     GRIP_OFFSET,
+    HOLD_SOLREF,
     HOLDABLE,
     HOME,
     MARKER_SIZE,
@@ -49,6 +51,10 @@ ARRIVE_TOL = 1.5e-3
 """Distance (m) from the set-point at which the hand counts as arrived."""
 HOLD_REACH = 0.01
 """The hand takes hold of a part only if it is at most this far (m) from the part's surface."""
+SLIDING_SOLREF = (-44000.0, -2.0)
+"""A sliding hold's constraint (MuJoCo's direct solref: stiffness, damping): as stiff as the
+ball joint's (timeconst 0.005 s) but nearly undamped, since the damping would also act along
+the face and drag the sliding hand (moved ~2 mm of a 1 cm step instead of ~8 mm)."""
 FRAME_RATE = 25.0
 """Frames per second of simulated time in recorded videos."""
 
@@ -123,6 +129,8 @@ class GarbageWorld:
                        for part in HOLDABLE if part in self.parts}
         for hold in self._holds.values():
             d.eq_active[hold] = 0
+        self._sliding: tuple[int, int, tuple[np.ndarray, np.ndarray]] | None = None
+        self.arm_stiffness = ARM_KP
         self.set_ball_collisions(True)
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._ball_body = m.body("ball").id
@@ -158,6 +166,8 @@ class GarbageWorld:
     def step(self, n: int = 1) -> None:
         """Advance the physics ``n`` steps (and feed the recorder, if one is running)."""
         for _ in range(n):
+            if self._sliding is not None:
+                self._slide_anchor()
             mujoco.mj_step(self.model, self.data)
             self.steps += 1
             if self._recorder is not None:
@@ -219,6 +229,20 @@ class GarbageWorld:
                 break
         return bool(np.linalg.norm(self.effector_pos - target) < 3 * ARRIVE_TOL)
 
+    @property
+    def arm_stiffness(self) -> float:
+        """Stiffness (N/m) of the arm's position control (``ARM_KP`` after every reset)."""
+        return float(self.model.actuator_gainprm[0, 0])
+
+    @arm_stiffness.setter
+    def arm_stiffness(self, kp: float) -> None:
+        if not (isinstance(kp, int | float) and math.isfinite(kp) and kp > 0):
+            raise ValueError(f"arm stiffness must be a positive number of N/m, got {kp!r}")
+        for axis in "xyz":
+            actuator = self.model.actuator(f"act_{axis}").id
+            self.model.actuator_gainprm[actuator, 0] = kp
+            self.model.actuator_biasprm[actuator, 1] = -kp
+
     def home(self) -> bool:
         """Move the hand back to its resting position beside the can."""
         return self.move_arm_to(HOME)
@@ -234,12 +258,16 @@ class GarbageWorld:
         """The part the hand keeps hold of, if any (see ``hold``)."""
         return next((p for p, eq in self._holds.items() if self.data.eq_active[eq]), None)
 
-    def hold(self, part: str) -> None:
+    def hold(self, part: str, sliding: bool = False) -> None:
         """Keep hold of ``part`` at the point the hand touches: a ball joint from now on.
 
         The hand must be within ``HOLD_REACH`` of the part (approach it first). While held,
         the part follows the hand as far as its own joint lets it, both ways: the hand that
         pushed a lid open can pull it shut again (thesis ch. 4's paired skills).
+        ``sliding``: keep only the hand's distance from the part's front face (the plane
+        across the part's own x axis), and let the hand slide over the face, within its
+        edges: a hand pressed on a lid that rests against it, as NAO's hand on the push-lid
+        (thesis §4.6), rather than one gripping a point of it.
         """
         if part not in self._holds:
             held = ", ".join(self._holds) or "nothing"
@@ -256,14 +284,24 @@ class GarbageWorld:
         m.eq_data[eq, 0:3] = 0.0  # the hand's centre ...
         offset = self.effector_pos - d.xpos[body]
         m.eq_data[eq, 3:6] = d.xmat[body].reshape(3, 3).T @ offset  # ... where it is on the part
+        m.eq_solref[eq] = SLIDING_SOLREF if sliding else HOLD_SOLREF
         d.eq_active[eq] = 1
+        self._sliding = (eq, body, _face_extent(m, body)) if sliding else None
         self.relax()
 
     def release(self) -> None:
         """Let go of the held part (nothing happens if none is held)."""
         for eq in self._holds.values():
             self.data.eq_active[eq] = 0
+        self._sliding = None
         self.relax()
+
+    def _slide_anchor(self) -> None:
+        """Move a sliding hold's anchor over the face to where the hand is (its depth stays)."""
+        eq, body, (lo, hi) = self._sliding  # type: ignore[misc]
+        d = self.data
+        local = d.xmat[body].reshape(3, 3).T @ (self.effector_pos - d.xpos[body])
+        self.model.eq_data[eq, 4:6] = np.clip(local[1:], lo, hi)
 
     def _distance_to(self, part: str) -> float:
         """Smallest distance (m) between the hand and the colliding geoms of ``part``."""
@@ -473,6 +511,16 @@ class _Recorder:
         """Append a frame if one is due at the world's current time."""
         if world.data.time >= self.next_time:
             self.capture(world)
+
+
+def _face_extent(model: mujoco.MjModel, body: int) -> tuple[np.ndarray, np.ndarray]:
+    """(y, z) bounds, in ``body``'s frame, of its colliding geoms: the face a hand slides on."""
+    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == body and model.geom_contype[g]:
+            centre, half = model.geom_pos[g][1:], model.geom_size[g][1:]
+            lo, hi = np.minimum(lo, centre - half), np.maximum(hi, centre + half)
+    return lo, hi
 
 
 def _has_body(model: mujoco.MjModel, name: str) -> bool:

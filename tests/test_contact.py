@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from behaviours.contact import PartContact
+from behaviours.contact import CONTACT_CAMERA, CONTACT_STIFFNESS, REACH, PartContact
 from behaviours.learners.exploration import ContinuousWorld
 from behaviours.perception import CameraPerception
-from sim.scene import HOME
+from sim.scene import ARM_KP, HOME
 from sim.world import GarbageWorld
 
 
@@ -26,35 +26,46 @@ def run(contact: PartContact, moves: list[list[float]]) -> list[float]:
     return states
 
 
-def test_pushing_the_lid_opens_it_and_pulling_back_closes_it(world: GarbageWorld) -> None:
+def test_pushing_the_lid_opens_it_fully_and_pulling_back_closes_it(world: GarbageWorld) -> None:
+    """Thesis §4.6 / Table 4.1: about six pushes open the lid fully (s_o ~0.13 of the image),
+    the arm then fully stretched and the state stable; contracting closes it again."""
     world.reset("o1", seed=0)
     with PartContact(world, "lid") as contact:
         assert isinstance(contact, ContinuousWorld) and world.held_part == "lid"
         assert contact.action_bounds == [(-0.01, 0.01)]
-        states = run(contact, [[0.01]] * 10 + [[-0.01]] * 12)
-    opening, closing = np.diff(states[:11]), np.diff(states[10:])
-    assert states[0] == 0.0 and states[10] > 0.008
-    assert np.all(opening >= 0) and np.all(closing <= 0)  # e_o = s'_o − s_o (4.20)
-    assert states[-1] < 0.002  # closed again
+        assert world.arm_stiffness == CONTACT_STIFFNESS
+        start = world.effector_pos
+        states = run(contact, [[0.01]] * 14 + [[-0.01]] * 10)
+        assert world.effector_pos[0] - start[0] <= REACH[0][1] + 0.002
+    opening, closing = np.diff(states[:15]), np.diff(states[14:])
+    assert states[0] == 0.0 and 0.11 < states[8] < 0.15
+    assert opening[0] > 0.02 and np.all(np.abs(opening[8:]) < 0.01)  # then no more effect
+    assert np.all(opening >= -1e-3) and np.all(closing <= 1e-3)  # e_o = s'_o − s_o (4.20)
+    assert states[22] == states[-1] == 0.0  # closed within eight steps, and stays closed
     assert world.held_part is None and np.allclose(world.effector_pos, HOME, atol=3e-3)
+    assert world.arm_stiffness == ARM_KP
 
 
-def test_pulling_the_handle_opens_it_and_pushing_closes_it(world: GarbageWorld) -> None:
+def test_pulling_the_handle_opens_it_until_the_arm_is_contracted(world: GarbageWorld) -> None:
     world.reset("o5", seed=0)
     with PartContact(world, "handle", dims=3) as contact:
         assert contact.action_bounds == [(-0.01, 0.01)] * 3
-        states = run(contact, [[-0.01, 0.0, -0.005]] * 6 + [[0.01, 0.0, 0.0]] * 8)
-    assert states[6] > 0.025 and np.all(np.diff(states[:7]) > 0.003)
+        states = run(contact, [[-0.01, 0.0, -0.005]] * 9 + [[0.01, 0.0, 0.0]] * 8)
+    assert np.all(np.diff(states[:7]) > 0.01) and 0.11 < states[6] < 0.15
+    assert states[6] == states[9]  # fully contracted: pulling on changes nothing
     assert states[-1] < 0.003
     assert world.opening() < 0.01  # the can stays as the hand left it
 
 
-def test_the_camera_agrees_with_ground_truth_along_a_run(world: GarbageWorld) -> None:
-    world.reset("o5", seed=0)
-    camera = CameraPerception()
-    with PartContact(world, "handle") as contact:
-        for _ in range(8):
-            truth = contact.step(np.array([-0.01]))
+@pytest.mark.parametrize(("can", "part", "opens"), [("o1", "lid", 0.01), ("o5", "handle", -0.01)])
+def test_the_close_camera_agrees_with_ground_truth_along_a_run(
+        world: GarbageWorld, can: str, part: str, opens: float) -> None:
+    """s_o (eq. 4.19) from the rendered ``close`` frame and from the projected gap."""
+    world.reset(can, seed=0)
+    camera = CameraPerception(CONTACT_CAMERA)
+    with PartContact(world, part) as contact:
+        for move in [opens] * 7 + [-opens] * 3:
+            truth = contact.step(np.array([move]))
             assert abs(camera.observe(world).opening_area - truth) <= 0.002 + 0.05 * truth
 
 

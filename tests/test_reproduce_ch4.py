@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from robot.reproduce import ch4_exploration, ch4_skills
@@ -15,9 +16,12 @@ from robot.reproduce.runner import run
 
 def seed_with(steps: dict[tuple[str, str], int | None]) -> dict:
     """A hand-made ch4-exploration seed: only the convergence steps matter to the summary."""
+    averaged = [None] * 19 + [0.5, 0.6, 0.60005, 0.7, 0.70002]  # (4.10) holds at 2 of 4
     return {"configurations": {name: {method: {"converged_at": steps.get((name, method)),
                                                "states": [0.0, 0.01, 0.004],
-                                               "td_errors": [0.1, -0.2, 0.0, 0.3]}
+                                               "td_errors": [0.1, -0.2, 0.0, 0.3] * 6,
+                                               "effects": [0.02] * 20 + [0.0, 0.005, 0.03, 0.0],
+                                               "averaged": averaged}
                                       for method in METHODS} for name in CONFIGURATIONS}}
 
 
@@ -36,6 +40,11 @@ def test_exploration_summary_counts_converged_seeds_and_their_median_step() -> N
     assert rows["lid-1d active: step of convergence"].measured == pytest.approx(106 / 3)
     assert rows["lid-1d random: largest s_o reached in N_s steps"].measured == 0.01
     assert rows["lid-1d random: share of steps with δ > 0"].measured == 0.5
+    assert rows["lid-1d random: share of steps k > N with |e_o| < 0.01"].measured == 0.75
+    firing = rows["lid-1d active: share of steps k > N at which (4.10) holds"]
+    assert firing.measured == pytest.approx(2 / 4)
+    spread = rows["lid-1d active: spread (std) of |δ| over steps k > N"].measured
+    assert spread == pytest.approx(float(np.std([0.1, 0.2, 0.0, 0.3])))
 
 
 def test_budgets_follow_the_thesis_and_shrink_with_the_scale() -> None:

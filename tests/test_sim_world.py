@@ -154,6 +154,48 @@ def test_a_held_lid_follows_the_hand_both_ways_and_stays_when_released(
     assert world.held_part is None and world.opening() < 1e-3
 
 
+def test_a_sliding_hold_slides_over_the_lid_face_and_still_pulls_it_shut(
+        world: GarbageWorld) -> None:
+    """hold(sliding=True): only the distance to the face is kept, so a push forward turns the
+    lid while the hand slides down its face (a ball joint would drag the hand up the lid's
+    arc instead); pulling back closes the lid again; release restores the ball-joint hold."""
+    world.reset("o1", seed=0)
+    face = world.state().parts["lid"].pos
+    world.move_arm_to([face[0] - 0.017, face[1], face[2]])
+    world.arm_stiffness = 15000.0
+    world.hold("lid", sliding=True)
+    start = world.effector_pos
+    world.move_arm(0.01, 0.0, 0.0)
+    moved = world.effector_pos - start
+    assert moved[0] > 0.007 and abs(moved[2]) < 0.002  # forward, not up
+    assert world.opening() > 0.02
+    world.move_arm(-0.012, 0.0, 0.0)
+    assert world.opening() < 0.005
+    world.release()
+    assert world.held_part is None
+    world.arm_stiffness = 3000.0
+    world.reset(seed=0)
+    world.move_arm_to([face[0] - 0.017, face[1], face[2]])
+    world.hold("lid")
+    start = world.effector_pos
+    world.move_arm(0.01, 0.0, 0.0)
+    moved = world.effector_pos - start
+    assert moved[0] < 0.004 and moved[2] > moved[0]  # the ball joint follows the lid's arc
+    world.release()
+
+
+def test_arm_stiffness_is_reset_and_checked(world: GarbageWorld) -> None:
+    world.reset("o1", seed=0)
+    assert world.arm_stiffness == 3000.0
+    world.arm_stiffness = 12000.0
+    assert world.arm_stiffness == 12000.0
+    world.reset(seed=0)
+    assert world.arm_stiffness == 3000.0
+    for bad in (0.0, -1.0, float("nan"), "stiff"):
+        with pytest.raises(ValueError, match="arm stiffness must be a positive number"):
+            world.arm_stiffness = bad  # type: ignore[assignment]
+
+
 def test_hold_refuses_parts_the_can_cannot_hold(world: GarbageWorld) -> None:
     world.reset("o1", seed=0)
     with pytest.raises(ValueError, match="no part 'handle' to hold; it has lid"):

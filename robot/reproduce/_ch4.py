@@ -49,14 +49,14 @@ def explore(setup: Configuration, method: str, seed: int, scale: float, percepti
 
     The world is left as the exploration left it (the caller may go on using it).
     """
-    from behaviours.contact import PartContact
+    from behaviours.contact import CONTACT_CAMERA, PartContact
     from behaviours.learners.exploration import ActiveExplorer
     from behaviours.perception import make_perception
     from sim.world import GarbageWorld
 
     world = GarbageWorld(setup.can, seed=seed)
     contact = PartContact(world, setup.part, dims=setup.dims,
-                          perception=make_perception(perception))
+                          perception=make_perception(perception, CONTACT_CAMERA))
     contact.start()
     explorer = ActiveExplorer(mode=method, n_max=budget(setup, scale), n_random=N_RANDOM,
                               random_state=seed, stop=stop).explore(contact)

@@ -1,5 +1,6 @@
-"""``ch4-exploration-camera``: ``ch4-exploration`` with s_o measured on rendered head-camera
-frames (OpenCV, eq. 4.19) instead of ground truth; same configurations, summary and plots."""
+"""``ch4-exploration-camera``: ``ch4-exploration`` with s_o measured on rendered frames of the
+``close`` camera (OpenCV, eq. 4.19) instead of ground truth; same configurations, summary and
+plots."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ def run_seed(seed: int, scale: float, progress: Progress) -> dict:
 
 REPRODUCTION = Reproduction(
     name="ch4-exploration-camera",
-    description="ch4-exploration with s_o from rendered head-camera frames (thesis Figs 4.4-4.9)",
+    description="ch4-exploration with s_o from rendered close-camera frames (thesis Figs 4.4-4.9)",
     run_seed=run_seed,
     summarize=ch4_exploration.summarize,
     compare=ch4_exploration.compare,
