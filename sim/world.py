@@ -167,7 +167,7 @@ class GarbageWorld:
         """Advance the physics ``n`` steps (and feed the recorder, if one is running)."""
         for _ in range(n):
             if self._sliding is not None:
-                self._slide_anchor()
+                _slide_anchor(self.model, self.data, self._sliding, self.effector_pos)
             mujoco.mj_step(self.model, self.data)
             self.steps += 1
             if self._recorder is not None:
@@ -274,7 +274,7 @@ class GarbageWorld:
             raise ValueError(f"can {self.can} has no part {part!r} to hold; it has {held}")
         if self.held_part is not None:
             raise ValueError(f"the hand already holds the {self.held_part}; release it first")
-        gap = self._distance_to(part)
+        gap = _distance_to(self.model, self.data, part)
         if gap > HOLD_REACH:
             raise ValueError(f"the hand is {gap:.3f} m from the {part}; it must be within "
                              f"{HOLD_REACH} m to take hold (approach the part first)")
@@ -295,21 +295,6 @@ class GarbageWorld:
             self.data.eq_active[eq] = 0
         self._sliding = None
         self.relax()
-
-    def _slide_anchor(self) -> None:
-        """Move a sliding hold's anchor over the face to where the hand is (its depth stays)."""
-        eq, body, (lo, hi) = self._sliding  # type: ignore[misc]
-        d = self.data
-        local = d.xmat[body].reshape(3, 3).T @ (self.effector_pos - d.xpos[body])
-        self.model.eq_data[eq, 4:6] = np.clip(local[1:], lo, hi)
-
-    def _distance_to(self, part: str) -> float:
-        """Smallest distance (m) between the hand and the colliding geoms of ``part``."""
-        m, d = self.model, self.data
-        hand = m.geom("hand").id
-        body = m.body(part).id
-        geoms = [g for g in range(m.ngeom) if m.geom_bodyid[g] == body and m.geom_contype[g]]
-        return min(mujoco.mj_geomDistance(m, d, hand, g, 1.0, None) for g in geoms)
 
     # ------------------------------------------------------------------- ball
     @property
@@ -511,6 +496,24 @@ class _Recorder:
         """Append a frame if one is due at the world's current time."""
         if world.data.time >= self.next_time:
             self.capture(world)
+
+
+def _slide_anchor(model: mujoco.MjModel, data: mujoco.MjData,
+                  sliding: tuple[int, int, tuple[np.ndarray, np.ndarray]],
+                  hand: np.ndarray) -> None:
+    """Move a sliding hold's anchor over the face to where the hand is (its depth stays)."""
+    eq, body, (lo, hi) = sliding
+    local = data.xmat[body].reshape(3, 3).T @ (hand - data.xpos[body])
+    model.eq_data[eq, 4:6] = np.clip(local[1:], lo, hi)
+
+
+def _distance_to(model: mujoco.MjModel, data: mujoco.MjData, part: str) -> float:
+    """Smallest distance (m) between the hand and the colliding geoms of ``part``."""
+    hand = model.geom("hand").id
+    body = model.body(part).id
+    geoms = [g for g in range(model.ngeom)
+             if model.geom_bodyid[g] == body and model.geom_contype[g]]
+    return min(mujoco.mj_geomDistance(model, data, hand, g, 1.0, None) for g in geoms)
 
 
 def _face_extent(model: mujoco.MjModel, body: int) -> tuple[np.ndarray, np.ndarray]:
