@@ -87,6 +87,7 @@ def test_page_steps_breaks_queries_and_scrolls_back(inspected, browser, tmp_path
     assert "count(1)" in _text(browser, ".agent .beliefs")
     assert "fired main" in _text(browser, ".agent .events")
     assert "N=0, M=1" in _text(browser, ".agent .events")
+    assert _text(browser, ".agent h2") == "counter — cycle 1"  # not "running" while paused
 
     field = browser.find_element(By.ID, "break-input")
     field.send_keys("counter.goal:7")
@@ -114,6 +115,7 @@ def test_page_steps_breaks_queries_and_scrolls_back(inspected, browser, tmp_path
     wait.until(when.text_to_be_present_in_element((By.ID, "status"), "ended"))
     assert "count(3)" in _text(browser, ".agent .beliefs")
     assert "goals (0)" in _text(browser, ".agent .goals")
+    assert _text(browser, ".agent h2") == "counter — cycle 3 — terminated"
 
     browser.execute_script(  # scroll the history back to the first cycle
         "const h = document.getElementById('history'); h.value = h.min;"

@@ -199,7 +199,9 @@ class Inspector:
         return snapshot
 
     def _status(self, agent: Agent) -> str:
+        """``failed``, ``terminated``, or nothing for a live agent (the page's status says
+        whether the run is paused or running; the agent's card must not contradict it)."""
         system = self._debugger.system if self._debugger is not None else None
         if system is not None and agent.name in system.failures:
             return "failed"
-        return "terminated" if agent.terminated else "running"
+        return "terminated" if agent.terminated else ""
