@@ -10,6 +10,7 @@ mental state (``goalagent.kb``) turns them into Prolog goals; nothing here talks
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Literal as TypingLiteral
@@ -62,6 +63,17 @@ class NotLiteral:
 
 Literal = MentalLiteral | NotLiteral
 Condition = tuple[Literal, ...]
+
+
+def macro_local(name: str, expansion: int) -> str:
+    """The name a macro's own variable (not a parameter) takes in the macro's
+    ``expansion``-th use, so that uses do not share it."""
+    return f"{name}_M{expansion}"
+
+
+def is_macro_local(name: str) -> bool:
+    """True for a variable a macro expansion made (see ``macro_local``)."""
+    return re.fullmatch(r"\w+_M\d+", name) is not None
 
 
 @dataclass(frozen=True)

@@ -40,6 +40,7 @@ class ProblemKind(_Named):
     """What went wrong (a warning: the agent goes on)."""
 
     CONDITION_ERROR = "condition"  # a Prolog error in a rule's condition
+    PROLOG_WARNING = "warning"  # a warning SWI-Prolog gave while a rule ran
     ACTION_ERROR = "action"  # a Prolog error performing an action (insert, a postcondition)
     ACTION_NOT_CLOSED = "open"  # a user action with variables after its precondition
     PRECONDITION_ERROR = "precondition"  # a Prolog error in an actionspec's precondition

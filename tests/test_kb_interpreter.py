@@ -85,21 +85,23 @@ def test_one_call_runs_a_module_and_keeps_a_journal(compiled) -> None:
     program, state, code = compiled
     requests = Recorder()
     outcome = run(code, program, requests, environment=True, listen=False)
-    # forall: m(2), m(3); if: go(1) not enabled, go(2) sent + print + module call; send.
+    # forall: m(2), m(3); if: its three instantiations in the order the agent draws (the
+    # recorder reverses), go(3) sent + print + module call; send.
     assert outcome.actions == 2 + 3 + 1 and not outcome.exited
     entries = outcome.entries()
     assert [(e.rule.rule.pos.line, e.bindings, e.done) for e in entries] == [
-        (7, {"X": 2}, 1), (7, {"X": 3}, 1), (8, {"X": 2}, 3), (10, {}, 1)]
+        (7, {"X": 2}, 1), (7, {"X": 3}, 1), (8, {"X": 3}, 3), (10, {}, 1)]
     assert requests.requests == [
-        ("act", {"X": 2}, 0, Struct("go", (2,))),
-        ("print", "2"),
-        ("call", 2, [2], 2, 4),  # after 2 firings, at the 5th action of the call
+        ("shuffle", 3),
+        ("act", {"X": 3}, 0, Struct("go", (3,))),
+        ("print", "3"),
+        ("call", 2, [3], 2, 4),  # after 2 firings, at the 5th action of the call
         ("send", False, "!", Atom("bob"), Struct("hello", (Atom("world"),))),
     ]
     [problem] = requests.problems
     assert problem.kind is ProblemKind.CONDITION_ERROR and problem.rule.rule.pos.line == 9
     assert "zero" in str(problem.detail)
-    assert state.query("bel", "went(X)") == [{"X": 2}]
+    assert state.query("bel", "went(X)") == [{"X": 3}]
     assert requests.steps == []  # nobody listens
 
 
@@ -110,11 +112,31 @@ def test_listening_tells_every_step(compiled) -> None:
     kinds = [step.kind for step in requests.steps]
     assert kinds[:4] == [EventKind.RULE_TRIED, EventKind.BELIEF_ADDED,
                          EventKind.RULE_FIRED, EventKind.BELIEF_ADDED]
-    tried = requests.steps[0]
-    assert tried.bindings == ({"X": 2}, {"X": 3})
+    tried = [s for s in requests.steps if s.kind is EventKind.RULE_TRIED]
+    assert tried[0].bindings == ({"X": 2}, {"X": 3})  # forall: Prolog's order
+    assert tried[1].bindings == ({"X": 3}, {"X": 2}, {"X": 1})  # if: the drawn order
+    assert not any(s.kind is EventKind.PRECONDITION_FAILED for s in requests.steps)
+    assert ("act", {"X": 3}, 0, Struct("go", (3,))) not in requests.requests  # no env
+
+
+def test_an_if_rule_takes_the_first_enabled_instantiation_in_the_drawn_order(
+        compiled) -> None:
+    """The agent's order puts X = 1 first: go(1) is not enabled, so go(3) (next) fires."""
+    program, state, code = compiled
+
+    class OneFirst(Recorder):
+        def shuffle(self, count: int) -> list[int]:
+            self.requests.append(("shuffle", count))
+            return [0, 2, 1] if count == 3 else list(range(count))
+
+    requests = OneFirst()
+    run(code, program, requests, environment=False, listen=True)
     failed = next(s for s in requests.steps if s.kind is EventKind.PRECONDITION_FAILED)
     assert failed.term == Struct("go", (1,)) and failed.spec_index == 0
-    assert ("act", {"X": 2}, 0, Struct("go", (2,))) not in requests.requests  # no env
+    fired = [s for s in requests.steps if s.kind is EventKind.RULE_FIRED
+             and s.rule.rule.pos.line == 8]
+    assert [s.bindings for s in fired] == [({"X": 3},)]
+    assert requests.requests.count(("shuffle", 3)) == 1  # only rules with several
 
 
 def test_random_order_asks_for_a_shuffle_and_follows_it() -> None:

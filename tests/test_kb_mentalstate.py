@@ -378,7 +378,7 @@ def test_unknown_procedure_and_type_error_then_state_still_works(blocks: MentalS
 
 
 def test_error_inside_an_update_is_a_kb_error(empty: MentalState) -> None:
-    with pytest.raises(KBError, match="permission|modify"):
+    with pytest.raises(KBError, match="atom/1 is a built-in predicate of ISO Prolog"):
         empty.insert("atom(x)")
     assert empty.insert("ok(1)") == [("+", Struct("ok", (1,)))]
 

@@ -25,7 +25,7 @@ from goalagent.kb.mentalstate import CompiledCondition, MentalState
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
-           "Requests", "RuleInfo", "RunOutcome", "Step", "listall_variable"]
+           "Requests", "RuleInfo", "RunOutcome", "Step", "listall_variables"]
 
 _TRUE, _FALSE = Atom("true"), Atom("false")
 _RULES = "ga_rules"  # the Prolog module of every compiled rule and pass
@@ -60,14 +60,20 @@ _shared_clauses: dict[tuple, str] = {}
 _compiled_programs: dict[int, tuple[weakref.ref, str, dict[int, ModuleCode]]] = {}
 
 
-def listall_variable(rule: ast.Rule) -> str:
-    """The variable whose values ``listall L <- C`` collects: the first one of C."""
+def listall_variables(rule: ast.Rule, given: Sequence[str] = ()) -> tuple[str, ...]:
+    """The variables whose values ``listall L <- C`` collects, as GOAL does: the free
+    variables of C's positive literals (not under ``not``) in order of occurrence, without
+    anonymous ones (``_X``), L itself, those ``given`` (a module's parameters, an enclosing
+    rule's bindings) and a macro's own. L gets one entry per answer: the value of the one
+    variable, or the list of their values when there are several."""
+    names: list[str] = []
     for literal in rule.condition:
         if isinstance(literal, ast.MentalLiteral) and literal.query is not None:
             for name in literal.query.variables:
-                if name != rule.list_var and not name.startswith("_"):
-                    return name
-    return ""
+                if (name not in names and name != rule.list_var and not name.startswith("_")
+                        and name not in given and not ast.is_macro_local(name)):
+                    names.append(name)
+    return tuple(names)
 
 
 @dataclass(frozen=True)
@@ -275,7 +281,8 @@ class CompiledProgram:
         if rule.kind == "listall":
             list_var = rule.list_var or ""
             names = tuple(name for name in given if name != list_var) + (list_var,)
-            kind: Term = Struct("listall", (Atom(listall_variable(rule)), Atom(list_var)))
+            collected = [Atom(name) for name in listall_variables(rule, given)]
+            kind: Term = Struct("listall", (collected, Atom(list_var)))
         else:
             names = tuple(name for name in given if name not in condition.names)
             names += condition.names
@@ -449,6 +456,8 @@ def _problem(term: Struct) -> Problem:
     name, args = term.name, term.args
     if name == "condition":
         return Problem(ProblemKind.CONDITION_ERROR, args[1], rule=_rules[int(args[0])])
+    if name == "warning":
+        return Problem(ProblemKind.PROLOG_WARNING, args[1], rule=_rules[int(args[0])])
     if name == "precondition":
         return Problem(ProblemKind.PRECONDITION_ERROR, args[1], spec_index=int(args[0]))
     if name == "action":

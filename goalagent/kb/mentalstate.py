@@ -254,9 +254,18 @@ class MentalState:
 
     def declare_updates(self, formulas: Iterable[ast.PrologText | str]) -> None:
         """Declares dynamic every predicate in these conjunctions (also under not/1), so that
-        querying them before the first insert/adopt fails instead of raising an error."""
+        querying them before the first insert/adopt fails instead of raising an error; they
+        are the agent's own even where SWI-Prolog has a predicate of that name. A KBError
+        (at the formula) when one is an ISO built-in."""
+        formulas = list(formulas)
         terms = [self._engine.parsed(_text_of(formula)) for formula in formulas]
-        self._call("declare", self._b, self._g, terms)
+        result = self._call("declare", self._b, self._g, terms, None)[3]
+        if isinstance(result, Struct) and result.name == "error":
+            index, message = result.args
+            formula = formulas[int(index)]  # type: ignore[arg-type]
+            pos = formula.pos if isinstance(formula, ast.PrologText) else None
+            where = f"{pos}: " if pos else ""
+            raise KBError(f"{where}`{_text_of(formula)}`: {message}", pos)
 
     def compile(self, condition: ast.Condition) -> CompiledCondition:
         """Compiles a condition once (cached per body text) into a clause of this agent."""

@@ -64,10 +64,12 @@ load_term((Head --> Body), Kind, B, G) :- !,
     dcg_translate_rule((Head --> Body), Clause),
     load_term(Clause, Kind, B, G).
 load_term(Clause, Kind, B, G) :-
-    assertz(B:Clause),
     clause_head(Clause, Head),
+    make_own(B, Head),
+    assertz(B:Clause),
     (   Kind == k
-    ->  assertz(G:Clause),
+    ->  make_own(G, Head),
+        assertz(G:Clause),
         functor(Head, N, A),
         (   B:'$kpred'(N/A)
         ->  true
@@ -109,24 +111,52 @@ qualify_op_name(_, Name, Name) :- Name = _:_, !.
 qualify_op_name(M, Name, M:Name).
 
 %!  ensure_dynamic(+Module, +Head) is det.
-%   Declares Head's predicate dynamic in Module unless it is defined there already.
+%   Declares Head's predicate dynamic in Module unless the agent defines it there already;
+%   it is the agent's own even where SWI-Prolog has a predicate of that name (make_own/2).
 
 ensure_dynamic(M, Head) :-
-    (   current_predicate(_, M:Head)
+    (   predicate_property(M:Head, implementation_module(M)),
+        predicate_property(M:Head, defined)
     ->  true
-    ;   predicate_property(M:Head, defined)
-    ->  true
-    ;   functor(Head, N, A),
+    ;   make_own(M, Head),
+        functor(Head, N, A),
         dynamic(M:N/A)
     ).
 
-%!  declare(+B, +G, +Formulas) is det.
-%   Every predicate in the conjunctions Formulas (also under not/1) becomes queryable
-%   (dynamic if undefined) in both modules.
+%!  make_own(+M, +Head) is det.
+%   Head's predicate can be the agent's own in M although SWI-Prolog has one of that name:
+%   a library's (index/1) is shadowed by defining it in M, a system predicate (told/0) is
+%   redefined there; the agent's definitions win, as in GOAL. An ISO built-in (atom/1,
+%   is/2, ...) cannot be: ga_error. (implementation_module/1 is asked because, unlike other
+%   properties, it does not link M to a library's predicate.)
 
-declare(B, G, Formulas) :-
-    forall(( member(Formula, Formulas),
-             catch(conjuncts(Formula, Lits), _, fail),
+make_own(M, Head) :-
+    predicate_property(M:Head, implementation_module(Impl)),
+    (   Impl \== system
+    ->  true
+    ;   predicate_property(system:Head, iso)
+    ->  functor(Head, N, A),
+        format(string(Message), "~w/~w is a built-in predicate of ISO Prolog; an agent \c
+                                 cannot make it its own (rename it)", [N, A]),
+        throw(ga_error(Message))
+    ;   redefine_system_predicate(M:Head)
+    ).
+
+%!  declare(+B, +G, +Formulas, -Result) is det.
+%   Every predicate in the conjunctions Formulas (also under not/1) becomes queryable
+%   (dynamic if undefined) in both modules, and the agent's own. Result = ok, or
+%   error(Index, Message) for the first formula that names an ISO built-in.
+
+declare(B, G, Formulas, Result) :-
+    catch(( forall(nth0(Index, Formulas, Formula),
+                   catch(declare_formula(B, G, Formula), ga_error(Message),
+                         throw(declare_error(Index, Message)))),
+            Result = ok ),
+          declare_error(Index, Message),
+          Result = error(Index, Message)).
+
+declare_formula(B, G, Formula) :-
+    forall(( catch(conjuncts(Formula, Lits), _, fail),
              member(Lit, Lits),
              positive(Lit, H),
              fact_like(H) ),
@@ -167,16 +197,17 @@ control(true).
 control(_:_).
 
 %!  forwarder(+G, +Head) is det.
-%   Makes Head's predicate in G answer from the goal selected by '$ga_g'.
+%   Makes Head's predicate in G answer from the goal selected by '$ga_g' (an ISO built-in
+%   can never be a goal fact).
 
 forwarder(G, Head) :-
     functor(Head, N, A),
     (   G:'$fwd'(N/A)
     ->  true
-    ;   predicate_property(G:Head, defined),
-        \+ predicate_property(G:Head, dynamic)
-    ->  true                        % a built-in: it can never be a goal fact
-    ;   functor(Gen, N, A),
+    ;   predicate_property(system:Head, iso)
+    ->  true
+    ;   make_own(G, Head),
+        functor(Gen, N, A),
         dynamic(G:N/A),
         assertz(G:(Gen :- b_getval('$ga_g', Id), '$gf'(Id, Gen, _))),
         assertz(G:'$fwd'(N/A))

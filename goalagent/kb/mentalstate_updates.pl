@@ -191,7 +191,8 @@ must_be_inserted([Fact|Facts]) :-
 add_fact(B, G, Fact, Added) :-
     (   catch(clause(B:Fact, true), error(permission_error(_, _, _), _), fail)
     ->  Added = 0
-    ;   assertz(B:Fact),
+    ;   catch(assertz(B:Fact), error(permission_error(modify, _, _), _),
+              ( ensure_dynamic(B, Fact), assertz(B:Fact) )),  % SWI's name: make it the agent's
         ensure_dynamic(G, Fact),
         (   Fact = (_ :- _)                 % a rule: goals may now follow from anything
         ->  assertz(G:'$rule_inserted'),
@@ -337,7 +338,8 @@ drop(B, G, Formula, Removed) :-
         functor(Formula, Name, Arity),
         G:'$fwd'(Name/Arity)                % a goal predicate: declared already
     ->  true
-    ;   declare(B, G, [Formula])
+    ;   declare(B, G, [Formula], Declared),
+        (   Declared = error(_, Message) -> throw(ga_error(Message)) ; true )
     ),
     G:'$top'(Base),
     findall(Id, entails(G, Base, Formula, Id), Ids),

@@ -38,8 +38,10 @@
 
 run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     (   Listen == true -> b_setval('$ga_listen', true) ; true ),
+    (   nb_current('$ga_rule', Outer) -> true ; Outer = none ),  % a module call runs inside
     Ctx = ctx(B, G, Env, Listen, Journal),
     run_passes(Passes, Ctx, Journal, Status, Last),
+    b_setval('$ga_rule', Outer),           % warnings after the run belong to no rule
     journal_actions(Journal, 0, Total),
     (   CountLast == true -> journal_actions(Last, 0, LastActions) ; LastActions = 0 ),
     (   nb_getval(B, true) -> Recheck = 1 ; Recheck = 0 ),
@@ -134,7 +136,7 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
 %   journal); Body, actions(Actions) or rules(Pass, InnerGiven) for a nested block.
 %   Condition = c(CondName, CondNames): the condition compiled in every agent as
 %   CondName/N (see compile/5) and its variables' names. Kind: if, forall or
-%   listall(Collected, List) (the names of the variable collected and of the list).
+%   listall(Collected, List) (the names of the variables collected and of the list).
 %
 %   Actions: insert(F), delete(F), adopt(F), drop(F); do(Action, Open) for a user action
 %   (Open = true: record its closed form in the journal); print(T), log(T);
@@ -143,10 +145,11 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
 %
 %   Asserts Name(Ctx, Given, J0, J, Status), which computes every instantiation of
 %   the condition first, in the state the rule starts in (GOAL's semantics; a Prolog error
-%   in the condition is a warning and the rule is not applicable; GOAL's random choice
-%   among an if rule's instantiations and its one-entry-per-answer listall belong there);
-%   and Name_fire, which tries them: an if rule (and listall) fires with the first one
-%   whose attempt succeeds, a forall rule with every one. An attempt performs the combo
+%   in the condition is a warning and the rule is not applicable), and puts an if rule's
+%   in an order drawn from the agent's random stream (GOAL picks an applicable
+%   instantiation at random); and Name_fire, which tries them: an if rule fires with the
+%   first one whose attempt succeeds, a forall rule with every one, a listall rule once
+%   (its list holds one entry per distinct answer, see listall_entry/2). An attempt performs the combo
 %   with one instantiation: its actions in order until one is not enabled (an action that raises
 %   an error is not enabled: a warning) or exit-module, blind commitment after each; the
 %   attempt fails when its first action is not enabled (or no rule of its block fired).
@@ -172,11 +175,17 @@ named_var(Bindings, Name, Var) :-
 
 rule_clause(listall(Collected, ListName), Bindings, CondNames, CondVars, Id, Cond, Values,
             Given, Name, Fire, (Head :- Body)) :- !,
-    (   nth0(I, CondNames, Collected) -> nth0(I, CondVars, CollectedVar) ; true ),
+    maplist(named_var(Bindings, CondNames, CondVars), Collected, CollectedVars),
+    listall_entry(CollectedVars, Entry),
     named_var(Bindings, ListName, List),
     Head =.. [Name, Ctx, Given, J0, J, Status],
-    instances_code(CollectedVar, B:Cond, Id, List, Ok, Collect),
+    (   Entry == '$ga_none'
+    ->  Collect = ( List = [], Ok = true )
+    ;   instances_code(Entry, B:Cond, Id, Entries, Ok, Collect0),
+        Collect = ( Collect0, list_to_set(Entries, List) )
+    ),
     Body = ( Ctx = ctx(B, _, _, Listen, _),
+             b_setval('$ga_rule', Id),
              Collect,
              ( Ok == true -> Instances = [Values] ; Instances = [] ),
              ( Listen == true -> ga_kb:tell(tried(Id, Instances)) ; true ),
@@ -184,15 +193,44 @@ rule_clause(listall(Collected, ListName), Bindings, CondNames, CondVars, Id, Con
     FireCall =.. [Fire, Instances, Ctx, J0, J, Status].
 rule_clause(Kind, _, _, _, Id, Cond, Values, Given, Name, Fire, (Head :- Body)) :-
     Head =.. [Name, Ctx, Given, J0, J, Status],
-    instances_code(Values, B:Cond, Id, Instances, _, Collect),
+    instances_code(Values, B:Cond, Id, Instances0, _, Collect),
+    (   Kind == if                          % GOAL's random choice of an instantiation
+    ->  Order = ( Instances0 = [_, _|_] -> ga_kb:shuffled(Instances0, Instances)
+                ; Instances = Instances0 )
+    ;   Order = true,
+        Instances = Instances0
+    ),
     Body = ( Ctx = ctx(B, _, _, Listen, _),
+             b_setval('$ga_rule', Id),
              Collect,
+             Order,
              ( Listen == true -> ga_kb:tell(tried(Id, Instances)) ; true ),
              FireCall ),
     (   Kind == forall
     ->  FireCall =.. [Fire, Instances, Ctx, J0, J, none, Status]
     ;   FireCall =.. [Fire, Instances, Ctx, J0, J, Status]
     ).
+
+%   named_var(+Bindings, +CondNames, +CondVars, +Name, -Var): the condition's variable
+%   called Name, else the rule text's (see named_var/3).
+named_var(Bindings, CondNames, CondVars, Name, Var) :-
+    (   nth0(I, CondNames, Name)
+    ->  nth0(I, CondVars, Var)
+    ;   named_var(Bindings, Name, Var)
+    ).
+
+%   listall_entry(+Vars, -Entry): what one answer adds to a listall rule's list (GOAL's
+%   ListallDoRule): the value of the one variable, the list of the values of several, or
+%   nothing ('$ga_none') when the condition has no free variable.
+listall_entry([], '$ga_none') :- !.
+listall_entry([Var], Var) :- !.
+listall_entry(Vars, Vars).
+
+%   shuffled(+List, -Shuffled): List in an order drawn from the agent's random stream.
+shuffled(List, Shuffled) :-
+    length(List, N),
+    '$ga_py'(shuffle(N), Order),
+    maplist(nth0_of(List), Order, Shuffled).
 
 %   instances_code(+Template, +Goal, +Id, -List, -Ok, -Code): Code collects Template for
 %   every solution of Goal into List as findall/3 does; a Prolog error in Goal is told as
@@ -449,6 +487,16 @@ precondition(Body, Index, Action) :-
 %   clauses read it from their Ctx).
 listening :-
     b_getval('$ga_listen', true).
+
+%   A warning SWI-Prolog prints while a rule runs (say, a deprecated built-in called from a
+%   condition) is told as the rule's problem, with its place, instead of printed bare.
+:- multifile user:message_hook/3.
+user:message_hook(_, warning, Lines) :-
+    nb_current('$ga_rule', Id),
+    integer(Id),
+    with_output_to(string(Text0), print_message_lines(current_output, '', Lines)),
+    split_string(Text0, "", " \n", [Text]),
+    '$ga_py'(problem(warning(Id, Text)), _).
 
 %   tell(+Event): an event for the agent's listeners (only called when listening).
 tell(Event) :-

@@ -135,11 +135,11 @@ class ConditionParts(BuilderBase):
             param: arg.text if re.fullmatch(r"[A-Za-z0-9_]+", arg.text) else f"({arg.text})"
             for param, arg in zip(macro.params, args, strict=True)
         }
-        suffix = f"_M{next(self._fresh_suffixes)}"
+        expansion = next(self._fresh_suffixes)
         for literal_text in condition_texts(macro.condition):
             for var in variable_occurrences(literal_text.text):
                 if var not in mapping and var != "_":
-                    mapping[var] = var + suffix
+                    mapping[var] = ast.macro_local(var, expansion)
         return self._renamed_condition(macro.condition, mapping)
 
     def _renamed_condition(self, condition: ast.Condition,

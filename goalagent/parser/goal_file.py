@@ -132,7 +132,7 @@ def _with_singleton_warnings(program: ast.AgentProgram) -> ast.AgentProgram:
                     if counts[var]:
                         counts[var] += 1
             for var, count in counts.items():
-                if count == 1 and not var.startswith("_") and "_M" not in var:
+                if count == 1 and not var.startswith("_") and not ast.is_macro_local(var):
                     warnings.append(f"{rule.pos}: warning: singleton variable {var} in rule")
     if not warnings:
         return program
