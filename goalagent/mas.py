@@ -134,6 +134,8 @@ class MultiAgentSystem:
         params.update(env_params or {})
         environment = (_make_environment(mas.environment, mas.env_pos or mas.pos)
                        if mas.environment else None)
+        if environment is not None:
+            environment.home = Path(path).parent
         system = cls(environment, **kwargs)
         system._programs.update(programs)
         for rule in mas.launches:
@@ -164,6 +166,8 @@ class MultiAgentSystem:
         """A system of the one agent in ``path``, on ``environment`` if given."""
         program = parse_agent_file(path)
         env = _make_environment(environment, ast.Pos(str(path), 1, 1)) if environment else None
+        if env is not None:
+            env.home = Path(path).parent
         system = cls(env, **kwargs)
         system.launch(program.name, program)
         system._start_environment(dict(env_params or {}))

@@ -84,6 +84,20 @@ def test_the_multi_file_blocks_builder_reaches_its_goal() -> None:
     assert [status for _, _, status in result["cycles"]] == ["terminated"]  # type: ignore
 
 
+def test_a_stacker_on_goals_blocks_world_vocabulary_reaches_its_goal() -> None:
+    """start = [2, 3, 0, 5, 0, 7, 0], blocks b1..b7, the gripper entity, GOAL's jar name."""
+    system = MultiAgentSystem.from_mas_file(GOAL6 / "stack/stack.mas2g", output=io.StringIO())
+    try:
+        assert system.environment.entities() == ["gripper"]  # type: ignore[union-attr]
+        system.run(max_cycles=20)
+        world = system.environment.on  # type: ignore[union-attr]
+        assert world == {"b1": "table", "b2": "b1", "b3": "b2", "b4": "table", "b5": "b4",
+                         "b6": "b5", "b7": "b6"}
+        assert [(s.status, s.goals_left) for s in system.summaries()] == [("terminated", 0)]
+    finally:
+        system.close()
+
+
 def test_the_multi_file_coffee_pair_uses_goal6_message_syntax() -> None:
     text = (GOAL6 / "coffee" / "makerEvents.mod2g").read_text()
     assert "(Asker).sent?(" in text and "allother.sendonce?(" in text
@@ -93,7 +107,7 @@ def test_the_multi_file_coffee_pair_uses_goal6_message_syntax() -> None:
 
 def test_cli_checks_and_runs_every_multi_file_example() -> None:
     systems = sorted(GOAL6.glob("*/*.mas2g"))
-    assert len(systems) == 7  # blocks, chores, coffee, tower; bw4t, elevator, hanoi (test_envs_goal6.py)
+    assert len(systems) == 8  # blocks, chores, coffee, stack, tower; bw4t, elevator, hanoi
     files = [str(p) for p in systems] + [str(p) for p in GOAL6.glob("*/*.mod2g")]
     checked = subprocess.run([sys.executable, "-m", "goalagent", "check", *files],
                              capture_output=True, text=True, timeout=120)

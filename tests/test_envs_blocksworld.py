@@ -25,7 +25,8 @@ def on(x: str, y: str) -> Struct:
 
 
 def world(*state: Struct, **params: int) -> BlocksWorld:
-    """A running blocksworld from ``state`` (or random towers) with agent ``ag`` on ``robot``."""
+    """A running blocksworld from ``state`` (or random towers) with agent ``ag`` on its
+    gripper."""
     env = BlocksWorld()
     init = {key: Numeral(value) for key, value in params.items()}
     if state:
@@ -52,7 +53,7 @@ def test_percepts_describe_the_state() -> None:
     assert seen(env) == [
         "block(a)", "block(b)", "block(c)", "on(a,b)", "on(b,table)", "on(c,table)"
     ]
-    assert env.entities() == ["robot"] and env.entity_type("robot") == "robot"
+    assert env.entities() == ["gripper"] and env.entity_type("gripper") == "gripper"
 
 
 def test_moves_change_the_state() -> None:
@@ -118,7 +119,7 @@ def test_other_bad_parameters() -> None:
         BlocksWorld().init({"blocks": Numeral(-1)})
     with pytest.raises(ManagementException, match="blocks must be 0 to 10000"):
         BlocksWorld().init({"blocks": Numeral(10**9)})
-    with pytest.raises(ManagementException, match="robots must be at least 1"):
+    with pytest.raises(ManagementException, match=r"grippers \(robots\) must be at least 1"):
         BlocksWorld().init({"robots": Numeral(0)})
 
 
@@ -132,9 +133,9 @@ def test_random_towers_are_seeded() -> None:
 
 def test_several_robots_share_one_world() -> None:
     env = world(on("a", "table"), on("b", "table"), robots=2)
-    assert env.entities() == ["robot1", "robot2"]
+    assert env.entities() == ["gripper1", "gripper2"]
     env.register_agent("other")
-    env.associate_entity("other", "robot2")
+    env.associate_entity("other", "gripper2")
     env.perform_action("other", Action.of("move", "a", "b"))
     assert "on(a,b)" in seen(env)
 
@@ -144,8 +145,9 @@ def test_registered_name_and_reset() -> None:
     env.init({"state": from_term([on("a", "table")])})
     env.reset({"state": from_term([on("x", "table")])})
     env.register_agent("ag")
-    env.associate_entity("ag", "robot")
-    assert [str(p) for p in env.get_all_percepts("ag")["robot"]] == ["block(x)", "on(x,table)"]
+    env.associate_entity("ag", "gripper")
+    assert [str(p) for p in env.get_all_percepts("ag")["gripper"]] == [
+        "block(x)", "on(x,table)"]
 
 
 @settings(max_examples=60, deadline=None)
@@ -171,3 +173,52 @@ def test_any_move_sequence_keeps_a_valid_world(seed: int, moves: list[tuple[int,
         for _ in range(len(env.on)):
             chain = env.on.get(chain, chain)
         assert chain == "table"
+
+
+# ----------------------------------------------------------------------------- GOAL's vocabulary
+
+
+def goal_world(start: object, home=None, **extra: object) -> BlocksWorld:
+    """A blocksworld from GOAL's ``start`` parameter (a list of numbers or a file name)."""
+    env = BlocksWorld()
+    env.home = home
+    env.init({"start": from_term(start), **{k: from_term(v) for k, v in extra.items()}})
+    env.start()
+    env.register_agent("ag")
+    env.associate_entity("ag", "gripper")
+    return env
+
+
+def test_the_guides_start_state_names_blocks_b1_to_bn() -> None:
+    env = goal_world([2, 3, 0, 5, 0, 7, 0], gui=Atom("true"))
+    assert [p for p in seen(env) if p.startswith("on(")] == [
+        "on(b1,b2)", "on(b2,b3)", "on(b3,table)", "on(b4,b5)", "on(b5,table)",
+        "on(b6,b7)", "on(b7,table)"]
+    env.perform_action("ag", Action.of("move", "b1", "table"))
+    assert "on(b1,table)" in seen(env)
+
+
+def test_a_start_file_is_read_next_to_the_system_first(tmp_path, monkeypatch) -> None:
+    (tmp_path / "config.txt").write_text("0 1\n4 0\n")
+    monkeypatch.chdir("/")
+    env = goal_world("config.txt", home=tmp_path)
+    assert [p for p in seen(env) if p.startswith("on(")] == [
+        "on(b1,table)", "on(b2,b1)", "on(b3,b4)", "on(b4,table)"]
+    with pytest.raises(ManagementException, match="no start file missing.txt"):
+        goal_world("missing.txt", home=tmp_path)
+
+
+@pytest.mark.parametrize("start, message", [
+    ([2, 1], "cycle"),
+    ([0, 1, 1], "both b2 and b3 are on b1"),
+    ([4, 0], "start numbers must be 0 .* to 2"),
+    ([1], "puts b1 on itself"),
+])
+def test_bad_start_numbers_are_refused(start: list[int], message: str) -> None:
+    with pytest.raises(ManagementException, match=message):
+        goal_world(start)
+
+
+def test_start_and_state_together_are_refused() -> None:
+    with pytest.raises(ManagementException, match="give start or state, not both"):
+        goal_world([0], state=[on("a", "table")])

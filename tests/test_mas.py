@@ -50,12 +50,12 @@ def test_entity_launch_rule_respects_type_and_max(tmp_path: Path) -> None:
     mas = system(tmp_path, """
         environment { env = "blocksworld". init = [robots = 3, blocks = 2, seed = 1]. }
         agentfiles { "counter.goal" [name = c]. }
-        launchpolicy { when [type = robot, max = 2]@env do launch bot : c. }
+        launchpolicy { when [type = gripper, max = 2]@env do launch bot : c. }
     """, counter=COUNTER)
     assert [agent.name for agent in mas.agents] == ["bot", "bot2"]
     env = mas.environment
     assert [env.associated_entities(agent.name) for agent in mas.agents] == [
-        ["robot1"], ["robot2"]]
+        ["gripper1"], ["gripper2"]]
     mas.close()
 
 
@@ -65,7 +65,7 @@ def test_star_names_the_agent_after_its_entity(tmp_path: Path) -> None:
         agentfiles { "counter.goal" [name = c]. }
         launchpolicy { when entity@env do launch * : c. }
     """, counter=COUNTER)
-    assert [agent.name for agent in mas.agents] == ["robot1", "robot2"]
+    assert [agent.name for agent in mas.agents] == ["gripper1", "gripper2"]
     mas.close()
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from enum import Enum
+from pathlib import Path
 from typing import Protocol
 
 from goalagent.eis.exceptions import (
@@ -110,6 +111,10 @@ class Environment:
         self._env_listeners: list[object] = []
         self._agent_listeners: dict[str, list[object]] = {}
         self.params: dict[str, Parameter] = {}
+        # The folder of the program that starts the environment (a .mas2g's), where a file
+        # named by an init parameter is looked for first: GOAL looks next to the
+        # environment's jar, which sits beside the .mas2g. None: the working directory.
+        self.home: Path | None = None
 
     # ---- hooks for subclasses ------------------------------------------------------------
 

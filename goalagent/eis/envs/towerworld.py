@@ -6,8 +6,9 @@ holds ``X``. Actions: ``pickup(X)`` (``X`` clear and the gripper empty), ``putdo
 (holding ``X``; ``Y`` a clear block or ``table``) and ``nil`` (does nothing). A refused action
 leaves the world unchanged.
 
-Init parameters as for ``blocksworld``: ``state = [on(a,b), ...]``, or ``blocks`` and ``seed``
-for random towers. The one entity is ``gripper`` of type ``gripper``.
+Init parameters as for ``blocksworld``: GOAL's ``start = [2, 0, ...]`` (blocks ``b1`` ... or a
+file of numbers), ``state = [on(a,b), ...]``, or ``blocks`` and ``seed`` for random towers;
+``gui`` is accepted and ignored. The one entity is ``gripper`` of type ``gripper``.
 """
 
 from __future__ import annotations
@@ -25,11 +26,12 @@ class TowerWorld(PythonEnvironment):
     name = "towerworld"
     entity_names = ("gripper",)
     default_entity_type = "gripper"
-    parameters = {"state": list, "blocks": int, "seed": int}
+    parameters = {"start": list | str, "gui": object, "state": list, "blocks": int,
+                  "seed": int}
 
     def on_init(self, params: dict[str, object]) -> None:
         """Build the towers from ``state`` or a seeded random set; the gripper starts empty."""
-        self.on = initial_towers(self.name, params)
+        self.on = initial_towers(self.name, params, self.home)
         self.holding: str | None = None
 
     def blocks(self) -> list[str]:
