@@ -370,6 +370,8 @@ ENV_ARGS = {
     "blocks_builder.goal": ["--env", "blocksworld", "--env-param", f"state={SUSSMAN}"],
     "table_agent.goal": ["--env", "blocksworld"],
     "tower_builder.goal": ["--env", "towerworld", "--env-param", f"state={SUSSMAN}"],
+    "tower_agent.goal": ["--env", "towerworld", "--env-param",
+                         "state=[on(a,b), on(b,c), on(c,d), on(d,e), on(e,f), on(f,table)]"],
     "bw4t_robot.goal": ["--env", "bw4t", "--env-param", "map=TwoRooms",
                         "--env-param", "ticks=20"],
     "elevator_car.goal": ["--env", "elevator", "--env-param",

@@ -19,6 +19,7 @@ EXAMPLES = ROOT / "agents" / "examples"
 ALONE = sorted(path.name for path in EXAMPLES.glob("*.goal"))
 ON_ENVIRONMENTS = [
     ("tower_builder.goal", "towerworld", {"seed": 2}),
+    ("tower_agent.goal", "towerworld", {"blocks": 6, "seed": 6}),
     ("blocks_builder.goal", "blocksworld", {"seed": 3}),
     ("stack_builder.goal", "blocksworld", {"seed": 4}),
     ("table_agent.goal", "blocksworld", {"seed": 5}),
