@@ -18,6 +18,7 @@ from typing import Annotated, Any
 
 import click
 import typer
+from rich.console import Console
 from typer.core import TyperCommand
 
 from goalagent import ast
@@ -48,6 +49,7 @@ from goalagent.parser import (
     parse_test_file,
 )
 from goalagent.stepper import TerminalStepper
+from goalagent.testing import run_test_file
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
@@ -322,6 +324,27 @@ def check(
         raise typer.Exit(code=USER_ERROR)
 
 
+def test(
+    paths: Annotated[list[Path], typer.Argument(help=".test2g test files to run.")],
+    max_cycles: Annotated[int, typer.Option(help="Stop each test after this many rounds "
+                                            "(besides the file's timeout).")] = 1000,
+    seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
+) -> None:
+    """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
+    conditions; a report per test, exit code 1 when one failed."""
+    failed = False
+    for path in paths:
+        try:
+            report = run_test_file(path, max_cycles=max_cycles, seed=seed,
+                                   warn=lambda message: err_console.print(message, markup=False))
+        except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
+            raise user_error(str(err)) from None
+        Console(highlight=False, soft_wrap=True).print(report.text(), markup=False)
+        failed = failed or not report.passed
+    if failed:
+        raise typer.Exit(code=1)
+
+
 def _undefined_calls(program: ast.AgentProgram) -> list[str]:
     """Calls of predicates the agent defines nowhere (the agent is loaded, not run)."""
     agent = Agent(program, output=io.StringIO(), warn=lambda message: None)
@@ -345,12 +368,14 @@ def _version_option(
 
 
 def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
-    """The ``goalagent`` command line: ``run`` and ``check``, then the extensions' commands."""
+    """The ``goalagent`` command line: ``run``, ``check`` and ``test``, then the extensions'
+    commands."""
     extensions = installed_extensions() if extensions is None else extensions
     app = typer.Typer(add_completion=False, no_args_is_help=True, help=HELP)
     app.callback()(_version_option)
     app.command(name="run", cls=_RunCommand)(_run_command(extensions))
     app.command()(check)
+    app.command(name="test")(test)
     for extension in extensions:
         if extension.add_commands is not None:
             extension.add_commands(app)

@@ -252,12 +252,13 @@ class MultiAgentSystem:
             if not live:
                 break
             for agent in live:
-                self._step(agent)
+                self.step(agent)
                 if after_cycle is not None:
                     after_cycle(agent)
         return self.summaries()
 
-    def _step(self, agent: Agent) -> None:
+    def step(self, agent: Agent) -> None:
+        """One cycle of ``agent``; an error ends that agent (reported), not the system."""
         try:
             agent.step()
         except (AgentError, KBError, GoalSyntaxError, EnvironmentInterfaceException) as err:

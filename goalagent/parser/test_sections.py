@@ -109,7 +109,7 @@ class TestParts(BuilderBase):
                 key, value = child[1], child[2]
                 if str(key) != "timeout":
                     raise GoalSyntaxError.at(self._token_pos(key),
-                                             f"unknown test option {key!r} (timeout)")
+                                             f"unknown test option {str(key)!r} (timeout)")
                 timeout = float(str(value))
         systems = [u for u in uses if u.case in (None, "mas")]
         if not systems:
