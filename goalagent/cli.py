@@ -180,6 +180,10 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          "--save-predicate NAME/ARITY")
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False))
+    if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
+        raise user_error(f"{path}: a {path.suffix} file does not run on its own: run the "
+                         ".mas2g that uses it" + (", or goalagent test for a test file"
+                                                  if path.suffix == ".test2g" else ""))
     try:
         if path.suffix == ".mas2g":
             if env is not None:

@@ -284,3 +284,23 @@ def test_goal5_module_file_is_still_checked_with_the_single_file_syntax(
     """)
     (program,) = _programs_to_check(tmp_path / "message.mod2g")
     assert [m.name for m in program.modules] == ["message"]
+
+
+@pytest.mark.parametrize("text, where, message", [
+    ("main module { program { if (A).bel(x(A)) then print(a). } }", (1, 28),
+     r"selectors on mental literals \(\(A\).bel\(..\)\) are not supported"),
+    ("main module { program { if true then starttimer(t, 10, 100). } }", (1, 38),
+     "starttimer is a built-in action of GOAL 7 that goalagent does not support"),
+    ("use facts as knowledge.\nmodule m { if true then print(a). }", (1, 1),
+     "belong to GOAL 6's multi-file format"),
+    ("main module { program { if done(x) then print(a). } }", (1, 28),
+     r"done\(...\) is a test condition"),
+])
+def test_constructs_goalagent_lacks_are_named_where_they_are(
+        text: str, where: tuple[int, int], message: str) -> None:
+    from goalagent.agent import validate_program
+    from goalagent.parser import parse_agent
+
+    with pytest.raises(GoalSyntaxError, match=message) as err:
+        validate_program(parse_agent(text, "x.goal"))
+    assert (err.value.line, err.value.col) == where

@@ -275,7 +275,7 @@ def test_mas_with_environment_and_entity_launch_rules() -> None:
     init = dict(mas.env_init)
     assert squash(init["state"].text) == "[on(c,a),on(a,table),on(d,b),on(b,table)]"
     assert [(r.agent_name, r.on_entity, r.entity_type, r.max) for r in mas.launches] == [
-        ("builder", True, "robot", 1), ("helper", True, "robot", 1),
+        ("builder", True, "gripper", 1), ("helper", True, "gripper", 1),
     ]
 
 

@@ -114,6 +114,12 @@ class ConditionParts(BuilderBase):
         query = ast.PrologText(f"received({sender}, {wrapped})", content.pos)
         return ast.MentalLiteral("bel", self.check(query), self._pos(meta))
 
+    def selector_literal(self, meta, children):
+        """GOAL's selectors (``(A).bel(φ)``, ``allother.goal(φ)``): not supported."""
+        raise GoalSyntaxError.at(self._pos(meta), f"selectors on mental literals "
+                                 f"({str(children[0]).strip()}{children[1]}(..)) are not "
+                                 "supported by goalagent; write the literal without it")
+
     def macro_call(self, meta, children):
         name = str(children[0])
         args: tuple[ast.PrologText, ...] = children[1] if len(children) > 1 else ()

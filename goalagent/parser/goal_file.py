@@ -19,7 +19,14 @@ from goalagent.parser.variables import variable_occurrences
 
 def parse_agent(text: str, file: str = "<string>") -> ast.AgentProgram:
     """Parse the text of a `.goal` agent program."""
-    (name, items), builder = build(text, file, "agent")  # type: ignore[misc]
+    try:
+        (name, items), builder = build(text, file, "agent")  # type: ignore[misc]
+    except GoalSyntaxError as err:
+        if err.message.startswith(("unexpected 'use'", "unexpected 'define'")):
+            raise GoalSyntaxError(err.file, err.line, err.col, f"{err.message} -- `use` and "
+                                  "`define` belong to GOAL 6's multi-file format: module files "
+                                  "(.mod2g) run through the .mas2g that uses them") from None
+        raise
     return _program_from_items(name, items, file, builder)
 
 
