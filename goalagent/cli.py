@@ -288,8 +288,10 @@ def _programs_to_check(path: Path) -> list:
         except GoalSyntaxError as err:
             try:  # a GOAL 5 module file is written in the single-file syntax
                 return [parse_agent_file(path)]
-            except GoalSyntaxError:
-                raise err from None
+            except GoalSyntaxError as goal5:
+                # report the reading that got further into the file
+                further = (goal5.file, goal5.line, goal5.col) > (err.file, err.line, err.col)
+                raise (goal5 if further and goal5.file == err.file else err) from None
     if path.suffix == ".act2g":
         parse_action_file(path)
         return []

@@ -3,6 +3,7 @@ own reader, option lists, and the tree nodes of Prolog "token soup"."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 
 from lark import Token, Transformer, v_args
@@ -12,6 +13,16 @@ from goalagent.kb.engine import PrologSyntaxError, get_engine
 from goalagent.kb.terms import Struct, format_term
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.source import Source
+
+# A lower-case name, blanks, an opening parenthesis (quoted text matched first and kept).
+_GLUED_ARGUMENTS = re.compile(r"'(?:\\.|''|[^'\\])*'|\"(?:\\.|\"\"|[^\"\\])*\"|"
+                              r"(?<![A-Za-z0-9_])([a-z][A-Za-z0-9_]*)[ \t]+\(")
+# Prefix operators a blank may separate from "(" (SWI-Prolog's and GOAL's common ones).
+_PREFIX_WORDS = frozenset({"dynamic", "discontiguous", "initialization", "meta_predicate",
+                           "module_transparent", "multifile", "public", "thread_local",
+                           "table", "not", "is", "mod", "rem", "xor", "rdiv", "div", "as"})
+# A message's mood: indicative, imperative (achieve goal), interrogative.
+MOODS = (":", "!", "?")
 
 
 class ParsedSection:
@@ -52,16 +63,33 @@ class BuilderBase(Transformer):
         return ast.PrologText(text, self.source.pos(start))
 
     def check(self, fragment: ast.PrologText, clause: bool = False) -> ast.PrologText:
-        """Read ``fragment`` with SWI-Prolog; a syntax error is reported at its position."""
+        """Read ``fragment`` with SWI-Prolog; a syntax error is reported at its position.
+        Text that SWI-Prolog 7+ rejects only for a blank between a name and its arguments
+        (``in ('DropZone')``, which the SWI-Prolog of GOAL 4/5 read as ``in('DropZone')``)
+        is read without those blanks."""
         try:
-            if clause:
-                variables = self.engine.check_clause(fragment.text)
-            else:
-                variables = self.engine.check_query(fragment.text)
+            variables = self._read(fragment.text, clause)
         except PrologSyntaxError as err:
+            lenient = _GLUED_ARGUMENTS.sub(self._glue, fragment.text)
+            if lenient != fragment.text:
+                try:
+                    variables = self._read(lenient, clause)
+                    return ast.PrologText(lenient, fragment.pos, tuple(variables))
+                except PrologSyntaxError:
+                    pass
             offset = fragment.pos.offset + min(max(err.offset, 0), len(fragment.text))
             raise self.source.error(offset, f"Prolog syntax error: {err.message}") from None
         return ast.PrologText(fragment.text, fragment.pos, tuple(variables))
+
+    def _read(self, text: str, clause: bool) -> tuple[str, ...]:
+        return tuple(self.engine.check_clause(text) if clause else self.engine.check_query(text))
+
+    def _glue(self, match) -> str:
+        """``name (`` as ``name(`` unless the name is a prefix operator (``dynamic (p/1)``)."""
+        name = match.group(1)
+        if name is None or name in _PREFIX_WORDS:
+            return match.group(0)
+        return name + "("
 
     def _options(self, options, allowed: dict[str, tuple[str, ...]]) -> dict[str, str]:
         """``[key = value, ...]`` checked against the allowed keys and values."""
@@ -105,7 +133,12 @@ class BuilderBase(Transformer):
         return self._text(meta)
 
     def parg(self, meta, _children):
-        return self.check(self._text(meta))
+        text = self._text(meta)
+        if text.text[:1] in MOODS and not text.text.startswith(":-"):
+            # GOAL 3's send(Receiver, :φ): a mood before the content; call() checks the rest
+            rest = self.check(ast.PrologText(text.text[1:], text.pos))
+            return ast.PrologText(text.text, text.pos, rest.variables)
+        return self.check(text)
 
     def pitem(self, meta, _children):
         return None

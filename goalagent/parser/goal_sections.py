@@ -8,7 +8,7 @@ from pathlib import Path
 from lark import Token, v_args
 
 from goalagent import ast
-from goalagent.parser.builder_base import BuilderBase, ParsedSection
+from goalagent.parser.builder_base import MOODS, BuilderBase, ParsedSection
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.mas_sections import reference_path
 
@@ -21,7 +21,6 @@ _MODULE_OPTIONS = {
 _PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive",
                               "linearrandom", "linearallrandom")}
 _ORDER_NAMES = {"linearrandom": "random", "linearallrandom": "randomall"}  # GOAL 6's names
-_MOODS = ("!", "?", ":")
 _CONJUNCTION_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
 
 
@@ -132,6 +131,9 @@ class GoalParts(BuilderBase):
                 )
             mood, content = self._mood(args[1])
             return ast.SendAction(name == "sendonce", args[0], mood, content, pos)
+        for arg in args:  # a mood prefix (parg accepts it) belongs to messages only
+            if arg.text[:1] in MOODS and not arg.text.startswith(":-"):
+                self.check(arg)
         if name in _CONJUNCTION_ACTIONS and len(args) > 1:
             # insert(a, not(b)) is insert((a, not(b))): one conjunction, as GOAL reads it
             joined = ", ".join(arg.text for arg in args)
@@ -160,7 +162,7 @@ class GoalParts(BuilderBase):
         """A message's mood prefix (``:`` when none) and its content without it."""
         text = content.text
         mood = ":"
-        if text[:1] in _MOODS and not text.startswith(":-") and len(text) > 1:
+        if text[:1] in MOODS and not text.startswith(":-") and len(text) > 1:
             mood = text[0]
             stripped = text[1:].lstrip()
             skipped = len(text) - len(stripped)

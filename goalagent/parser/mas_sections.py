@@ -37,6 +37,16 @@ class MasParts(BuilderBase):
     def env_item(self, meta, children):
         return (str(children[0]), self.check(children[1]), self._token_pos(children[0]))
 
+    def env_string(self, meta, children):
+        """``env = "x.jar".`` (the file as written: GOAL reads no escapes in it, so
+        ``"environments\\BW4T2\\BW4TClient.jar"`` is a Windows path) or another key's
+        string value."""
+        key, value = children[0], children[1]
+        if str(key) == "env":
+            return self.env_file(meta, [value])
+        return (str(key), self.check(ast.PrologText(str(value), self._token_pos(value))),
+                self._token_pos(key))
+
     def env_file(self, meta, children):
         """``"x.jar".`` in GOAL 4's environment section: the environment's file."""
         raw = reference_path(str(children[0])[1:-1])

@@ -1,0 +1,114 @@
+"""Older GOAL text that real programs contain and GOAL itself reads: ``name (args)`` with a
+blank (the SWI-Prolog of GOAL 4/5 read it as ``name(args)``), GOAL 3's mood prefix in
+``send(Receiver, :content)``, a GOAL 4 environment ``env = "x.jar"`` holding a Windows path,
+``define UTbot as agent``; and a GOAL 5 module file's error reported where it is. Each
+snippet is taken from a public GOAL program (named in the test)."""
+
+from __future__ import annotations
+
+import io
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from goalagent.agent import Agent
+from goalagent.parser import GoalSyntaxError, parse_agent, parse_mas
+
+
+def run_printing(text: str) -> list[str]:
+    """The lines an agent prints in its first cycle."""
+    agent = Agent.from_string(textwrap.dedent(text), "old.goal", output=io.StringIO(),
+                              warn=lambda message: None)
+    try:
+        agent.run(max_cycles=1)
+        return agent.output.getvalue().splitlines()
+    finally:
+        agent.close()
+
+
+def test_a_blank_between_a_name_and_its_arguments_is_read_as_goal_4_read_it() -> None:
+    # OJAzzIC unaware_medic.goal: if bel(holding(_), in ('DropZone')) then putDown.
+    assert run_printing("""
+        main module [exit=always] {
+            beliefs { holding(b1). in('DropZone'). }
+            program { if bel(holding(_), in ('DropZone')) then print(drop). }
+        }
+    """) == ["drop"]
+
+
+def test_a_prefix_operator_before_a_parenthesis_keeps_its_blank() -> None:
+    # `dynamic (p/1)` is the prefix operator, not dynamic/1 glued: the program still reads
+    # and the (unglued) text fails as before where gluing would not help.
+    assert run_printing("""
+        main module [exit=always] {
+            knowledge { :- dynamic (seen/1). ok :- \\+ seen (x), X is 7 mod (2), X == 1. }
+            program { if bel(ok) then print(ok). }
+        }
+    """) == ["ok"]
+    with pytest.raises(GoalSyntaxError, match="Prolog syntax error") as err:
+        parse_agent("main module { program { if bel(p (a) b) then print(x). } }", "x.goal")
+    assert (err.value.line, err.value.col) == (1, 34)
+
+
+def test_goal_3_mood_prefix_in_send_is_the_message_mood() -> None:
+    # OJAzzIC aware_officer.goal: send(REA, :reached(Objective, Sc)); the mood is for
+    # messages only.
+    program = parse_agent(textwrap.dedent("""
+        main module {
+            program {
+                if bel(fightLocated) then send(middleware, :reached(fightLocatedLmk)).
+                if bel(x) then send(middleware, !rescue(b)).
+            }
+        }
+    """), "old.goal")
+    sends = [rule.actions[0] for rule in program.module("main").rules]
+    assert [(s.receiver.text, s.mood, s.content.text) for s in sends] == [
+        ("middleware", ":", "reached(fightLocatedLmk)"), ("middleware", "!", "rescue(b)")]
+    with pytest.raises(GoalSyntaxError, match="Prolog syntax error"):
+        parse_agent("main module { program { if true then insert(:p). } }", "x.goal")
+
+
+def test_goal_4_env_string_with_windows_backslashes() -> None:
+    # OJAzzIC crisisresponse.mas2g: GOAL reads no escapes in the jar's name.
+    mas = parse_mas(textwrap.dedent("""
+        environment{
+            env= "environments\\BW4T2\\BW4TClient.jar" .
+            init = [ clientip ="localhost", agentcount = "14"] .
+        }
+        agentfiles { "robot.goal". }
+        launchpolicy { launch robot. }
+    """), "crisisresponse.mas2g")
+    assert mas.environment == "environments/BW4T2/BW4TClient.jar"
+    assert [(key, value.text) for key, value in mas.env_init] == [
+        ("clientip", '"localhost"'), ("agentcount", '"14"')]
+
+
+def test_an_agent_definition_named_with_a_capital() -> None:
+    # eishub UT3 deathmatch/UTbot.mas2g: define UTbot as agent { ... }
+    mas = parse_mas(textwrap.dedent("""
+        define UTbot as agent {
+            use UTbotMain as main.
+            use UTbotInit as init.
+        }
+        launchpolicy { when * launch UTbot. }
+    """), "UTbot.mas2g")
+    assert [d.name for d in mas.definitions] == ["UTbot"]
+    assert [r.agent_name for r in mas.launches] == ["UTbot"]
+
+
+def test_a_goal_5_module_files_error_is_reported_where_it_is(tmp_path: Path) -> None:
+    """The GOAL 6 reading stops at the first line; the GOAL 5 one gets to the real mistake."""
+    from goalagent.cli import _programs_to_check
+
+    path = tmp_path / "orgReasoning.mod2g"
+    path.write_text(textwrap.dedent("""
+        module orgReasoning(Agent) {
+            program[order=linear] {
+                if bel(x(Agent)) then print(a) print(b).
+            }
+        }
+    """))
+    with pytest.raises(GoalSyntaxError) as err:
+        _programs_to_check(path)
+    assert (err.value.line, err.value.col) == (4, 40)
