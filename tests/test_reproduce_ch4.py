@@ -21,7 +21,8 @@ def seed_with(steps: dict[tuple[str, str], int | None]) -> dict:
                                                "states": [0.0, 0.01, 0.004],
                                                "td_errors": [0.1, -0.2, 0.0, 0.3] * 6,
                                                "effects": [0.02] * 20 + [0.0, 0.005, 0.03, 0.0],
-                                               "averaged": averaged}
+                                               "averaged": averaged,
+                                               "surface": [[-0.01, 0.0, 0.02]] * 5}
                                       for method in METHODS} for name in CONFIGURATIONS}}
 
 
@@ -45,6 +46,13 @@ def test_exploration_summary_counts_converged_seeds_and_their_median_step() -> N
     assert firing.measured == pytest.approx(2 / 4)
     spread = rows["lid-1d active: spread (std) of |δ| over steps k > N"].measured
     assert spread == pytest.approx(float(np.std([0.1, 0.2, 0.0, 0.3])))
+    assert rows["lid-1d active: averaged |δ| (4.11) at step N_s"].measured == 0.70002
+    opening = "F predicts opening for Δx of Fig. {}'s sign at every s_o slice"
+    assert rows["lid-1d active: " + opening.format("4.4")].measured == 1.0  # rises: extend
+    assert rows["handle-1d random: " + opening.format("4.5")].measured == 0.0  # opens
+    assert "lid-3d active: " + opening.format("4.4") not in rows
+    one_slice_wrong = {"surface": [[-0.01, 0.0, 0.02]] * 4 + [[0.01, 0.0, 0.0]]}
+    assert not ch4_exploration._opens_as_thesis(one_slice_wrong, 1.0)
 
 
 def test_budgets_follow_the_thesis_and_shrink_with_the_scale() -> None:

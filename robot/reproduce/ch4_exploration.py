@@ -114,7 +114,27 @@ def compare(summary: dict, seeds: list[dict]) -> list[Comparison]:
                                          for run in runs])
             rows.append(Comparison(f"{name} {method}: spread (std) of |δ| over steps k > N",
                                    mean, spread))
+            mean, spread = mean_and_std([run["averaged"][-1] for run in runs])
+            rows.append(Comparison(f"{name} {method}: averaged |δ| (4.11) at step N_s", mean,
+                                   spread))
+            if SETUPS[name].dims == 1:
+                mean, spread = mean_and_std([float(_opens_as_thesis(run, OPENING[name]))
+                                             for run in runs])
+                rows.append(Comparison(f"{name} {method}: F predicts opening for Δx of Fig. "
+                                       f"{SURFACE_FIGURE[name]}'s sign at every s_o slice",
+                                       mean, spread, 1.0, f"Fig. {SURFACE_FIGURE[name]}"))
     return rows
+
+
+OPENING = {"lid-1d": 1.0, "handle-1d": -1.0}
+"""The sign of Δx that opens the part (Figs 4.4–4.5: extend to open the lid, pull the handle)."""
+SURFACE_FIGURE = {"lid-1d": "4.4", "handle-1d": "4.5"}
+
+
+def _opens_as_thesis(run: dict, opening: float) -> bool:
+    """Whether the learned 1-D F predicts a larger effect at Δx = +0.01 m than at −0.01 m
+    times ``opening`` on every slice: the slope of Figs 4.4–4.5's surfaces."""
+    return all((row[-1] - row[0]) * opening > 0 for row in run["surface"])
 
 
 STABLE = 0.01
