@@ -47,26 +47,32 @@ def files_to_check(path: Path) -> list[Path]:
     return sorted(p for p in path.rglob("*") if p.suffix in SYSTEM_SUFFIXES and p.is_file())
 
 
-def check_environment(mas: ast.MasProgram) -> None:
+def check_environment(mas: ast.MasProgram) -> list[str]:
     """The environment a ``.mas2g`` names exists and takes the init parameters it is given
-    (``GoalSyntaxError`` at the environment or the parameter otherwise)."""
+    (``GoalSyntaxError`` at the environment or the parameter otherwise). A GOAL environment
+    jar that goalagent has no counterpart for is a warning (returned): the program is not
+    wrong, it only cannot run here."""
     if not mas.environment:
-        return
+        return []
     pos = mas.env_pos or mas.pos
     try:
         environment = load_environment(mas.environment)
     except EnvironmentInterfaceException as err:
+        if mas.environment.lower().endswith(".jar"):
+            return [f"{pos}: warning: environment '{mas.environment}' is a GOAL environment "
+                    "goalagent does not ship: the system checks, but cannot run here"]
         hint = did_you_mean(mas.environment, known_environments())
         raise GoalSyntaxError.at(pos, f"{err}{hint}") from None
     parameters = getattr(environment, "parameters", None)
     if parameters is None:
-        return
+        return []
     for key, value in mas.env_init:
         if key not in parameters:
             known = sorted(parameters)
             raise GoalSyntaxError.at(
                 value.pos, f"environment '{mas.environment}' has no init parameter {key!r}"
                 f"{did_you_mean(key, known)}; its parameters: {', '.join(known) or 'none'}")
+    return []
 
 
 def undefined_calls(agent: Agent) -> list[str]:

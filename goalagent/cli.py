@@ -313,7 +313,8 @@ def check(
     for path in (file for given in paths for file in files_to_check(given)):
         try:
             if path.suffix == ".mas2g":
-                check_environment(parse_mas_file(path))
+                for warning in check_environment(parse_mas_file(path)):
+                    err_console.print(warning, markup=False)
             for program in _programs_to_check(path):
                 validate_program(program)
                 for warning in program.warnings:

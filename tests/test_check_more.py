@@ -46,6 +46,21 @@ def test_unknown_environment_and_init_parameter_in_a_mas2g(tmp_path: Path) -> No
     assert "did you mean state?" in result.stderr
 
 
+def test_a_goal_environment_jar_goalagent_lacks_is_a_warning(tmp_path: Path) -> None:
+    """eishub Starcraft's SimpleAgentTerran.mas2g: use "../../connector.jar" as environment.
+    The system is not wrong; it only cannot run here."""
+    agent = tmp_path / "a.goal"
+    agent.write_text("main module { program { if true then print(x). } }\n")
+    system = tmp_path / "s.mas2g"
+    system.write_text('environment {\n  env = "../../connector.jar".\n}\n'
+                      'agentfiles { "a.goal". }\nlaunchpolicy { launch a : a. }\n')
+    result = goalagent("check", str(system))
+    assert result.returncode == 0, result.stderr
+    assert (f"{system}:2:9: warning: environment '../../connector.jar' is a GOAL environment "
+            "goalagent does not ship") in result.stderr
+    assert f"{system}: ok" in result.stderr
+
+
 def test_calls_of_predicates_defined_nowhere_are_warnings_with_suggestions(tmp_path: Path):
     program = tmp_path / "typo.goal"
     program.write_text("""init module {
