@@ -7,6 +7,7 @@ init parameters, calls in ``bel``/precondition queries of predicates defined now
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -45,6 +46,15 @@ def files_to_check(path: Path) -> list[Path]:
     if not path.is_dir():
         return [path]
     return sorted(p for p in path.rglob("*") if p.suffix in SYSTEM_SUFFIXES and p.is_file())
+
+
+def importers_of(module_file: Path) -> list[Path]:
+    """The agent and module files next to a GOAL 5 module file that ``#import`` it (sorted):
+    GOAL checks such a file in its importer, whose actions and knowledge it may use."""
+    pattern = re.compile(r'#import\s+"' + re.escape(module_file.name) + '"')
+    return sorted(p for p in module_file.parent.iterdir()
+                  if p.suffix in (".goal", ".mod2g") and p != module_file and p.is_file()
+                  and pattern.search(p.read_text(encoding="utf-8", errors="replace")))
 
 
 def check_environment(mas: ast.MasProgram) -> list[str]:

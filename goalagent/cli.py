@@ -24,7 +24,12 @@ from typer.core import TyperCommand
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.beliefs import BeliefSaver, load_beliefs
-from goalagent.checking import check_environment, files_to_check, undefined_calls
+from goalagent.checking import (
+    check_environment,
+    files_to_check,
+    importers_of,
+    undefined_calls,
+)
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
@@ -287,11 +292,12 @@ def _programs_to_check(path: Path) -> list:
             return [load_module_as_agent(path)]
         except GoalSyntaxError as err:
             try:  # a GOAL 5 module file is written in the single-file syntax
-                return [parse_agent_file(path)]
+                module = parse_agent_file(path)
             except GoalSyntaxError as goal5:
                 # report the reading that got further into the file
                 further = (goal5.file, goal5.line, goal5.col) > (err.file, err.line, err.col)
                 raise (goal5 if further and goal5.file == err.file else err) from None
+            return [_goal5_module_in_context(path, module)]
     if path.suffix == ".act2g":
         parse_action_file(path)
         return []
@@ -299,6 +305,26 @@ def _programs_to_check(path: Path) -> list:
         parse_prolog_file(path)
         return []
     return [parse_agent_file(path)]
+
+
+def _goal5_module_in_context(path: Path, module: ast.AgentProgram) -> ast.AgentProgram:
+    """A GOAL 5 module file valid on its own, else the first agent next to it that
+    ``#import``s it and is valid with it (the module may use that agent's actions); the
+    module's own error when there is none."""
+    try:
+        validate_program(module)
+        return module
+    except GoalSyntaxError as alone:
+        for importer in importers_of(path):
+            try:
+                program = parse_agent_file(importer)
+                validate_program(program)
+            except GoalSyntaxError:
+                continue
+            err_console.print(f"{path}: checked as part of {importer.name}, which imports it",
+                              markup=False)
+            return program
+        raise alone from None
 
 
 def check(
