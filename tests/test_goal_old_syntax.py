@@ -139,3 +139,30 @@ def test_a_goal_5_module_file_is_checked_in_the_agent_that_imports_it(tmp_path: 
     (program,) = _programs_to_check(module)
     assert program.file.endswith("medic.goal")
     assert [m.name for m in program.modules][-1] == "locateInjured"
+
+
+def test_a_bare_comparison_is_a_belief_query_in_the_newest_dialect(tmp_path: Path) -> None:
+    """hyunwooOpa/BW4T_single robotUpdate.mod2g (456d395): if block(B, C, 'DropZone'),
+    block(B, C, P), P \\= 'DropZone' then delete(block(B, C, P))."""
+    from goalagent.mas import MultiAgentSystem
+
+    (tmp_path / "sys.mas2g").write_text(textwrap.dedent("""
+        use blocksworld with state = [on(a, table), on(b, a)].
+        define mover { use decisions for decisions. replace on/2. }
+        launchpolicy { when * launch mover. }
+    """))
+    (tmp_path / "decisions.mod2g").write_text(textwrap.dedent("""
+        module decisions {
+            if on(X, Y), Y \\= table, not(seen(X)) then print(X) + insert(seen(X)).
+            if on(X, _), X = [a], not(seen(list)) then print(list) + insert(seen(list)).
+        }
+    """))
+    system = MultiAgentSystem.from_mas_file(tmp_path / "sys.mas2g", output=io.StringIO())
+    try:
+        system.run(max_cycles=2)
+        assert system.output.getvalue() == "b\n"
+    finally:
+        system.close()
+    with pytest.raises(GoalSyntaxError, match=r"outside bel\(..\): only the newest") as err:
+        parse_agent("main module { program { if bel(p(X)), X > 1 then print(x). } }", "x.goal")
+    assert (err.value.line, err.value.col) == (1, 39)

@@ -134,6 +134,19 @@ class ConditionParts(BuilderBase):
             )
         return self._expand_macro(macro, args)
 
+    def bare_expression(self, meta, children):
+        """``PlaceID \\= 'DropZone'``, ``N is M + 1``: a bare Prolog literal, a belief query in
+        the newest dialect (as its bare ``p(X)``); elsewhere it must be inside ``bel(..)``."""
+        text = self._text(meta)
+        if not self.plain_beliefs:
+            raise GoalSyntaxError.at(
+                self._pos(meta), f"`{text.text}` outside bel(..): only the newest dialect "
+                "(use m for decisions) reads bare Prolog literals as belief queries")
+        return ast.MentalLiteral("bel", self.check(text), self._pos(meta))
+
+    def bare_operand(self, meta, _children):
+        return None  # read as part of bare_expression's text
+
     def _expand_macro(self, macro: ast.Macro,
                       args: tuple[ast.PrologText, ...]) -> ast.Condition:
         """Substitute the arguments for the parameters; other variables become fresh."""
