@@ -49,15 +49,17 @@ _sum, _all = np.add.reduce, np.logical_and.reduce
 """The ufunc reductions themselves: ndarray.sum/.all add a Python-level call per use."""
 
 
-@dataclass
+@dataclass(slots=True)
 class _Step:
     """What one `act` left behind: its action set (rows), action, state (bit i is position
-    i) and mode."""
+    i), mode and the population's kill count."""
 
     rows: np.ndarray
     action: int
     state: int
     explore: bool
+    kills: int
+    """`Population.kills` when the set was formed: while it is unchanged, all rows live."""
     reward: float = 0.0
 
 
@@ -132,6 +134,7 @@ class XCS:
         if explore:
             self.time_ += 1
         match, actions = self._match_set(words, number, permitted)
+        kills = self.population_.kills  # before [A]-1's GA can delete from [A]
         values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
         if not explore or previous is not None:  # (a single explore step needs none)
             prediction = self._prediction_array(match, actions)
@@ -145,7 +148,7 @@ class XCS:
         if previous is not None:
             self._reinforce(previous, previous.reward
                             + self._settings.gamma * max(values))  # eq. 7.2
-        self._pending = _Step(action_set, action, number, bool(explore))
+        self._pending = _Step(action_set, action, number, bool(explore), kills)
         return action
 
     def reward(self, r: float, done: bool) -> None:
@@ -245,9 +248,11 @@ class XCS:
     def _encode(self, state: object, fix_length: bool = True) -> tuple[np.ndarray, int]:
         """Packed words and the integer (bit i = position i) of a state, checked against the
         state length."""
-        key = state if isinstance(state, str | tuple) else None
-        if key is not None and key in self._states:
-            return self._states[key]
+        key = state if type(state) is str or isinstance(state, str | tuple) else None
+        if key is not None:
+            encoded = self._states.get(key)
+            if encoded is not None:
+                return encoded
         bits = self._state_bits(state)
         if self.n_bits_ is None and fix_length:
             self.n_bits_ = bits.size
@@ -289,9 +294,10 @@ class XCS:
         for _ in range(MAX_COVERING_ROUNDS):
             match = population.match(words)
             actions = population.action[match]
+            if (permitted is self._all_actions
+                    and len(set(actions.tolist())) == settings.n_actions):
+                return match, actions  # (the set: cheaper than a count on small sets)
             advocates = np.bincount(actions, minlength=settings.n_actions)
-            if permitted is self._all_actions and _all(advocates):
-                return match, actions
             missing = permitted[advocates[permitted] == 0]
             if missing.size == 0:
                 return match, actions
@@ -345,11 +351,12 @@ class XCS:
         population, settings = self.population_, self._settings
         rows = step.rows
         stats = population.stats.take(rows, axis=1)
-        live = stats[NUMEROSITY] > 0
-        if not _all(live):
-            rows, stats = rows[live], stats.compress(live, axis=1)
-        if rows.size == 0:  # every classifier of the set was deleted meanwhile
-            return
+        if population.kills != step.kills:  # some classifiers may have been deleted
+            live = stats[NUMEROSITY] > 0
+            if not _all(live):
+                rows, stats = rows[live], stats.compress(live, axis=1)
+            if rows.size == 0:  # every classifier of the set was deleted meanwhile
+                return
         set_size = float(_sum(stats[NUMEROSITY]))
         self._update_set(stats, set_size, payoff)
         population.stats[:, rows] = stats
@@ -357,7 +364,7 @@ class XCS:
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
             stats = population.stats.take(rows, axis=1)
-        waited = self.time_ - stats[TIME_STAMP] @ stats[NUMEROSITY] / set_size
+        waited = self.time_ - float(stats[TIME_STAMP] @ stats[NUMEROSITY]) / set_size
         if waited > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)

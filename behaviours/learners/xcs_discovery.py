@@ -10,6 +10,7 @@ is drawn uniformly among equally general candidates.
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from collections.abc import Iterable
 
 import numpy as np
@@ -37,12 +38,6 @@ def delete_from_population(population: Population, settings: Settings,
     """Remove one micro-classifier when the population holds more than N of them."""
     if population.micro_count > settings.N:
         population.delete_one(rng.random(), settings.theta_del, settings.delta)
-
-
-def could_subsume(population: Population, row: int, settings: Settings) -> bool:
-    """Experienced (> theta_sub) and accurate (error < epsilon_0) enough to subsume."""
-    return bool(population.experience[row] > settings.theta_sub
-                and population.error[row] < settings.epsilon_0)
 
 
 def two_point_crossover(first: tuple[int, int], second: tuple[int, int], start: int,
@@ -77,17 +72,6 @@ def mutate_action(action: int, draw: float, choice: float, settings: Settings) -
     return other + (other >= action)
 
 
-def _subsumer(population: Population, parents: list[int], condition: tuple[int, int],
-              action: int, settings: Settings) -> int:
-    """The first parent that DOES SUBSUME the offspring, or -1."""
-    for parent in parents:
-        care, value, parent_action = population.keys[parent]
-        if (parent_action == action and could_subsume(population, parent, settings)
-                and more_general((care, value), condition)):
-            return parent
-    return -1
-
-
 _DRAWS = 9
 """Uniform draws per GA besides the 2 x L mutation draws: two roulette spins (0, 1), crossover
 or not (2), two crossover points (3, 4), whether each offspring's action mutates (5, 6) and to
@@ -99,29 +83,38 @@ def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state:
     """Two offspring from the live action set ``rows`` with fitnesses ``fitness`` (eq. 7.3
     already passed, time stamps already set): roulette-wheel selection of the parents,
     two-point crossover with probability chi, niche mutation, GA subsumption by a parent or
-    insertion, then deletion down to N. All the GA's random numbers come from one draw."""
+    insertion, then deletion down to N. All the GA's random numbers come from one draw; the
+    few numbers of two parents and two children are handled as Python numbers (cheaper than
+    array calls at this size)."""
     n_bits = population.n_bits
-    draws = rng.random(_DRAWS + 2 * n_bits)
-    cumulative = np.add.accumulate(fitness)
-    spins = cumulative.searchsorted(draws[:2] * cumulative[-1], side="right")
-    parents = rows[np.minimum(spins, rows.size - 1)].tolist()
-    prediction, error, fitness_, set_size, _, numerosity, stamp = (
+    draws = rng.random(_DRAWS + 2 * n_bits).tolist()
+    cumulative = np.add.accumulate(fitness).tolist()
+    candidates, total = rows.tolist(), cumulative[-1]
+    parents = [candidates[min(bisect_right(cumulative, spin * total), len(candidates) - 1)]
+               for spin in draws[:2]]
+    prediction, error, fitness_, set_size, experience, numerosity, stamp = (
         population.stats.take(parents, axis=1).tolist())
     micro_fitness = [fitness_[0] / numerosity[0], fitness_[1] / numerosity[1]]
-    conditions = [population.keys[parent][:2] for parent in parents]
+    keys = [population.keys[parent] for parent in parents]
+    conditions = [key[:2] for key in keys]
+    # the parents that COULD SUBSUME (B&W): experienced and accurate (the GA moves neither)
+    subsumers = [index for index in range(2) if experience[index] > settings.theta_sub
+                 and error[index] < settings.epsilon_0]
     if draws[2] < settings.chi:
         start, stop = sorted((int(draws[3] * (n_bits + 1)), int(draws[4] * (n_bits + 1))))
         conditions = list(two_point_crossover(conditions[0], conditions[1], start, stop))
         prediction = [(prediction[0] + prediction[1]) / 2] * 2
         error = [(error[0] + error[1]) / 2] * 2
         micro_fitness = [(micro_fitness[0] + micro_fitness[1]) / 2] * 2
-    mutations = (draws[_DRAWS:] < settings.mu).reshape(2, n_bits)
-    for child, parent in enumerate(parents):
-        condition = mutate_condition(conditions[child], mutations[child].nonzero()[0], state)
-        action = mutate_action(int(population.action[parent]), draws[5 + child],
-                               draws[7 + child], settings)
+    for child in range(2):
+        offset = _DRAWS + child * n_bits
+        positions = [position for position, draw in enumerate(draws[offset:offset + n_bits])
+                     if draw < settings.mu]
+        condition = mutate_condition(conditions[child], positions, state)
+        action = mutate_action(keys[child][2], draws[5 + child], draws[7 + child], settings)
         if settings.ga_subsumption:
-            subsumer = _subsumer(population, parents, condition, action, settings)
+            subsumer = next((parents[index] for index in subsumers if keys[index][2] == action
+                             and more_general(keys[index][:2], condition)), -1)
             if subsumer >= 0:
                 population.numerosity[subsumer] += 1
                 population.micro_count += 1

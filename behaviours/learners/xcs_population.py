@@ -111,6 +111,8 @@ class Population:
         """High-water mark: slots ``[0, size)`` are in use, alive or dead."""
         self.micro_count = 0
         """Sum of numerosities (the population size N bounds)."""
+        self.kills = 0
+        """Macro-classifiers removed so far: rows held since it last changed are all alive."""
         self.keys: list[tuple[int, int, int] | None] = []
         """Per slot: (care, value, action) as integers; None for a dead slot."""
         self._rows: dict[tuple[int, int, int], int] = {}
@@ -119,6 +121,7 @@ class Population:
     def _allocate(self, capacity: int) -> None:
         self.care = np.zeros((self.n_words, capacity), np.uint64)
         self.value = np.zeros((self.n_words, capacity), np.uint64)
+        self._care_0, self._value_0 = self.care[0], self.value[0]  # one-word states' views
         self.action = np.zeros(capacity, np.int64)
         self.specificity = np.zeros(capacity, np.int64)
         self.stats = np.zeros((len(_COLUMNS), capacity))
@@ -174,9 +177,9 @@ class Population:
     def match(self, words: np.ndarray) -> np.ndarray:
         """Rows of the live classifiers whose condition matches the packed state ``words``."""
         n = self.size
-        if self.n_words == 1:
-            return (((self.value[0, :n] ^ words[0]) & self.care[0, :n]) == 0).nonzero()[0]
-        mismatch = ((self.value[:, :n] ^ words[:, None]) & self.care[:, :n]).any(axis=0)
+        if self.n_words == 1:  # a value only has bits where its care mask has
+            return ((self._care_0[:n] & words[0]) == self._value_0[:n]).nonzero()[0]
+        mismatch = ((self.care[:, :n] & words[:, None]) != self.value[:, :n]).any(axis=0)
         return (~mismatch).nonzero()[0]
 
     def matches(self, rows: np.ndarray, words: np.ndarray) -> np.ndarray:
@@ -190,6 +193,7 @@ class Population:
     def kill(self, row: int) -> None:
         """Remove a whole macro-classifier (its slot stays dead until `compact`)."""
         self.micro_count -= int(self.stats[NUMEROSITY, row])
+        self.kills += 1
         del self._rows[self.keys[row]]
         self.keys[row] = None
         self.care[:, row] = self._dead
@@ -205,18 +209,18 @@ class Population:
         numerosity, the same test without a division). ``uniform`` is the wheel's draw in
         [0, 1). Dead slots have all numbers 0, so they get no vote and are never weak.
         """
-        stats = self.stats[:, : self.size]
-        numerosity, fitness = stats[NUMEROSITY], stats[FITNESS]
-        mean_fitness = np.add.reduce(fitness) / self.micro_count
-        votes = stats[SET_SIZE] * numerosity
-        weak = stats[EXPERIENCE] > theta_del
+        size = self.size
+        numerosity, fitness = self.numerosity[:size], self.fitness[:size]
+        mean_fitness = float(np.add.reduce(fitness)) / self.micro_count
+        votes = self.action_set_size[:size] * numerosity
+        weak = self.experience[:size] > theta_del
         weak &= fitness < (delta * mean_fitness) * numerosity
-        # uninitialised where not weak, and only read where weak
-        raise_by = np.divide(mean_fitness * numerosity, fitness, out=None, where=weak)
-        np.multiply(votes, raise_by, out=votes, where=weak)
+        weak_rows = weak.nonzero()[0]  # usually a few: raise their votes only
+        if weak_rows.size:
+            votes[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
         cumulative = np.add.accumulate(votes)
         row = min(int(cumulative.searchsorted(uniform * cumulative[-1], side="right")),
-                  self.size - 1)
+                  size - 1)
         if self.stats[NUMEROSITY, row] > 1:
             self.stats[NUMEROSITY, row] -= 1
             self.micro_count -= 1
