@@ -20,6 +20,7 @@ import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from os import PathLike
+from typing import NamedTuple
 
 import numpy as np
 
@@ -47,6 +48,22 @@ of actions it ends after a few rounds, this bound only turns a pathology into an
 STATE_CACHE_SIZE = 1 << 16
 _sum, _all = np.add.reduce, np.logical_and.reduce
 """The ufunc reductions themselves: ndarray.sum/.all add a Python-level call per use."""
+
+
+class _Constants(NamedTuple):
+    """The update's constants as 0-d arrays: numpy converts a Python float on every array
+    operation, which costs as much as a small operation itself."""
+
+    one: np.ndarray
+    beta: np.ndarray
+    epsilon_0: np.ndarray
+    accuracy_scale: np.ndarray
+    """c = alpha ** (-1 / nu) / epsilon_0 of eq. 7.6 written as (error * c) ** -nu."""
+    accuracy_floor: np.ndarray
+    """c * epsilon_0: errors are clamped to it, so that an error of 0 raises no warning."""
+    minus_nu: np.ndarray
+    fitness_kept: np.ndarray
+    """1 - beta_f (eq. 7.5)."""
 
 
 @dataclass(slots=True)
@@ -97,8 +114,10 @@ class XCS:
         self._settings = Settings.resolve(int(n_actions), values)
         self._rng = make_generator(random_state)
         settings = self._settings
-        self._accuracy_scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
-        self._accuracy_floor = self._accuracy_scale * settings.epsilon_0
+        scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
+        self._constants = _Constants(*(np.array(value) for value in (
+            1.0, settings.beta, settings.epsilon_0, scale, scale * settings.epsilon_0,
+            -settings.nu, 1.0 - settings.beta_f)))
         self._all_actions = np.arange(int(n_actions))
         self.population_: Population | None = None
         self.n_bits_: int | None = None
@@ -374,14 +393,14 @@ class XCS:
         (error, against the updated prediction as in Butz & Wilson), the action-set size
         estimate, then fitness by eq. 7.5-7.7. Prediction, error and set size average over a
         classifier's first 1/beta updates (Wilson's MAM technique)."""
-        settings = self._settings
+        settings, constant = self._settings, self._constants
         experience = stats[EXPERIENCE]
-        experience += 1.0
-        rate = 1.0 / experience
+        experience += constant.one
+        rate = constant.one / experience
         numerosity = stats[NUMEROSITY]
         prediction, error, estimate = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
         if settings.beta_p == settings.beta_e == settings.beta:
-            np.maximum(rate, settings.beta, out=rate)
+            np.maximum(rate, constant.beta, out=rate)
             rate_p = rate_e = rate
         else:
             rate_p = np.maximum(rate, settings.beta_p)
@@ -394,14 +413,14 @@ class XCS:
         estimate += rate * (set_size - estimate)
         # eq. 7.6 as (error * c) ** -nu with c = alpha ** (-1 / nu) / epsilon_0, clamped so
         # that an error of 0 raises no warning; below epsilon_0 the accuracy is 1
-        accuracy = error * self._accuracy_scale
-        np.maximum(accuracy, self._accuracy_floor, out=accuracy)
-        accuracy **= -settings.nu
-        accuracy[error < settings.epsilon_0] = 1.0
+        accuracy = error * constant.accuracy_scale
+        np.maximum(accuracy, constant.accuracy_floor, out=accuracy)
+        accuracy **= constant.minus_nu
+        accuracy[error < constant.epsilon_0] = constant.one
         accuracy *= numerosity
         accuracy *= settings.beta_f / _sum(accuracy)  # beta_f * kappa', eq. 7.7
         fitness = stats[FITNESS]
-        fitness *= 1.0 - settings.beta_f
+        fitness *= constant.fitness_kept
         fitness += accuracy  # eq. 7.5
 
     def _compact_keeping(self, previous: _Step | None) -> _Step | None:
