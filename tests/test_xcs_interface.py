@@ -34,6 +34,20 @@ def test_states_can_be_strings_lists_tuples_or_arrays():
         np.testing.assert_array_equal(xcs.prediction_array(state), expected)
 
 
+@pytest.mark.parametrize("n_bits", [63, 64, 65, 128])
+def test_a_deleted_classifier_never_matches_whatever_the_state_length(n_bits):
+    # the dead-slot mark is a bit past the state: at 64 bits it starts a word of its own
+    state = "1" * n_bits
+    xcs = make([cl("#" * n_bits, 0), cl("#" * n_bits, 1, prediction=500.0)], n_actions=2)
+    population = xcs.population_
+    population.kill(population.find(0, 0, 0))
+    prediction = xcs.prediction_array(state)
+    assert np.isnan(prediction[0]) and prediction[1] == 500.0  # action 0: no advocate left
+    assert xcs.act(state, explore=True, allowed=[0]) == 0  # so action 0 is covered anew
+    xcs.reward(1000.0, done=True)
+    assert xcs.macro_count == 2 and np.isfinite(xcs.prediction_array(state)).all()
+
+
 def test_consistent_actions_keep_the_action_while_the_action_set_still_matches():
     records = [cl("0#", 0, fitness=1.0), cl("0#", 1, fitness=1.0),
                cl("10", 0, fitness=1.0), cl("10", 1, fitness=1.0)]

@@ -280,7 +280,8 @@ class XCS:
             raise ValueError(f"state must have {self.n_bits_} bits, got {bits.size}: "
                              f"{reprlib.repr(state)}")
         number = bits_to_int(bits)
-        encoded = (int_to_words(number, words_for(bits.size)), number)
+        # as many words as the population's masks, which have one bit past the state
+        encoded = (int_to_words(number, words_for(bits.size + 1)), number)
         if key is not None and self.n_bits_ is not None:
             if len(self._states) >= STATE_CACHE_SIZE:
                 self._states.clear()
