@@ -31,12 +31,13 @@ SUMMARY_KEYS = {
                 "mux11": {"final_accuracy", "problems_to_99"}},
     "xcs-woods2": {"final_steps", "optimum"},
     "appA-params": {"woods2": {"final_steps"}, "mux6": {"final_accuracy"}},
+    "xcs-maze4": {"generalising": {"final_steps", "optimum"}, "specific": {"final_steps"}},
 }
 
 
 def test_the_xcs_reproductions_are_registered_by_name():
     names = [reproduction.name for reproduction in registered()]
-    assert {"xcs-mux", "xcs-woods2", "appA-params"} <= set(names)
+    assert {"xcs-mux", "xcs-woods2", "appA-params", "xcs-maze4"} <= set(names)
     assert find("xcs-woods2").name == "xcs-woods2"
 
 

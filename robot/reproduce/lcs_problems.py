@@ -8,6 +8,7 @@ exact so a reproduction compares like with like:
   cell coded in bits, moves to one of them (a rock blocks the move), and a trial ends with
   reward 1000 when it steps onto food. `WOODS2` is Wilson's 30 x 15 map with two kinds of rock
   (O, Q) and of food (F, G), coded O=010, Q=011, F=110, G=111, blank=000 (Wilson 1995).
+  `MAZE4` is Lanzi's maze where few generalisations are possible (Lanzi 1997), 2 bits a cell.
 """
 
 from __future__ import annotations
@@ -37,6 +38,22 @@ WOODS2 = (
 
 WOODS2_CODES = {".": "000", "O": "010", "Q": "011", "F": "110", "G": "111"}
 """Wilson's 3-bit cell codes for Woods2: first bit 'food-like', second 'opaque'."""
+
+MAZE4 = (
+    "OOOOOOOO",
+    "O..O..FO",
+    "OO..O..O",
+    "OO.O..OO",
+    "O......O",
+    "OO.O...O",
+    "O....O.O",
+    "OOOOOOOO",
+)
+"""Lanzi's Maze4 (1997; the map as distributed with xcsf): walls all round, one food cell,
+3.5 steps to food on average from its 26 blank cells."""
+
+MAZE_CODES = {".": "00", "O": "10", "F": "11"}
+"""2 bits a cell for Lanzi's mazes (blank 00, obstacle 10, food 11): 16-bit states."""
 
 FOOD = frozenset("FG")
 FREE = "."
