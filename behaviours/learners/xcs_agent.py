@@ -119,6 +119,7 @@ class XCS:
             1.0, settings.beta, settings.epsilon_0, scale, scale * settings.epsilon_0,
             -settings.nu, 1.0 - settings.beta_f)))
         self._all_actions = np.arange(int(n_actions))
+        self._action_values = [np.array(action) for action in range(int(n_actions))]  # 0-d
         self.population_: Population | None = None
         self.n_bits_: int | None = None
         self.time_ = 0
@@ -160,7 +161,7 @@ class XCS:
             values = (prediction if allowed is None else prediction[permitted]).tolist()
         if explore:
             action = self._explore_action(permitted, previous, words)
-            action_set = match[actions == action]
+            action_set = match[actions == self._action_values[action]]
         else:
             action = self._best_action(values, permitted)
             action_set = match[:0]  # exploit steps learn nothing
@@ -377,7 +378,7 @@ class XCS:
                 rows, stats = rows[live], stats.compress(live, axis=1)
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
-        set_size = float(_sum(stats[NUMEROSITY]))
+        set_size = float(sum(stats[NUMEROSITY].tolist()))  # whole numbers: exact in any order
         self._update_set(stats, set_size, payoff)
         population.stats[:, rows] = stats
         if settings.action_set_subsumption:  # numerosities move, their sum stays
