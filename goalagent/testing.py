@@ -21,7 +21,7 @@ from pathlib import Path
 
 from goalagent import ast
 from goalagent.agent import Agent, Event, EventKind
-from goalagent.kb.engine import PrologSyntaxError, get_engine
+from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.terms import Term, format_term
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import GoalSyntaxError, parse_test_file
@@ -152,10 +152,19 @@ class _Monitor:
         self.at: int | None = None  # when it held (eventually) or was broken (always, never)
         self.pending: dict[str, tuple[int, Bindings]] = {}  # leadsto instances waiting
         self.broken: tuple[int, Bindings] | None = None
+        self.error = ""  # a Prolog error evaluating the condition: it fails, judged no more
 
     def observe(self, cycle: int) -> None:
-        kind, condition = self.condition.kind, self.condition.condition
+        if self.error:
+            return
         self.seen += 1
+        try:
+            self._observe(cycle)
+        except KBError as err:  # e.g. a predicate the agent does not define
+            self.error = f"a Prolog error at cycle {cycle}: {err}"
+
+    def _observe(self, cycle: int) -> None:
+        kind, condition = self.condition.kind, self.condition.condition
         judge = self.judge
         if kind == "eventually" and self.at is None and judge.holds(condition):
             self.at = cycle
@@ -175,6 +184,8 @@ class _Monitor:
 
     def verdict(self) -> Verdict:
         kind, text, pos = self.condition.kind, self.condition.text, self.condition.pos
+        if self.error:
+            return Verdict(text, pos, False, self.error)
         states = f"{self.seen} state(s)"
         if kind == "eventually":
             return Verdict(text, pos, self.at is not None,
@@ -185,7 +196,10 @@ class _Monitor:
             return Verdict(text, pos, self.at is None,
                            f"{broken} at cycle {self.at}" if self.at is not None else states)
         if kind == "atend":
-            held = self.judge.holds(self.condition.condition)
+            try:
+                held = self.judge.holds(self.condition.condition)
+            except KBError as err:
+                return Verdict(text, pos, False, f"a Prolog error at the end: {err}")
             return Verdict(text, pos, held, "" if held else "did not hold at the end")
         if self.pending:
             cycle, answer = next(iter(self.pending.values()))

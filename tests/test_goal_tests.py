@@ -98,6 +98,29 @@ def test_every_kind_of_condition_is_judged_and_failures_say_why(tmp_path: Path) 
     assert "FAILED  eventually bel(n(9))" in text and "5 failed" in text
 
 
+def test_a_prolog_error_in_a_condition_fails_that_item_only(tmp_path: Path) -> None:
+    """JoshCode-uni/BW4T's robot.test2g queries nextBlockInSeq/1, which its agent has
+    commented out: that item fails with the error (and where), the others are judged."""
+    path = counter(tmp_path, """
+        use sys.
+        test count with
+            in {
+                never bel(n(N)), bel(next(N)).
+                atend bel(missing(x)).
+                eventually bel(n(4)).
+            }
+        counter { do count until bel(done). }
+    """)
+    report = run_test_file(path)
+    found = {v.what: (v.passed, v.detail) for v in report.verdicts}
+    assert found["never bel(n(N)), bel(next(N))"] == (
+        False, "a Prolog error at cycle 1: Unknown procedure: next/1")
+    assert found["atend bel(missing(x))"] == (
+        False, "a Prolog error at the end: Unknown procedure: missing/1")
+    assert found["eventually bel(n(4))"] == (True, "held at cycle 4")
+    assert "t.test2g:5:9) -- a Prolog error at cycle 1" in report.text()
+
+
 def test_until_not_reached_fails_and_agents_run_to_their_end(tmp_path: Path) -> None:
     path = counter(tmp_path, """
         use sys.
