@@ -372,7 +372,7 @@ def test(
                                    warn=lambda message: err_console.print(message, markup=False))
         except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
             raise user_error(str(err)) from None
-        Console(highlight=False, soft_wrap=True).print(report.text(), markup=False)
+        Console(highlight=False, soft_wrap=True, emoji=False).print(report.text(), markup=False)
         failed = failed or not report.passed
     if failed:
         raise typer.Exit(code=1)

@@ -10,7 +10,7 @@ import typer
 from rich.console import Console
 from rich.text import Text
 
-err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+err_console = Console(stderr=True, highlight=False, soft_wrap=True, emoji=False)
 """stderr: warnings, reports and errors (stdout belongs to the agents' print/1)."""
 USER_ERROR = 2
 """Exit code for a user's mistake (a malformed file, an unknown name, a bad option)."""

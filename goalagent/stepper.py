@@ -35,7 +35,7 @@ class TerminalStepper:
 
     def __init__(self, stdin: TextIO | None = None, console: Console | None = None) -> None:
         self.stdin = stdin or sys.stdin
-        self.console = console or Console(stderr=True, highlight=False, soft_wrap=True)
+        self.console = console or Console(stderr=True, highlight=False, soft_wrap=True, emoji=False)
 
     def say(self, text: str) -> None:
         self.console.print(text, markup=False)

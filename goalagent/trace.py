@@ -127,7 +127,7 @@ class TracePrinter:
         self.kinds = frozenset(kinds)
         self.idle = idle
         self.console = console if console is not None or file is not None else Console(
-            highlight=False, soft_wrap=True)
+            highlight=False, soft_wrap=True, emoji=False)
         self._file = _AtomicFile(file) if file is not None else None
         self._json = file is not None and file.suffix in (".jsonl", ".json")
         self._percepts: dict[str, set[str]] = {}

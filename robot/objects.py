@@ -21,7 +21,7 @@ from robot.paths import default_objects_path
 
 DB_OPTION = Annotated[Path | None, typer.Option(
     "--db", help="The known-object database (default: the garbage environment's).")]
-out_console = Console(highlight=False, soft_wrap=True)
+out_console = Console(highlight=False, soft_wrap=True, emoji=False)
 
 
 def _open(db: Path | None):  # -> KnownObjectDatabase

@@ -57,6 +57,15 @@ def test_check_reports_unknown_actions_with_position(tmp_path: Path):
     assert f"{program}:2:18: unknown action fly/1" in result.stderr
 
 
+def test_a_place_at_line_100_is_not_read_as_an_emoji_code(tmp_path: Path):
+    """Rich turns ``:100:`` into an emoji unless told not to: ``a.goal:100:5`` must stay."""
+    program = tmp_path / "long.goal"
+    program.write_text("\n" * 99 + "main module { program { if true then jump. } }\n")
+    result = goalagent("check", str(program))
+    assert result.returncode == 2
+    assert f"{program}:100:38: unknown action jump/0" in result.stderr, result.stderr
+
+
 def test_check_warns_about_singleton_variables_but_succeeds(tmp_path: Path):
     program = tmp_path / "single.goal"
     program.write_text("main module { program {\n    if bel(p(X)) then print(done).\n} }\n")
