@@ -23,9 +23,10 @@ from typing import TYPE_CHECKING, Protocol
 
 from goalagent import ast
 from goalagent.agent import Event, EventKind
+from goalagent.agent.events import show_term
 from goalagent.extensions import RunContext, RunHook
 from goalagent.kb.engine import KBError
-from goalagent.kb.terms import Term, format_term
+from goalagent.kb.terms import Term
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -51,7 +52,7 @@ def split_query(text: str) -> tuple[str, str]:
 
 def answer_text(answers: list[dict[str, Term]]) -> list[str]:
     """Query answers as lines (``X=a, Y=b``; ``true`` for an answer without variables)."""
-    return [", ".join(f"{name}={format_term(value)}" for name, value in answer.items())
+    return [", ".join(f"{name}={show_term(value)}" for name, value in answer.items())
             or "true" for answer in answers]
 
 

@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, TextIO
 
 from rich.console import Console
 
+from goalagent.agent.events import show_term
 from goalagent.debugger import Debugger, DebuggerError, Stop
-from goalagent.kb.terms import format_term
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -47,7 +47,7 @@ class TerminalStepper:
         self.say(f"-- {title}{stop.reason}")
         if agent is not None and not stop.inside and agent.last_report is not None:
             for fired in agent.last_report.fired:
-                bindings = ", ".join(f"{k}={format_term(v)}" for k, v in fired.bindings.items())
+                bindings = ", ".join(f"{k}={show_term(v)}" for k, v in fired.bindings.items())
                 self.say(f"   fired {fired.module} {fired.pos} [{bindings}] -> "
                          f"{' + '.join(fired.actions) or '(block)'}")
         while True:
@@ -109,11 +109,11 @@ class TerminalStepper:
     def _mental_state(self, agent: Agent) -> None:
         self.say(f"beliefs of {agent.name}:")
         for belief in agent.beliefs():
-            self.say(f"   {format_term(belief)}")
+            self.say(f"   {show_term(belief)}")
         self.say("goals:")
         for goal in agent.goals():
-            self.say("   " + ", ".join(format_term(fact) for fact in goal))
+            self.say("   " + ", ".join(show_term(fact) for fact in goal))
         if agent.report.percepts:  # the cycle in progress, or the last one
             self.say("percepts:")
             for percept in agent.report.percepts:
-                self.say(f"   {format_term(percept)}")
+                self.say(f"   {show_term(percept)}")

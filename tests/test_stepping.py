@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from goalagent.debugger import Breakpoint, Debugger, DebuggerError, Stop
+from goalagent.debugger import Breakpoint, Debugger, DebuggerError, Stop, answer_text
 from goalagent.extensions import RunContext
+from goalagent.kb.terms import Atom, Struct, Var
 from goalagent.mas import MultiAgentSystem
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -140,3 +141,17 @@ def test_step_prompt_on_the_terminal() -> None:
     assert "goals:\npercepts:" in err  # m: all goals achieved
     assert "blocks_builder: terminated after 3 cycles" in err
     assert result.stdout == ""
+
+
+def test_answers_show_fresh_variables_as_underscores() -> None:
+    """A mailbox query (``received(S, M)``) answered with Prolog's own variables: ``_``,
+    never ``_G44``, in the prompt and in the inspector alike."""
+    question = Struct("int", (Struct("canMake", (Var("_G44"), Var("_G45"))),))
+    assert answer_text([{"S": Atom("grinder"), "M": question}, {}]) == [
+        "S=grinder, M=int(canMake(_,_))", "true"]
+    result = subprocess.run(
+        [sys.executable, "-m", "goalagent", "run", "agents/examples/coffee.mas2g", "--step"],
+        input="n\nn\nn\nq bel(received(grinder, M))\nc\n", capture_output=True, text=True,
+        timeout=120, cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    assert "M=int(canMake(_,_))" in result.stderr and "_G" not in result.stderr

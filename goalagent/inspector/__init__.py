@@ -28,7 +28,6 @@ from goalagent.agent.events import show_term
 from goalagent.debugger import Debugger, DebuggerError, Stop
 from goalagent.extensions import Extension, InspectorPanel, PanelView
 from goalagent.inspector.server import Command, InspectorServer
-from goalagent.kb.terms import format_term
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -179,15 +178,15 @@ class Inspector:
         debugger = self._debugger
         assert debugger is not None
         inside = self._stop is not None and self._stop.inside and self._stop.agent is agent
-        mailbox = [f"{format_term(a['S'])}: {format_term(a['M'])}"
+        mailbox = [f"{show_term(a['S'])}: {show_term(a['M'])}"
                    for a in agent.query("bel", "received(S, M)")]
         snapshot: dict[str, Any] = {
             "name": agent.name, "cycle": agent.cycle,
             "status": self._status(agent),
-            "beliefs": [format_term(b) for b in agent.beliefs()
+            "beliefs": [show_term(b) for b in agent.beliefs()
                         if not (hasattr(b, "name") and b.name == "received")],
-            "goals": [", ".join(format_term(fact) for fact in goal) for goal in agent.goals()],
-            "percepts": [format_term(p) for p in agent.report.percepts],
+            "goals": [", ".join(show_term(fact) for fact in goal) for goal in agent.goals()],
+            "percepts": [show_term(p) for p in agent.report.percepts],
             "mailbox": mailbox,
             "events": self._events.get(agent.name, []) if inside else self._last.get(
                 agent.name, []),
