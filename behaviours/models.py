@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +19,8 @@ from pathlib import Path
 import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import LinearRegression
+
+from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
 
 STORE_FORMAT = "goalagent-effect-models"
 STORE_VERSION = 1
@@ -157,11 +158,12 @@ class ModelStore:
             self._load()
 
     def _load(self) -> None:
-        """Read every model from the file, or raise StoreError naming the file."""
+        """Read every model from the file (a regular file of bounded size, see
+        ``read_json``), or raise StoreError naming the file and, for a bad record, which."""
         try:
-            data = json.loads(self.path.read_text(encoding="utf-8"))
-        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-            raise StoreError(f"cannot read model store {str(self.path)!r}: {exc}") from None
+            data = read_json(self.path, "model store")
+        except StoreFileError as exc:
+            raise StoreError(str(exc)) from None
         if not isinstance(data, dict) or data.get("format") != STORE_FORMAT:
             raise StoreError(f"{str(self.path)!r} is not a goalagent effect-model store")
         if data.get("version") != STORE_VERSION:
@@ -169,12 +171,18 @@ class ModelStore:
                 f"model store {str(self.path)!r} has version {data.get('version')!r}, "
                 f"this goalagent reads version {STORE_VERSION}"
             )
-        try:
-            for record in data["models"]:
+        records = data.get("models")
+        if not isinstance(records, list):
+            raise StoreError(f"model store {str(self.path)!r} has no list of models")
+        for index, record in enumerate(records):
+            try:
+                if not isinstance(record, dict) or not isinstance(record.get("key"), list):
+                    raise ValueError("not a record with a key list")
                 stored = StoredModel.from_record(record)
-                self._models[stored.key] = stored
-        except (KeyError, TypeError, ValueError) as exc:
-            raise StoreError(f"model store {str(self.path)!r} has a bad record: {exc}") from None
+            except (KeyError, TypeError, ValueError) as exc:
+                raise StoreError(f"model store {str(self.path)!r} has a bad record (model "
+                                 f"{index}): {exc!r}") from None
+            self._models[stored.key] = stored
 
     def get(self, key: Sequence[str]) -> StoredModel | None:
         """The model stored under key, if any."""
@@ -216,21 +224,10 @@ class ModelStore:
         self._models = models
 
     def _write(self, models: dict[tuple[str, ...], StoredModel]) -> None:
-        """Write models: a temporary file in the same folder, fsync, then os.replace."""
+        """Write models atomically (``write_text_atomically``)."""
         payload = {
             "format": STORE_FORMAT,
             "version": STORE_VERSION,
             "models": [stored.to_record() for stored in models.values()],
         }
-        text = json.dumps(payload, indent=1)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp_name = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as handle:
-                handle.write(text)
-                handle.flush()
-                os.fsync(handle.fileno())
-            os.replace(tmp_name, self.path)
-        except BaseException:
-            Path(tmp_name).unlink(missing_ok=True)
-            raise
+        write_text_atomically(self.path, json.dumps(payload, indent=1))

@@ -3,30 +3,50 @@
 ``goalagent run --load-beliefs FILE`` adds a file's facts to every agent's beliefs before it
 starts; ``--save-beliefs FILE`` writes the final beliefs of the saved predicates (those the
 installed extensions declare, e.g. the robot application's ``afford/6``, and those named with
-``--save-predicate NAME/ARITY``). Files are written atomically (temp file + ``os.replace``).
+``--save-predicate NAME/ARITY``), every ``--save-every`` while the run goes and before any
+report at its end. Files are written atomically (temp file + ``os.replace``), so kill -9 at
+any moment leaves the last complete save. Files read are checked first: only ground facts,
+nothing run, the checks of the extensions' saved predicates (e.g. afford/6's types).
 """
 
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
+import time
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from goalagent.extensions import RunContext, RunHook, SavedPredicate
+from goalagent.extensions import RunContext, RunHook, SavedPredicate, saved_predicates
+from goalagent.kb.facts import FactCheck, FactFile, FactFileError, read_facts
 from goalagent.kb.terms import Atom, Struct, Term, format_term, quote_atom
-from goalagent.parser import parse_prolog_file
+from goalagent.parser import GoalSyntaxError
+from goalagent.parser.source import MAX_FACT_FILE_BYTES, read_program_file
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
 
+_UMASK = os.umask(0)
+os.umask(_UMASK)
+
 
 def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that a crash leaves either the old or the new file."""
+    """Write ``text`` to ``path`` so that a crash, Ctrl-C, kill -9 or a power cut leaves
+    either the old or the new file, whole: a temporary file in the same folder, fsync,
+    ``os.replace``, fsync of the folder. The file keeps its mode (or gets the default
+    one, never the temporary file's 0600)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
+                                         suffix=".tmp")
     try:
+        try:
+            mode = stat.S_IMODE(os.stat(path).st_mode)
+        except OSError:
+            mode = 0o666 & ~_UMASK
+        os.fchmod(handle, mode)
         with os.fdopen(handle, "w", encoding="utf-8") as stream:
             stream.write(text)
             stream.flush()
@@ -35,15 +55,46 @@ def write_atomically(path: Path, text: str) -> None:
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+    folder = os.open(path.parent, os.O_RDONLY)
+    try:
+        os.fsync(folder)
+    finally:
+        os.close(folder)
 
 
-def load_beliefs(agent: Agent, path: Path) -> int:
-    """Add the facts of a Prolog file to the agent's beliefs (before its first cycle);
-    returns how many. A malformed file raises ``GoalSyntaxError`` at its file:line:col."""
-    facts = parse_prolog_file(path)
-    for fact in facts:
-        agent.ms.insert(fact)
-    return len(facts)
+def read_belief_file(path: str | Path,
+                     predicates: Sequence[SavedPredicate] | None = None) -> FactFile:
+    """The checked facts of a ``--load-beliefs`` file, kept in Prolog (close it, or use it
+    in a ``with`` block). Only a regular file of at most ``MAX_FACT_FILE_BYTES`` is read;
+    every clause must be a ground fact (a directive is refused, never run) and facts of
+    ``predicates`` (default: those the installed extensions save, e.g. afford/6) must pass
+    their checks. Raises ``GoalSyntaxError`` at the first bad clause's file:line:col."""
+    if predicates is None:
+        predicates = saved_predicates()
+    text = read_program_file(path, MAX_FACT_FILE_BYTES)
+    checks = [FactCheck(predicate.template, condition, meaning) for predicate in predicates
+              if predicate.template for condition, meaning in predicate.checks]
+    try:
+        return read_facts(text, str(path), checks)
+    except FactFileError as error:
+        raise GoalSyntaxError.at(error.pos, error.reason) from None
+
+
+def load_beliefs(agents: Agent | Iterable[Agent], path: str | Path,
+                 predicates: Sequence[SavedPredicate] | None = None) -> int:
+    """Add the facts of a Prolog file to the agents' beliefs (before their first cycle),
+    reading and checking the file once (see :func:`read_belief_file`); returns how many
+    clauses it holds. A fact an agent cannot take (e.g. of one of its knowledge
+    predicates) raises ``GoalSyntaxError`` at its position."""
+    group = [agents] if not isinstance(agents, Iterable) else list(agents)
+    with read_belief_file(path, predicates) as facts:
+        for agent in group:
+            try:
+                agent.ms.add_facts(facts)
+            except FactFileError as error:
+                raise GoalSyntaxError.at(error.pos, f"agent {agent.name}: {error.reason}"
+                                         ) from None
+        return facts.count
 
 
 def beliefs_of(agent: Agent, predicate: SavedPredicate) -> list[Term]:
@@ -79,15 +130,80 @@ def save_beliefs(agents: Iterable[Agent], predicates: Sequence[SavedPredicate],
     return count
 
 
-class BeliefSaver(RunHook):
-    """The ``--save-beliefs`` hook: writes the saved predicates when the run ends."""
+@dataclass(frozen=True)
+class SaveInterval:
+    """How often ``--save-every`` saves during a run: every ``cycles`` agent cycles, or every
+    ``seconds`` of wall-clock time (checked after each cycle); neither: only at the end."""
 
-    def __init__(self, path: Path, predicates: Sequence[SavedPredicate]) -> None:
+    cycles: int | None = None
+    seconds: float | None = None
+
+    @classmethod
+    def parse(cls, text: str) -> SaveInterval:
+        """``100`` (cycles), ``30s``, ``5m`` or ``1h``; ``end`` saves only when the run ends.
+        Raises ValueError with a readable message."""
+        spec = text.strip().lower()
+        if spec == "end":
+            return cls()
+        unit = {"s": 1, "m": 60, "h": 3600}.get(spec[-1:]) if spec else None
+        number = spec[:-1] if unit else spec
+        try:
+            value = float(number) if unit else int(number)
+        except ValueError:
+            value = -1
+        if not (0 < value <= 10**9):
+            raise ValueError(f"--save-every {text!r}: expected a number of cycles (100), of "
+                             "seconds (30s), minutes (5m) or hours (1h), or 'end'")
+        return cls(seconds=value * unit) if unit else cls(cycles=int(value))
+
+
+class BeliefSaver(RunHook):
+    """The ``--save-beliefs`` hook: saves the saved predicates while the run goes (see
+    :class:`SaveInterval`) and when it ends -- before any report, so what was learned is on
+    disk whatever a report does. Every save replaces the file atomically, so after kill -9
+    the file is the last complete save."""
+
+    def __init__(self, path: Path, predicates: Sequence[SavedPredicate],
+                 every: SaveInterval | None = None) -> None:
         self.path = path
         self.predicates = tuple(predicates)
+        self.every = every or SaveInterval()
+        self.saves = 0
+        self._cycles = 0
+        self._last = time.monotonic()
+        self._failed = False
+
+    def start(self, run: RunContext) -> None:
+        """The interval starts with the run."""
+        self._last = time.monotonic()
+
+    def after_cycle(self, run: RunContext, agent: Agent) -> None:
+        """Save when the interval has passed; a failed save is a warning (said once), the
+        run goes on and the next save tries again."""
+        self._cycles += 1
+        due = ((self.every.cycles is not None and self._cycles % self.every.cycles == 0) or
+               (self.every.seconds is not None and
+                time.monotonic() - self._last >= self.every.seconds))
+        if not due:
+            return
+        try:
+            self.save(run.system.agents)
+        except OSError as error:
+            if not self._failed:
+                run.console.print(f"warning: cannot save beliefs to {self.path}: "
+                                  f"{error.strerror or error}; will try again", markup=False)
+            self._failed = True
+        self._last = time.monotonic()
+
+    def save(self, agents: Iterable[Agent]) -> int:
+        """Write the saved predicates of ``agents`` now; how many facts."""
+        count = save_beliefs(agents, self.predicates, self.path)
+        self.saves += 1
+        self._failed = False
+        return count
 
     def finish(self, run: RunContext) -> None:
         """Save and say how many beliefs of which predicates went where."""
-        count = save_beliefs(run.system.agents, self.predicates, self.path)
+        count = self.save(run.system.agents)
         which = ", ".join(predicate.indicator for predicate in self.predicates)
         run.console.print(f"saved {count} {which} beliefs to {self.path}", markup=False)

@@ -11,6 +11,8 @@ from __future__ import annotations
 import contextlib
 import inspect
 import io
+import os
+import sys
 from collections.abc import Callable, Sequence
 from importlib import metadata
 from pathlib import Path
@@ -23,7 +25,7 @@ from typer.core import TyperCommand
 
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
-from goalagent.beliefs import BeliefSaver, load_beliefs
+from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
 from goalagent.checking import (
     check_environment,
     files_to_check,
@@ -53,6 +55,7 @@ from goalagent.parser import (
     parse_prolog_file,
     parse_test_file,
 )
+from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
 from goalagent.testing import run_test_file
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
@@ -131,6 +134,9 @@ def _language_run_options(
     save_predicate: Annotated[
         list[str] | None, typer.Option("--save-predicate", help="NAME/ARITY of a predicate "
                                        "--save-beliefs also writes (repeatable).")] = None,
+    save_every: Annotated[
+        str, typer.Option(help="How often --save-beliefs saves during the run: cycles (100), "
+                               "seconds (30s), minutes (5m), or 'end'.")] = "30s",
     step: Annotated[bool, typer.Option(
         help="Stop after each cycle with a prompt on the terminal (? lists its commands).")
     ] = False,
@@ -183,70 +189,65 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     if values["save_beliefs"] is not None and not predicates:
         raise user_error("--save-beliefs: no predicate to save; name one with "
                          "--save-predicate NAME/ARITY")
+    try:
+        every = SaveInterval.parse(values["save_every"])
+    except ValueError as err:
+        raise user_error(str(err)) from None
+    if values["max_cycles"] is not None and values["max_cycles"] < 0:
+        raise user_error("--max-cycles must be 0 or more")
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False))
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
         raise user_error(f"{path}: a {path.suffix} file does not run on its own: run the "
                          ".mas2g that uses it" + (", or goalagent test for a test file"
                                                   if path.suffix == ".test2g" else ""))
+    system = _build_system(path, env, params, options)
+    try:
+        if values["load_beliefs"] is not None:
+            load_beliefs(system.agents, values["load_beliefs"],
+                         [p for e in extensions for p in e.saved_predicates])
+    except (GoalSyntaxError, KBError) as err:
+        system.close()
+        raise user_error(str(err)) from None
+    hooks: list[RunHook] = []
+    if values["save_beliefs"] is not None:  # first: saved before any report runs
+        hooks.append(BeliefSaver(values["save_beliefs"], predicates, every))
+    hooks += [make() for extension in extensions for make in extension.run_hooks]
+    debugger = _debugger(values, system, extensions)
+    if debugger is not None:
+        hooks.append(debugger)
+    run = Run(system, hooks, RunContext(system, values, err_console),
+              lambda line: err_console.print(line, markup=False))
+    # A live status line on an interactive stderr (never with --trace, a prompt or the
+    # inspector, never in pipes).
+    live = err_console.is_terminal and not trace and debugger is None
+    status = err_console.status("starting") if live else contextlib.nullcontext()
+    try:
+        with status:
+            code = run.execute(values["max_cycles"], status=(
+                (lambda agent: status.update(f"{agent.name}: cycle {agent.cycle}, "  # type: ignore
+                                             f"{agent.total_actions} actions")) if live else None))
+    finally:
+        if printer is not None:
+            printer.close()
+    if code:
+        raise typer.Exit(code=code)
+
+
+def _build_system(path: Path, env: str | None, params: dict[str, Term],
+                  options: dict[str, Any]) -> MultiAgentSystem:
+    """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
     try:
         if path.suffix == ".mas2g":
             if env is not None:
                 raise user_error("--env is for .goal files; a .mas2g names its own environment")
-            system = MultiAgentSystem.from_mas_file(path, env_params=params, **options)
-        else:
-            if params and env is None:
-                raise user_error("--env-param sets an environment's init parameters: "
-                                 "give --env too")
-            system = MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
-                                                     **options)
-        if values["load_beliefs"] is not None:
-            for agent in system.agents:
-                load_beliefs(agent, values["load_beliefs"])
+            return MultiAgentSystem.from_mas_file(path, env_params=params, **options)
+        if params and env is None:
+            raise user_error("--env-param sets an environment's init parameters: give --env too")
+        return MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
+                                               **options)
     except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
         raise user_error(str(err)) from None
-    hooks: list[RunHook] = [make() for extension in extensions for make in extension.run_hooks]
-    if values["save_beliefs"] is not None:
-        hooks.append(BeliefSaver(values["save_beliefs"], predicates))
-    debugger = _debugger(values, system, extensions)
-    if debugger is not None:
-        hooks.append(debugger)
-    context = RunContext(system, values, err_console)
-    interrupted = False
-    # A live status line on an interactive stderr (never with --trace, a prompt or the
-    # inspector, never in pipes).
-    status = (err_console.status("starting")
-              if err_console.is_terminal and not trace and debugger is None
-              else contextlib.nullcontext())
-
-    def after_cycle(agent: Agent) -> None:
-        for hook in hooks:
-            hook.after_cycle(context, agent)
-        if not isinstance(status, contextlib.nullcontext):
-            status.update(f"{agent.name}: cycle {agent.cycle}, {agent.total_actions} actions")
-
-    try:
-        for hook in hooks:
-            hook.start(context)
-        with status:
-            system.run(values["max_cycles"], after_cycle=after_cycle)
-    except KeyboardInterrupt:  # Ctrl-C: stop, but keep what was learned and report it
-        interrupted = system.interrupted = True  # type: ignore[attr-defined]
-        err_console.print("interrupted", markup=False)
-    try:
-        for hook in hooks:
-            hook.finish(context)
-        summaries = system.summaries()
-    finally:
-        system.close()
-        if printer is not None:
-            printer.close()
-    for summary in summaries:
-        err_console.print(str(summary), markup=False)
-    if interrupted:
-        raise typer.Exit(code=130)
-    if any(summary.status == "failed" for summary in summaries):
-        raise typer.Exit(code=1)
 
 
 def _debugger(values: dict[str, Any], system: MultiAgentSystem,
@@ -416,5 +417,13 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
 
 
 def main() -> None:
-    """The ``goalagent`` console script."""
-    create_app()()
+    """The ``goalagent`` console script. Whatever goes wrong ends in one ``error:`` line,
+    never a traceback (``GOALAGENT_DEBUG=1`` shows it, for reporting a bug)."""
+    try:
+        create_app()()
+    except Exception as error:  # noqa: BLE001 - the last guard of the command line
+        if os.environ.get("GOALAGENT_DEBUG"):
+            raise
+        err_console.print(f"error: internal error, please report it: {type(error).__name__}: "
+                          f"{error}", markup=False)
+        sys.exit(1)

@@ -37,12 +37,18 @@ class SavedPredicate:
     ``description`` heads the saved file (``% DESCRIPTION saved by goalagent``); ``canonical``
     may rewrite one belief's arguments before they are written (e.g. a reliability kept as the
     integer ``1`` written as ``1.0``), so saved files read the same whatever Prolog computed.
+    ``checks`` are what ``--load-beliefs`` requires of such facts before anything runs: pairs
+    of a Prolog condition over the variables of ``template`` (e.g. ``integer(Tot), Tot >=
+    0`` for ``afford(Obj, Act, Eff, Tot, Suc, Rel)``) and its meaning in words, which the
+    error at a failing fact's ``file:line:col`` quotes.
     """
 
     name: str
     arity: int
     description: str = ""
     canonical: Callable[[tuple[Term, ...]], tuple[Term, ...]] | None = None
+    template: str = ""
+    checks: Sequence[tuple[str, str]] = ()
 
     @property
     def indicator(self) -> str:

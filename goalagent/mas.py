@@ -111,6 +111,7 @@ class MultiAgentSystem:
         self.postman = LocalPostman()
         self._directory = AgentDirectory()  # agent/1 of every member, stored once
         self.agents: list[Agent] = []
+        self.current: Agent | None = None  # the agent whose cycle is running
         self.failures: dict[str, str] = {}
         self._programs: dict[str, ast.AgentProgram] = {}
         self._entity_launches: list[ast.LaunchRule] = []
@@ -258,12 +259,22 @@ class MultiAgentSystem:
         return self.summaries()
 
     def step(self, agent: Agent) -> None:
-        """One cycle of ``agent``; an error ends that agent (reported), not the system."""
+        """One cycle of ``agent``; whatever it raises (an error of its program, of the
+        environment serving it, or of Python while serving it, e.g. a recursion too deep)
+        is that agent's failure: it is reported and stopped, the others go on."""
+        self.current = agent  # left set when a signal stops the run: it says where
         try:
             agent.step()
         except (AgentError, KBError, GoalSyntaxError, EnvironmentInterfaceException) as err:
-            self.failures[agent.name] = str(err)
-            self.warn(f"error: agent {agent.name} failed: {err}")
+            self._fail(agent, str(err))
+        except Exception as err:  # noqa: BLE001 - one agent's failure is never the system's
+            self._fail(agent, f"{type(err).__name__}: {err}")
+        self.current = None
+
+    def _fail(self, agent: Agent, message: str) -> None:
+        """Stops ``agent`` and reports why."""
+        self.failures[agent.name] = message
+        self.warn(f"error: agent {agent.name} failed: {message}")
 
     def summaries(self) -> list[AgentSummary]:
         result = []

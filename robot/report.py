@@ -18,10 +18,14 @@ from rich.markup import escape
 from rich.table import Table
 
 from goalagent.extensions import RunContext, RunHook, RunOption
-from robot.affordance import ReliabilityHistory, affordances
+from robot.affordance import ReliabilityHistory, affordances, count_affordances
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
+
+MAX_ROWS = 50
+"""The most rows of an agent's afford/6 table printed at the end of a run (all of them go
+to ``--save-beliefs``)."""
 
 PLOT_OPTION = RunOption(
     "plot", Path, "PNG of afford/6 reliabilities over the actions taken "
@@ -46,25 +50,40 @@ class AffordanceReport(RunHook):
         self.histories[agent.name].record(agent)
 
     def finish(self, run: RunContext) -> None:
-        """The afford/6 table on stderr and the reliability plot of each agent with any."""
+        """The afford/6 table on stderr (its first ``MAX_ROWS`` rows) and the reliability
+        plot of each agent with any."""
         agents = run.system.agents
         folder: Path | None = None  # the temporary folder, made when first needed
         for agent in agents:
-            rows = affordances(agent)
+            history = self.histories.get(agent.name)
+            rows = affordances(agent, limit=MAX_ROWS)
             if not rows:
+                if history is not None:
+                    history.close()
                 continue
-            table = Table(title=escape(f"afford/6 beliefs of {agent.name}"))
+            total = count_affordances(agent)
+            table = Table(title=escape(f"afford/6 beliefs of {agent.name}"),
+                          caption=(f"the first {MAX_ROWS} of {total}" if total > len(rows)
+                                   else None))
             for column in ("Obj", "Act", "Eff", "Tot", "Suc", "Rel"):
                 table.add_column(column, justify="right" if column in "TotSucRel" else "left")
             for row in rows:
                 table.add_row(escape(row.obj), escape(row.act), escape(row.eff), str(row.tot),
                               str(row.suc), f"{row.rel:.3f}")
             run.console.print(table)
+            if history is None:
+                continue
+            history.close()
             target = plot_path(run, agent.name, several=len(agents) > 1)
             if target is None:
                 folder = folder or Path(tempfile.mkdtemp(prefix="goalagent-plots-"))
                 target = folder / f"afford-{agent.name}.png"
-            self.histories[agent.name].plot(target, f"Affordance reliabilities of {agent.name}")
+            try:
+                history.plot(target, f"Affordance reliabilities of {agent.name}")
+            except OSError as error:
+                run.console.print(f"warning: cannot write the reliability plot {target}: "
+                                  f"{error.strerror or error}", markup=False)
+                continue
             run.console.print(f"reliability plot: {target}", markup=False)
 
 

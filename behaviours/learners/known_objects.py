@@ -26,7 +26,7 @@ from behaviours.learners.part_models import (
     PartActionModel,
     check_bounds,
 )
-from behaviours.learners.persist import write_text_atomically
+from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
@@ -147,24 +147,25 @@ class KnownObjectDatabase:
         """Read every object from the file, or raise DatabaseError naming the file."""
         where = str(self.path)
         try:
-            data = json.loads(self.path.read_text(encoding="utf-8"))
-        except json.JSONDecodeError as exc:
-            raise DatabaseError(f"{where}:{exc.lineno}:{exc.colno}: not JSON: {exc.msg}") from None
-        except (OSError, UnicodeDecodeError) as exc:
-            raise DatabaseError(f"cannot read known-object database {where!r}: {exc}") from None
+            data = read_json(self.path, "known-object database")
+        except StoreFileError as exc:
+            raise DatabaseError(str(exc)) from None
         if not isinstance(data, dict) or data.get("format") != DATABASE_FORMAT:
             raise DatabaseError(f"{where!r} is not a goalagent known-object database")
         if data.get("version") != DATABASE_VERSION:
             raise DatabaseError(f"known-object database {where!r} has version "
                                 f"{data.get('version')!r}; this goalagent reads version "
                                 f"{DATABASE_VERSION}")
-        try:
-            for record in data["objects"]:
+        records = data.get("objects")
+        if not isinstance(records, list):
+            raise DatabaseError(f"known-object database {where!r} has no list of objects")
+        for index, record in enumerate(records):
+            try:
                 known = KnownObject.from_record(record)
-                self._objects[known.name] = known
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            raise DatabaseError(f"known-object database {where!r} has a bad record: "
-                                f"{exc!r}") from None
+            except (KeyError, TypeError, ValueError, AttributeError) as exc:
+                raise DatabaseError(f"known-object database {where!r} has a bad record (object "
+                                    f"{index}): {exc!r}") from None
+            self._objects[known.name] = known
 
     def __iter__(self) -> Iterator[KnownObject]:
         """The known objects, oldest first."""

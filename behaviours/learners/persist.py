@@ -2,23 +2,75 @@
 
 A file holds ``{"format": FORMAT, "version": VERSION, "kind": ..., "params": ..., "state":
 ...}``. JSON rather than pickle: a saved model is data a user may inspect or hand on, and
-loading one must never run code.
+loading one must never run code. Every JSON store of behaviours (learners, effect models,
+known objects) is read through :func:`read_json`: only a regular file of at most
+``MAX_STORE_BYTES`` is read, and a malformed one is an error at its ``file:line:col``.
+(goalagent has the same guard for program files; behaviours may not import goalagent.)
 """
 
 from __future__ import annotations
 
 import json
 import os
+import stat
 import tempfile
 from pathlib import Path
 
 __all__ = [
-    "FORMAT", "VERSION", "LearnerFileError", "json_params", "read_learner", "write_learner",
-    "write_text_atomically",
+    "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
+    "json_params", "read_json", "read_learner", "write_learner", "write_text_atomically",
 ]
 
 FORMAT = "goalagent-learner"
 VERSION = 1
+MAX_STORE_BYTES = 64 * 2**20
+"""Largest JSON store read (a model or learner file is a few kB to a few MB)."""
+_UMASK = os.umask(0)
+os.umask(_UMASK)
+
+
+class StoreFileError(ValueError):
+    """A JSON store that cannot be read: not a regular file, too large, or not JSON."""
+
+
+def read_json(path: str | os.PathLike[str], what: str) -> object:
+    """The JSON value in ``path`` (``what`` names the kind of file in messages).
+
+    The file is opened without blocking and checked on the open descriptor, so a device,
+    FIFO or directory is refused before anything is read, and at most MAX_STORE_BYTES + 1
+    bytes are read. Malformed JSON (also nesting too deep, or a number too long to convert)
+    is a StoreFileError at ``file:line:col``."""
+    where = str(path)
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        try:
+            info = os.fstat(fd)
+            if not stat.S_ISREG(info.st_mode):
+                raise StoreFileError(f"cannot read {what} {where!r}: not a regular file")
+            if info.st_size > MAX_STORE_BYTES:
+                raise StoreFileError(f"cannot read {what} {where!r}: {info.st_size} bytes, "
+                                     f"more than the {MAX_STORE_BYTES} accepted")
+            with os.fdopen(os.dup(fd), "rb") as stream:
+                data = stream.read(MAX_STORE_BYTES + 1)
+        finally:
+            os.close(fd)
+        if len(data) > MAX_STORE_BYTES:
+            raise StoreFileError(f"cannot read {what} {where!r}: it grew past the "
+                                 f"{MAX_STORE_BYTES} bytes accepted")
+        return json.loads(data.decode("utf-8"))
+    except json.JSONDecodeError as exc:
+        raise StoreFileError(f"cannot read {what} {where}:{exc.lineno}:{exc.colno}: not JSON: "
+                             f"{exc.msg}") from None
+    except UnicodeDecodeError as exc:
+        raise StoreFileError(f"cannot read {what} {where!r}: not UTF-8 text (byte "
+                             f"{exc.start})") from None
+    except RecursionError:
+        raise StoreFileError(f"cannot read {what} {where!r}: JSON nested too deeply") from None
+    except (OSError, ValueError) as exc:  # ValueError: e.g. an integer of 5,000 digits
+        if isinstance(exc, StoreFileError):
+            raise
+        reason = getattr(exc, "strerror", None) or exc
+        raise StoreFileError(f"cannot read {what} {where!r}: {reason}") from None
 
 
 class LearnerFileError(ValueError):
@@ -33,14 +85,18 @@ def write_learner(path: str | os.PathLike[str], kind: str, params: dict, state: 
 
 
 def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
-    """A temporary file in the same folder, fsync, then ``os.replace``: all or nothing."""
+    """A temporary file in the same folder, fsync, ``os.replace``, then fsync of the folder:
+    all or nothing, also after kill -9 or a power cut (the file keeps its mode, or gets
+    the default one, never the temporary file's 0600)."""
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.fchmod(fd, 0o666 & ~umask)  # mkstemp makes 0600; a saved file is an ordinary file
+        try:
+            mode = stat.S_IMODE(os.stat(target).st_mode)
+        except OSError:
+            mode = 0o666 & ~_UMASK
+        os.fchmod(fd, mode)
         with os.fdopen(fd, "w", encoding="utf-8") as handle:
             handle.write(text)
             handle.flush()
@@ -49,6 +105,11 @@ def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
     except BaseException:
         Path(tmp_name).unlink(missing_ok=True)
         raise
+    folder = os.open(target.parent, os.O_RDONLY)
+    try:
+        os.fsync(folder)
+    finally:
+        os.close(folder)
     return target
 
 
@@ -56,9 +117,9 @@ def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
     """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file."""
     source = Path(path)
     try:
-        data = json.loads(source.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise LearnerFileError(f"cannot read learner file {str(source)!r}: {exc}") from None
+        data = read_json(source, "learner file")
+    except StoreFileError as exc:
+        raise LearnerFileError(str(exc)) from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise LearnerFileError(f"{str(source)!r} is not a goalagent learner file")
     if data.get("version") != VERSION:

@@ -64,7 +64,7 @@ from goalagent.kb.clib import (
     text_of,
 )
 from goalagent.kb.errors import KBError
-from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.kb.terms import Atom, Struct, Term, Var, decimal_int, format_term
 
 
 class Record:
@@ -167,8 +167,8 @@ class TermConversion:
         elif kind is int:
             if INT64_MIN <= value <= INT64_MAX:
                 PL_put_int64(t, value)
-            else:
-                data = str(value).encode()
+            else:  # hexadecimal: no digit limit, linear (Python's str(int) has neither)
+                data = format(value, "#x").encode()
                 PL_put_term_from_chars(t, REP_UTF8, len(data), data)
         elif kind is list or kind is tuple:
             PL_put_nil(t)
@@ -228,7 +228,10 @@ class TermConversion:
         if kind == PL_INTEGER:
             if PL_get_int64(t, INT_REF):
                 return INT_BUF.value
-            return int(text_of(t, CVT_INTEGER))
+            try:
+                return decimal_int(text_of(t, CVT_INTEGER))
+            except ValueError as error:
+                raise KBError(str(error)) from None
         if kind == PL_LIST_PAIR:
             items: list[Term] = []
             rest = PL_copy_term_ref(t)

@@ -67,6 +67,7 @@ __all__ = [
 
 _PARSE_CACHE_MAX = 20_000
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
+_GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts
 _PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
 
 # A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
@@ -85,14 +86,15 @@ class Engine(TermConversion):
         self._python_errors: list[BaseException] = []  # raised inside foreign predicates
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
-        loaded = self.call(
-            "load_files",
-            Atom(str(_SUPPORT)),
-            [Struct("silent", (Atom("true"),)), Struct("if", (Atom("not_loaded"),))],
-            module="system",
-        )
-        if loaded is None:
-            raise KBError(f"could not load {_SUPPORT}")
+        for support in (_SUPPORT, _GUARD):
+            loaded = self.call(
+                "load_files",
+                Atom(str(support)),
+                [Struct("silent", (Atom("true"),)), Struct("if", (Atom("not_loaded"),))],
+                module="system",
+            )
+            if loaded is None:
+                raise KBError(f"could not load {support}")
 
     # ------------------------------------------------------------------ public API
 

@@ -83,6 +83,7 @@ check(Text, Kind, Result) :-
 
 check_(Text, Kind, ok(Names)) :-
     read_text(Text, ga_read, Term, Bindings),
+    ga_guard:check_depth(Text, Term),
     (   Kind == clause, \+ callable_clause(Term)
     ->  throw(error(syntax_error(not_a_clause), exact(0)))
     ;   true

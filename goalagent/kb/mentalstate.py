@@ -15,6 +15,7 @@ from typing import Any
 
 from goalagent import ast
 from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get_engine
+from goalagent.kb.facts import FactFile, FactFileError, FactWatch
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = ["AgentDirectory", "CompiledCondition", "MentalState", "instantiate"]
@@ -405,6 +406,30 @@ class MentalState:
     def insert_term(self, term: Term) -> list[tuple[str, Term]]:
         """As :meth:`insert` for a formula already a term (a postcondition from Prolog)."""
         return self._update("insert", term)
+
+    def add_facts(self, facts: FactFile) -> int:
+        """Adds a checked file of facts (:func:`goalagent.kb.facts.read_facts`) to the
+        beliefs, as insert would, each fact once and in file order; returns how many were
+        new. One Prolog call, however many facts."""
+        if facts.closed:
+            raise KBError(f"the facts of {facts.file} were freed")
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        result = self._engine.call("load_facts", self._b, self._g, facts.key, None,
+                                   module="ga_guard")
+        assert result is not None
+        outcome = result[3]
+        if outcome.name == "error":
+            offset, message = outcome.args
+            raise FactFileError(facts.pos(int(offset)), str(message))
+        self._recheck = True
+        return int(outcome.args[0])
+
+    def watch(self, name: str, arity: int) -> FactWatch:
+        """Follows this agent's facts of ``name/arity`` (see :class:`FactWatch`)."""
+        if self._closed:
+            raise KBError(f"the mental state of {self.agent_name} is closed")
+        return FactWatch(self._engine, self._b, name, arity)
 
     def beliefs(self) -> list[Term]:
         """The belief facts (not knowledge, not percepts), in Prolog clause order."""

@@ -49,6 +49,7 @@ class Struct:
 
 Term = Atom | str | int | float | Struct | Var | list
 
+_LONG = 10**4000
 _LETTER_ATOM = re.compile(r"[a-z][A-Za-z0-9_]*\Z")
 _SYMBOL_ATOM = re.compile(r"[+\-*/\\^<>=~:.?@#&$]+\Z")
 
@@ -85,8 +86,8 @@ def format_term(term: Term) -> str:
     if isinstance(term, str):
         escaped = term.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
         return f'"{escaped}"'
-    if isinstance(term, int):
-        return str(term)
+    if isinstance(term, int):  # very long: hexadecimal (Python's str(int) has a limit)
+        return str(term) if -_LONG < term < _LONG else format(term, "#x")
     if isinstance(term, float):
         return _format_float(term)
     if isinstance(term, Var):
@@ -99,3 +100,24 @@ def format_term(term: Term) -> str:
         args = ",".join(format_term(arg) for arg in term.args)
         return f"{quote_atom(term.name)}({args})"
     raise TypeError(f"not a Prolog term: {term!r}")
+
+
+MAX_INT_DIGITS = 100_000
+"""The longest integer handed from Prolog to Python (SWI's are unbounded; converting decimal
+text costs more than linear time, so a 10^10^7 computed by an agent is refused)."""
+_CHUNK = 4000  # below Python's default limit for int(str)
+
+
+def decimal_int(text: str) -> int:
+    """The integer written in decimal ``text`` of any length up to MAX_INT_DIGITS (Python's
+    ``int(str)`` refuses more than 4,300 digits; halves are converted and combined)."""
+    digits = len(text) - text.startswith("-")
+    if digits <= _CHUNK:
+        return int(text)
+    if digits > MAX_INT_DIGITS:
+        raise ValueError(f"an integer of {digits} digits is too large to convert (at most "
+                         f"{MAX_INT_DIGITS})")
+    if text.startswith("-"):
+        return -decimal_int(text[1:])
+    low = len(text) // 2
+    return decimal_int(text[:-low]) * 10**low + decimal_int(text[-low:])

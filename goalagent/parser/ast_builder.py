@@ -11,7 +11,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from lark.exceptions import VisitError
+
 from goalagent import ast
+from goalagent.kb.engine import KBError
 from goalagent.parser.conditions import ConditionParts
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.goal_sections import GoalParts
@@ -54,8 +57,12 @@ def build(text: str, file: str, start: str, *, plain_beliefs: bool = False,
     builder.split_facts = split_facts
     try:
         return builder.transform(tree), builder
-    except Exception as err:  # lark wraps errors raised inside callbacks
-        inner = getattr(err, "orig_exc", None)
+    except VisitError as err:  # lark wraps errors raised inside callbacks
+        inner = err.orig_exc
         if isinstance(inner, GoalSyntaxError):
             raise inner from None
+        if isinstance(inner, KBError):  # a text SWI-Prolog refused: at the node it came from
+            meta = getattr(err.obj, "meta", None)
+            offset = getattr(meta, "start_pos", 0) if meta is not None else 0
+            raise source.error(offset, inner.message) from None
         raise

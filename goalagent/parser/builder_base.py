@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from lark import Token, Transformer, v_args
+from lark import Token, Transformer_NonRecursive, v_args
 
 from goalagent import ast
 from goalagent.kb.engine import PrologSyntaxError, get_engine
@@ -37,7 +37,7 @@ class ParsedSection:
 
 
 @v_args(meta=True)
-class BuilderBase(Transformer):
+class BuilderBase(Transformer_NonRecursive):
     """Turns lark tree nodes into ``goalagent.ast`` objects; the parts for `.goal` sections,
     conditions and `.mas2g` files are mixed into :class:`~goalagent.parser.ast_builder.
     AstBuilder`."""

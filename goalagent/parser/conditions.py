@@ -3,7 +3,15 @@ in `.mod2g` files): the literals of a rule's condition, with each macro call exp
 the macro's condition (arguments substituted, its other variables renamed apart). GOAL 6's
 ``(Sender).sent!(φ)`` reads the mailbox; ``done(Action)`` (tests only) is kept as a literal
 of its own; the newest dialect's bare literals (``p(X)`` for ``bel(p(X))``) are read as
-belief queries when the builder's ``plain_beliefs`` is set."""
+belief queries when the builder's ``plain_beliefs`` is set.
+
+Expansion is bounded, so a small file cannot make the parser work without end (20 macros
+each using the previous twice expand to a million literals): a macro may use macros at
+most ``MAX_MACRO_DEPTH`` deep, a condition holds at most ``MAX_CONDITION_LITERALS``
+literals and ``MAX_CONDITION_TEXT`` characters once expanded, and one file expands at most
+``MAX_FILE_EXPANSION`` literals in all. Each limit is checked before the work it bounds and
+reported where it is passed, with the chain of macros that led there.
+"""
 
 from __future__ import annotations
 
@@ -16,6 +24,15 @@ from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.variables import rename_variables, variable_occurrences
+
+MAX_MACRO_DEPTH = 64
+"""How deep macros may be defined in terms of other macros."""
+MAX_CONDITION_LITERALS = 1_000
+"""The most literals of one condition (a rule's or a macro's), macros expanded."""
+MAX_CONDITION_TEXT = 100_000
+"""The most characters of Prolog text in one condition, macros expanded."""
+MAX_FILE_EXPANSION = 20_000
+"""The most literals all macro expansions of one file may produce (each is read by SWI)."""
 
 
 def condition_texts(condition: ast.Condition):
@@ -38,14 +55,18 @@ class ConditionParts(BuilderBase):
         self.macro_list: list[ast.Macro] = []
         self._fresh_suffixes = itertools.count(1)
         self.plain_beliefs = False  # the newest dialect: p(X) in a condition is bel(p(X))
+        # per macro: (its literals, its text size, the chain of macros it expands through)
+        self._expansion: dict[tuple[str, int], tuple[int, int, tuple[str, ...]]] = {}
+        self._calls: list[tuple[int, tuple[str, int]]] = []  # (offset, macro) of each call
+        self._expanded = 0  # literals produced by expansions in this file
 
     def macro(self, meta, children):
-        return self._define_macro(children)
+        return self._define_macro(meta, children)
 
     def macro_def(self, meta, children):
-        return self._define_macro(children)
+        return self._define_macro(meta, children)
 
-    def _define_macro(self, children) -> ast.Macro:
+    def _define_macro(self, meta, children) -> ast.Macro:
         """``#define name(Params) MSC.`` or ``define name(Params) as MSC.``."""
         name = children[1]
         params = next((c for c in children[2:] if isinstance(c, tuple) and c and
@@ -57,7 +78,18 @@ class ConditionParts(BuilderBase):
                 raise GoalSyntaxError.at(param.pos, "a macro parameter must be a variable")
             param_names.append(param.text)
         macro = ast.Macro(str(name), tuple(param_names), condition, self._token_pos(name))
-        self.macros[(macro.name, len(param_names))] = macro
+        key = (macro.name, len(param_names))
+        used = [called for offset, called in self._calls
+                if meta.start_pos <= offset < meta.end_pos]
+        self._calls = [call for call in self._calls if call[0] >= meta.end_pos]
+        chain = (f"{macro.name}/{len(param_names)}",)
+        if used:
+            chain += max((self._expansion[called][2] for called in used), key=len)
+        if len(chain) > MAX_MACRO_DEPTH:
+            raise GoalSyntaxError.at(macro.pos, f"macros nested more than {MAX_MACRO_DEPTH} "
+                                     f"deep: {_chain(chain)}")
+        self._expansion[key] = (_count(condition), _text_size(condition), chain)
+        self.macros[key] = macro
         self.macro_list.append(macro)
         return macro
 
@@ -68,6 +100,12 @@ class ConditionParts(BuilderBase):
                 literals.extend(child)  # an expanded macro
             else:
                 literals.append(child)
+        if _count(literals) > MAX_CONDITION_LITERALS:
+            used = [self._expansion[called][2] for offset, called in self._calls
+                    if meta.start_pos <= offset < meta.end_pos]
+            where = f" ({_chain(max(used, key=len))})" if used else ""
+            raise self.source.error(meta.start_pos, "this condition expands to more than "
+                                    f"{MAX_CONDITION_LITERALS} literals{where}")
         return tuple(literals)
 
     def _mental(self, op: str, meta, children) -> ast.MentalLiteral:
@@ -132,6 +170,22 @@ class ConditionParts(BuilderBase):
                 f"unknown mental literal {name}/{len(args)}: expected bel, goal, a-goal, "
                 "goal-a, percept, not, true or a macro defined earlier with #define",
             )
+        literals, size, chain = self._expansion[(name, len(args))]
+        # Each occurrence of a parameter becomes its argument's text (in parentheses).
+        for param, arg in zip(macro.params, args, strict=True):
+            occurrences = sum(1 for text in condition_texts(macro.condition)
+                              for var in variable_occurrences(text.text) if var == param)
+            size += occurrences * (len(arg.text) + 2 - len(param))
+        self._expanded += literals
+        where = f" ({_chain(chain)})" if len(chain) > 1 else ""
+        if literals > MAX_CONDITION_LITERALS or size > MAX_CONDITION_TEXT:
+            raise GoalSyntaxError.at(self._pos(meta), f"macro {name}/{len(args)} expands to "
+                                     f"more than {MAX_CONDITION_LITERALS} literals or "
+                                     f"{MAX_CONDITION_TEXT} characters{where}")
+        if self._expanded > MAX_FILE_EXPANSION:
+            raise GoalSyntaxError.at(self._pos(meta), "macros expand to more than "
+                                     f"{MAX_FILE_EXPANSION} literals in this file{where}")
+        self._calls.append((meta.start_pos, (name, len(args))))
         return self._expand_macro(macro, args)
 
     def bare_expression(self, meta, children):
@@ -176,3 +230,20 @@ class ConditionParts(BuilderBase):
                 query = self.check(ast.PrologText(text, literal.query.pos))
                 renamed.append(ast.MentalLiteral(literal.op, query, literal.pos))
         return tuple(renamed)
+
+
+def _count(condition) -> int:
+    """The literals of a condition, those inside not(...) included."""
+    return sum(_count(literal.condition) + 1 if isinstance(literal, ast.NotLiteral) else 1
+               for literal in condition)
+
+
+def _text_size(condition) -> int:
+    """The characters of Prolog text in a condition."""
+    return sum(len(text.text) for text in condition_texts(condition))
+
+
+def _chain(chain: tuple[str, ...]) -> str:
+    """A macro chain as ``m3/0 -> m2/0 -> m1/0`` (shortened when long)."""
+    shown = chain if len(chain) <= 8 else (*chain[:4], "...", *chain[-3:])
+    return " -> ".join(shown)

@@ -2,17 +2,31 @@
 
 Comments are blanked by hand rather than in the grammar because ``//`` starts a comment only
 outside Prolog text, which a context-free lexer cannot tell; blanking keeps every offset
-valid, so positions in errors and in the AST point into the original file.
+valid, so positions in errors and in the AST point into the original file. The same pass
+bounds bracket nesting (``MAX_NESTING``), so no later stage meets a text nested deeper than
+it can take; files are read only when they are regular files of a bounded size
+(:func:`read_bounded`), so ``/dev/zero``, a FIFO or a directory is refused at once.
 """
 
 from __future__ import annotations
 
 import bisect
+import os
 import re
+import stat
 from pathlib import Path
 
 from goalagent import ast
 from goalagent.parser.errors import GoalSyntaxError
+
+MAX_NESTING = 200
+"""Deepest nesting of ``( [ {`` accepted in a program (SWI's reader and Python's term
+conversion recurse per level; real programs stay far below)."""
+MAX_PROGRAM_BYTES = 8 * 2**20
+"""Largest `.goal`, `.mas2g` or `#import`ed `.pl` file read."""
+MAX_FACT_FILE_BYTES = 64 * 2**20
+"""Largest ``--load-beliefs`` file read (a million afford/6 facts take about 55 MB)."""
+_OPENING, _CLOSING = "([{", ")]}"
 
 
 class Source:
@@ -48,9 +62,18 @@ class Source:
         """
         out = list(text)
         i, n = 0, len(text)
+        depth = 0
         while i < n:
             ch = text[i]
-            if ch in "'\"`":
+            if ch in _OPENING:
+                depth += 1
+                if depth > MAX_NESTING:
+                    raise self.error(i, f"brackets nested more than {MAX_NESTING} deep")
+                i += 1
+            elif ch in _CLOSING:
+                depth = max(depth - 1, 0)
+                i += 1
+            elif ch in "'\"`":
                 if ch == "'" and i > 0 and text[i - 1] == "0" and (
                     i < 2 or not (text[i - 2].isalnum() or text[i - 2] == "_")
                 ):
@@ -108,11 +131,54 @@ class Source:
         return k < 0 or text[k] in "\n{}]."
 
 
-def read_program_file(path: str | Path) -> str:
-    """The text of a program file; a missing or unreadable file is a located error."""
+def read_bounded(path: str | Path, limit: int) -> bytes:
+    """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes.
+
+    The file is opened without blocking (a FIFO would wait for a writer) and checked on the
+    open descriptor, so a device, FIFO, socket or directory is refused before anything is
+    read, and at most ``limit + 1`` bytes are ever read (a file growing meanwhile is caught).
+    Raises ``OSError`` (``FileNotFoundError`` for a missing file) with a readable message.
+    """
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
     try:
-        return Path(path).read_text(encoding="utf-8")
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            kind = ("a directory" if stat.S_ISDIR(info.st_mode) else
+                    "a FIFO" if stat.S_ISFIFO(info.st_mode) else
+                    "a device" if stat.S_ISCHR(info.st_mode) or stat.S_ISBLK(info.st_mode)
+                    else "not a regular file")
+            raise OSError(f"{kind}, not a regular file")
+        if info.st_size > limit:
+            raise OSError(f"{info.st_size} bytes: larger than the {limit} bytes accepted")
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, min(limit + 1 - size, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        if size > limit:
+            raise OSError(f"grew past the {limit} bytes accepted while being read")
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
+def read_program_file(path: str | Path, limit: int = MAX_PROGRAM_BYTES) -> str:
+    """The text of a program file (UTF-8, a regular file of at most ``limit`` bytes); a
+    missing, unreadable or undecodable file is a located error."""
+    try:
+        data = read_bounded(path, limit)
     except FileNotFoundError:
         raise GoalSyntaxError(str(path), 1, 1, "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise GoalSyntaxError(str(path), 1, 1, f"cannot read file: {err}") from None
+    except (OSError, ValueError) as err:  # ValueError: a NUL byte in the path
+        reason = getattr(err, "strerror", None) or err
+        raise GoalSyntaxError(str(path), 1, 1, f"cannot read file: {reason}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        before = data[:err.start].decode("utf-8", errors="replace")
+        line = before.count("\n") + 1
+        col = len(before) - (before.rfind("\n") + 1) + 1
+        raise GoalSyntaxError(str(path), line, col, "not UTF-8 text (byte "
+                              f"0x{data[err.start]:02x})") from None

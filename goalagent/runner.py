@@ -1,0 +1,126 @@
+"""One ``goalagent run`` from start to exit code: run hooks, signals, the end-of-run order.
+
+Ctrl-C (SIGINT) and SIGTERM stop the agents, say which agent was running, and still finish
+the run: the hooks' ``finish`` -- ``--save-beliefs`` first, then the reports -- and the
+summaries; the exit code is then 130 or 143. A second signal ends at once (whatever is
+being saved is abandoned, and since saves are atomic the previous file stays whole). A run
+hook that raises is reported and the run goes on without it: an extension's report never
+costs the user what the agents learned.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+from collections.abc import Callable, Iterator, Sequence
+from types import FrameType
+from typing import TYPE_CHECKING
+
+from goalagent.extensions import RunContext, RunHook
+
+if TYPE_CHECKING:
+    from goalagent.agent import Agent
+    from goalagent.mas import AgentSummary, MultiAgentSystem
+
+EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
+
+
+class RunStopped(BaseException):
+    """A signal asked the run to stop (a BaseException, like KeyboardInterrupt, so that code
+    catching Exception does not swallow it)."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+        self.exit_code = EXIT_CODES.get(signal.Signals(signum), 128 + signum)
+
+
+@contextlib.contextmanager
+def stop_on_signals() -> Iterator[None]:
+    """Within the block SIGINT and SIGTERM raise :class:`RunStopped` (each time one comes);
+    the previous handlers come back afterwards."""
+
+    def handler(signum: int, frame: FrameType | None) -> None:
+        raise RunStopped(signum)
+
+    previous = {signum: signal.signal(signum, handler) for signum in EXIT_CODES}
+    try:
+        yield
+    finally:
+        for signum, old in previous.items():
+            signal.signal(signum, old)
+
+
+class Run:
+    """A built system, its hooks and where to report: :meth:`execute` runs it to the end."""
+
+    def __init__(self, system: MultiAgentSystem, hooks: Sequence[RunHook],
+                 context: RunContext, report: Callable[[str], None]) -> None:
+        self.system = system
+        self.hooks = list(hooks)  # in order: --save-beliefs first, then the extensions'
+        self.context = context
+        self.report = report  # one line on stderr (user data: never markup)
+        self.failed_hooks = 0
+        self._cycling = list(self.hooks)  # hooks still called after each cycle
+
+    def execute(self, max_cycles: int | None,
+                status: Callable[[Agent], None] | None = None) -> int:
+        """Runs the system and finishes the run; returns the exit code (0, 1 when an agent
+        or a hook failed, 130/143 when a signal stopped it)."""
+        with stop_on_signals():
+            try:
+                return self._execute(max_cycles, status)
+            except RunStopped as stop:  # a second signal while finishing: end at once
+                self.report(f"{stop}: stopped at once; what was being saved or reported is "
+                            "left as it was")
+                return stop.exit_code
+            finally:
+                with contextlib.suppress(RunStopped):
+                    self.system.close()
+
+    def _execute(self, max_cycles: int | None,
+                 status: Callable[[Agent], None] | None) -> int:
+        """Start hooks, cycles until the end or a signal, finish hooks, summaries."""
+        stopped: RunStopped | None = None
+        try:
+            for hook in self.hooks:
+                self._call(hook, "start")
+            self.system.run(max_cycles, after_cycle=lambda agent: self._after(agent, status))
+        except RunStopped as stop:
+            stopped = stop
+            self.report(self._stop_message(stop))
+        for hook in self.hooks:
+            self._call(hook, "finish")
+        summaries: list[AgentSummary] = self.system.summaries()
+        for summary in summaries:
+            self.report(str(summary))
+        if stopped is not None:
+            return stopped.exit_code
+        failed = any(summary.status == "failed" for summary in summaries)
+        return 1 if failed or self.failed_hooks else 0
+
+    def _after(self, agent: Agent, status: Callable[[Agent], None] | None) -> None:
+        """After each cycle: the hooks (one that raises is dropped, said once), the status."""
+        for hook in list(self._cycling):
+            if not self._call(hook, "after_cycle", agent):
+                self._cycling.remove(hook)
+        if status is not None:
+            status(agent)
+
+    def _call(self, hook: RunHook, stage: str, *args: object) -> bool:
+        """Calls ``hook.stage(context, *args)``; an exception is reported, not raised."""
+        try:
+            getattr(hook, stage)(self.context, *args)
+        except Exception as error:  # noqa: BLE001 - any failure of a hook is reported
+            self.failed_hooks += 1
+            reason = getattr(error, "strerror", None) or error
+            self.report(f"error: run hook {type(hook).__name__} failed at {stage}: "
+                        f"{type(error).__name__}: {reason}")
+            return False
+        return True
+
+    def _stop_message(self, stop: RunStopped) -> str:
+        """``interrupted (SIGINT) in agent NAME, cycle N``: what was running."""
+        agent = self.system.current
+        where = f" in agent {agent.name}, cycle {agent.cycle}" if agent is not None else ""
+        return f"interrupted ({stop}){where}: stopping, finishing the run"
