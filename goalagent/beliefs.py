@@ -38,7 +38,7 @@ def write_atomically(path: Path, text: str) -> None:
     either the old or the new file, whole: a temporary file in the same folder, fsync,
     ``os.replace``, fsync of the folder. The file keeps its mode (or gets the default
     one, never the temporary file's 0600)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
+    path = check_save_target(path)
     handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
                                          suffix=".tmp")
     try:
@@ -60,6 +60,19 @@ def write_atomically(path: Path, text: str) -> None:
         os.fsync(folder)
     finally:
         os.close(folder)
+
+
+def check_save_target(path: Path) -> Path:
+    """The file a save replaces (symbolic links followed), its folder created: refuses
+    (``OSError``) a target that exists and is not a regular file -- a save must never
+    replace a device, a FIFO or a folder -- or a folder where no file can be made."""
+    target = Path(os.path.realpath(path))
+    if target.exists() and not target.is_file():
+        raise OSError(f"{path} exists and is not a regular file")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if not os.access(target.parent, os.W_OK | os.X_OK):
+        raise OSError(f"cannot write in the folder {target.parent}")
+    return target
 
 
 def read_belief_file(path: str | Path,

@@ -25,7 +25,7 @@ from typer.core import TyperCommand
 
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
-from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
+from goalagent.beliefs import BeliefSaver, SaveInterval, check_save_target, load_beliefs
 from goalagent.checking import (
     check_environment,
     files_to_check,
@@ -61,6 +61,7 @@ from goalagent.testing import run_test_file
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
+MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
 
 
 def _env_params(pairs: list[str]) -> dict[str, Term]:
@@ -79,7 +80,7 @@ def _saved_predicates(indicators: list[str],
     chosen = {p.indicator: p for e in extensions for p in e.saved_predicates}
     for indicator in indicators:
         name, sep, arity = indicator.strip().rpartition("/")
-        if not sep or not name or not arity.isdigit():
+        if not sep or not name or not arity.isdigit() or int(arity) > MAX_SAVED_ARITY:
             raise user_error(f"--save-predicate {indicator!r}: expected NAME/ARITY, "
                              "e.g. visited/2")
         chosen.setdefault(f"{name}/{int(arity)}", SavedPredicate(name, int(arity)))
@@ -191,8 +192,13 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          "--save-predicate NAME/ARITY")
     try:
         every = SaveInterval.parse(values["save_every"])
+        if values["save_beliefs"] is not None:
+            check_save_target(values["save_beliefs"])
     except ValueError as err:
         raise user_error(str(err)) from None
+    except OSError as err:
+        raise user_error(f"--save-beliefs {values['save_beliefs']}: "
+                         f"{err.strerror or err}") from None
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],

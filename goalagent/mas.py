@@ -112,6 +112,7 @@ class MultiAgentSystem:
         self._directory = AgentDirectory()  # agent/1 of every member, stored once
         self.agents: list[Agent] = []
         self.current: Agent | None = None  # the agent whose cycle is running
+        self.interrupted = False  # a signal stopped the run
         self.failures: dict[str, str] = {}
         self._programs: dict[str, ast.AgentProgram] = {}
         self._entity_launches: list[ast.LaunchRule] = []
@@ -283,6 +284,8 @@ class MultiAgentSystem:
                 status = "failed"
             elif agent.terminated:
                 status = "terminated"
+            elif self.interrupted:
+                status = "interrupted"
             else:
                 status = "stopped at the cycle limit"
             result.append(AgentSummary(agent.name, agent.cycle, agent.total_actions,

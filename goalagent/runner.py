@@ -62,6 +62,7 @@ class Run:
         self.report = report  # one line on stderr (user data: never markup)
         self.failed_hooks = 0
         self._cycling = list(self.hooks)  # hooks still called after each cycle
+        self._last: Agent | None = None  # the agent whose cycle ended last
 
     def execute(self, max_cycles: int | None,
                 status: Callable[[Agent], None] | None = None) -> int:
@@ -88,6 +89,7 @@ class Run:
             self.system.run(max_cycles, after_cycle=lambda agent: self._after(agent, status))
         except RunStopped as stop:
             stopped = stop
+            self.system.interrupted = True
             self.report(self._stop_message(stop))
         for hook in self.hooks:
             self._call(hook, "finish")
@@ -101,6 +103,7 @@ class Run:
 
     def _after(self, agent: Agent, status: Callable[[Agent], None] | None) -> None:
         """After each cycle: the hooks (one that raises is dropped, said once), the status."""
+        self._last = agent
         for hook in list(self._cycling):
             if not self._call(hook, "after_cycle", agent):
                 self._cycling.remove(hook)
@@ -120,7 +123,13 @@ class Run:
         return True
 
     def _stop_message(self, stop: RunStopped) -> str:
-        """``interrupted (SIGINT) in agent NAME, cycle N``: what was running."""
+        """``interrupted (SIGINT) in agent NAME, cycle N``: what was running (or the cycle
+        that had just ended)."""
         agent = self.system.current
-        where = f" in agent {agent.name}, cycle {agent.cycle}" if agent is not None else ""
+        if agent is not None:
+            where = f" in agent {agent.name}, cycle {agent.cycle}"
+        elif self._last is not None:
+            where = f" after agent {self._last.name}'s cycle {self._last.cycle}"
+        else:
+            where = ""
         return f"interrupted ({stop}){where}: stopping, finishing the run"

@@ -121,6 +121,13 @@ class ReliabilityHistory:
             self._watch.close()
             self._watch = None
 
+    def shown(self) -> list[tuple[tuple[str, str, str], list[tuple[int, float]]]]:
+        """The series a plot shows, by key: all, or the MAX_SERIES that changed most."""
+        items = sorted(self.points.items())
+        if len(items) <= MAX_SERIES:
+            return items
+        return sorted(sorted(items, key=lambda item: -len(item[1]))[:MAX_SERIES])
+
     def plot(self, path: Path | BinaryIO, title: str, tau: float = 0.6) -> None:
         """A step plot of every affordance's reliability over the actions taken (PNG, to a
         file or a binary stream)."""
@@ -131,10 +138,9 @@ class ReliabilityHistory:
 
         figure, axes = plt.subplots(figsize=(9, 5))
         colours = plt.get_cmap("tab20").colors
-        shown = sorted(self.points.items())
-        if len(shown) > MAX_SERIES:  # a legible plot: the affordances that changed most
-            shown = sorted(sorted(shown, key=lambda item: -len(item[1]))[:MAX_SERIES])
-            title += f" ({MAX_SERIES} of {len(self.points)}: those that changed most)"
+        shown = self.shown()
+        if len(shown) < len(self.points):
+            title += f" ({len(shown)} of {len(self.points)}: those that changed most)"
         for index, ((obj, act, eff), series) in enumerate(shown):
             xs = [x for x, _ in series] + [self.last_action]
             ys = [y for _, y in series] + [series[-1][1]]

@@ -87,8 +87,11 @@ def write_learner(path: str | os.PathLike[str], kind: str, params: dict, state: 
 def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
     """A temporary file in the same folder, fsync, ``os.replace``, then fsync of the folder:
     all or nothing, also after kill -9 or a power cut (the file keeps its mode, or gets
-    the default one, never the temporary file's 0600)."""
-    target = Path(path)
+    the default one, never the temporary file's 0600). Symbolic links are followed; a
+    target that is not a regular file (a device, a folder) is refused, never replaced."""
+    target = Path(os.path.realpath(path))
+    if target.exists() and not target.is_file():
+        raise OSError(f"{path} exists and is not a regular file: not replaced")
     target.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     try:

@@ -223,15 +223,15 @@ not_a_fact(Term, Why) :-
 not_a_fact(Term, Why) :-
     ga_kb:control(Term),
     functor(Term, Name, Arity),
-    format(string(Why), "~q is a control construct, not a fact", [Name/Arity]).
+    format(string(Why), "~q/~w is a control construct, not a fact", [Name, Arity]).
 not_a_fact(Term, Why) :-
     functor(Term, Name, Arity),
     sub_atom(Name, 0, _, _, $),
-    format(string(Why), "~q is reserved for the runtime", [Name/Arity]).
+    format(string(Why), "~q/~w is reserved for the runtime", [Name, Arity]).
 not_a_fact(Term, Why) :-
     predicate_property(system:Term, defined),
     functor(Term, Name, Arity),
-    format(string(Why), "~q is a built-in predicate, not a belief", [Name/Arity]).
+    format(string(Why), "~q/~w is a built-in predicate, not a belief", [Name, Arity]).
 
 bad(Offset, Why) :-
     throw(ga_bad(Offset, Why)).

@@ -21,7 +21,7 @@ from goalagent import ast
 from goalagent.kb.engine import get_engine
 from goalagent.parser.ast_builder import build
 from goalagent.parser.errors import GoalSyntaxError
-from goalagent.parser.goal_file import finish_program, parse_agent_file
+from goalagent.parser.goal_file import finish_program, parse_agent
 from goalagent.parser.module_sections import ActionFile, ModuleFile
 from goalagent.parser.source import read_program_file
 
@@ -90,10 +90,15 @@ def load_agents(mas: ast.MasProgram) -> dict[str, ast.AgentProgram]:
     base = Path(mas.file).parent
     programs = {}
     for agentfile in mas.agentfiles:
-        if not (base / agentfile.path).is_file():
-            raise GoalSyntaxError.at(agentfile.pos, f"agent file {agentfile.path!r}: no such "
-                                     f"file next to {Path(mas.file).name}")
-        programs[agentfile.name] = parse_agent_file(base / agentfile.path)
+        path = base / agentfile.path
+        try:  # only a regular file of bounded size; why not is said at the agentfiles entry
+            text = read_program_file(path)
+        except GoalSyntaxError as err:
+            reason = (f"no such file next to {Path(mas.file).name}"
+                      if err.message == "no such file" else err.message)
+            raise GoalSyntaxError.at(agentfile.pos, f"agent file {agentfile.path!r}: "
+                                     f"{reason}") from None
+        programs[agentfile.name] = parse_agent(text, str(path))
     for definition in mas.definitions:
         programs[definition.name] = load_definition(definition, mas.file)
     return programs

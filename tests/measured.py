@@ -1,0 +1,53 @@
+"""The ``goalagent`` command in a child process, measured: exit code, output, wall-clock
+seconds and peak resident memory (the child reports its own ``ru_maxrss`` when it exits)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+_LAUNCHER = (
+    "import atexit, os, resource, sys\n"
+    "def _report():\n"
+    "    with open(os.environ['GOALAGENT_TEST_RSS'], 'w') as out:\n"
+    "        out.write(str(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss))\n"
+    "atexit.register(_report)\n"
+    "sys.argv = ['goalagent', *sys.argv[1:]]\n"
+    "from goalagent.cli import main\n"
+    "main()\n"
+)
+
+
+@dataclass(frozen=True)
+class Measured:
+    """What one command did."""
+
+    returncode: int
+    stdout: str
+    stderr: str
+    seconds: float
+    peak_mb: float
+
+
+def goalagent_measured(*args: str, timeout: float = 120, cwd: Path = ROOT) -> Measured:
+    """Runs ``goalagent ARGS`` in a child Python; a child still running after ``timeout``
+    seconds (a hang) fails the calling test through ``subprocess.TimeoutExpired``."""
+    with tempfile.NamedTemporaryFile(suffix=".rss", delete=False) as handle:
+        rss_file = Path(handle.name)
+    try:
+        env = {**os.environ, "GOALAGENT_TEST_RSS": str(rss_file)}
+        start = time.monotonic()
+        result = subprocess.run([sys.executable, "-c", _LAUNCHER, *args], cwd=cwd, env=env,
+                                capture_output=True, text=True, timeout=timeout)
+        seconds = time.monotonic() - start
+        text = rss_file.read_text()
+        peak = int(text) / 1024 if text else float("nan")
+    finally:
+        rss_file.unlink(missing_ok=True)
+    return Measured(result.returncode, result.stdout, result.stderr, seconds, peak)
