@@ -37,7 +37,11 @@ def parse_mas(text: str, file: str = "<string>") -> ast.MasProgram:
         elif kind == "environment":
             for key, value, key_pos in section[1]:
                 if key == "env":
-                    environment = str(get_engine().parse_term(value.text))
+                    name = get_engine().parse_term(value.text)
+                    if not isinstance(name, str) or not name:
+                        raise GoalSyntaxError.at(value.pos, "env must name an environment "
+                                                 "(an atom or a string)")
+                    environment = str(name)
                     env_pos = key_pos
                 elif key == "init":
                     env_init.extend(_init_pairs(value))

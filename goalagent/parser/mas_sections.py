@@ -15,6 +15,9 @@ from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase
 from goalagent.parser.errors import GoalSyntaxError
 
+MAX_NUMBER = 100_000
+"""The largest ``number`` (agents launched from one file) or ``max`` a .mas2g may ask for."""
+
 _AGENT_ROLES = ("init", "main", "event", "shutdown")
 _PURPOSES = {"decisions": "main", "updates": "event"}
 _PERCEPT_RULES = ("add", "replace", "update")
@@ -84,8 +87,9 @@ class MasParts(BuilderBase):
         if key not in values:
             return None
         text, token = values[key]
-        if not text.isdigit():
-            raise GoalSyntaxError.at(self._token_pos(token), f"{key} must be a whole number")
+        if not text.isdigit() or len(text) > len(str(MAX_NUMBER)) or int(text) > MAX_NUMBER:
+            raise GoalSyntaxError.at(self._token_pos(token), f"{key} must be a whole number "
+                                     f"up to {MAX_NUMBER}")
         return int(text)
 
     def agentfiles(self, meta, children):
