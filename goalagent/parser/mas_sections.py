@@ -153,6 +153,9 @@ class MasParts(BuilderBase):
         if str(how) not in _PERCEPT_RULES:
             raise GoalSyntaxError.at(self._token_pos(how), f"unknown percept rule {how}: "
                                      f"expected {', '.join(_PERCEPT_RULES)} name/arity")
+        if not str(arity).isdigit() or len(str(arity)) > 4:
+            raise GoalSyntaxError.at(self._token_pos(arity), f"{arity} is not an arity: "
+                                     "expected a whole number up to 9999")
         return ast.PerceptRule(str(how), str(name), int(str(arity)),  # type: ignore[arg-type]
                                self._pos(meta))
 
