@@ -22,7 +22,7 @@ from goalagent.agent import AgentError, validate_program
 from goalagent.beliefs import read_belief_file
 from goalagent.cli import create_app
 from goalagent.kb.engine import KBError
-from goalagent.parser import GoalSyntaxError, parse_agent, parse_agent_files, parse_mas
+from goalagent.parser import GoalSyntaxError, load_agents, parse_agent, parse_mas
 
 LOCATED = re.compile(r"^\S.*:\d+:\d+: \S")
 APP = create_app()
@@ -38,7 +38,7 @@ def _mas(text: str, folder: Path) -> str:
     (folder / "a.goal").write_text("main module [exit=always] { program { if true then "
                                    "print(hi). } }\n")
     mas = parse_mas(text, str(folder / "fuzz.mas2g"))
-    for program in parse_agent_files(mas):
+    for program in load_agents(mas).values():
         validate_program(program)
     return "ok"
 
