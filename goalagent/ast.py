@@ -226,6 +226,7 @@ class AgentFile:
     name: str
     pos: Pos
     number: int = 1
+    limits: tuple[tuple[str, object], ...] = ()  # e.g. (("sandbox", True),): see kb.limits
 
 
 @dataclass(frozen=True)

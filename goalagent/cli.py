@@ -43,6 +43,7 @@ from goalagent.extensions import (
     installed_extensions,
 )
 from goalagent.kb.engine import KBError
+from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
 from goalagent.parser import (
@@ -151,6 +152,17 @@ def _language_run_options(
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",
+    max_inferences: Annotated[int, typer.Option(
+        help="Inferences one rule of an agent may make before it is not applicable.")
+    ] = Limits.max_inferences,
+    max_query_seconds: Annotated[float, typer.Option(
+        help="Seconds Prolog may run for an agent without returning (then the rule is not "
+             "applicable).")] = Limits.max_query_seconds,
+    max_beliefs: Annotated[int, typer.Option(
+        help="Beliefs and goals an agent may hold before it is stopped.")] = Limits.max_beliefs,
+    sandbox: Annotated[bool, typer.Option(
+        help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
+    ] = False,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -201,8 +213,13 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          f"{err.strerror or err}") from None
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
+    try:
+        limits = Limits(values["max_inferences"], values["max_query_seconds"],
+                        values["max_beliefs"], values["sandbox"])
+    except ValueError as err:
+        raise user_error(f"--{str(err).replace('_', '-')}") from None
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
-                   warn=lambda message: err_console.print(message, markup=False))
+                   warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
         raise user_error(f"{path}: a {path.suffix} file does not run on its own: run the "
                          ".mas2g that uses it" + (", or goalagent test for a test file"
@@ -338,6 +355,9 @@ def check(
     paths: Annotated[list[Path], typer.Argument(help="Program files to check: .goal, "
                                                 ".mas2g, .mod2g, .act2g, .pl, .test2g; a "
                                                 "directory: every one under it.")],
+    sandbox: Annotated[bool, typer.Option(
+        help="Also load each agent as --sandbox would (nothing runs): report every call "
+             "the sandbox refuses, and every reach into other modules.")] = False,
 ) -> None:
     """Parse and validate programs: syntax, undefined actions and modules, macros, ground
     goals, a system's environment and its init parameters, the files GOAL 6+ programs use;
@@ -355,6 +375,9 @@ def check(
                 if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
                     for warning in _undefined_calls(program):
                         err_console.print(warning, markup=False)
+                if sandbox:  # loading under the sandbox runs no agent code but safe code
+                    Agent(program, limits=Limits(sandbox=True),
+                          warn=lambda message: None).close()
         except (GoalSyntaxError, AgentError) as err:
             err_console.print(str(err), markup=False)
             failed = True

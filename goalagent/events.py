@@ -48,3 +48,4 @@ class ProblemKind(_Named):
     PERCEPTS_UNAVAILABLE = "percepts"  # the environment could not give percepts
     RECEIVER_UNBOUND = "receiver"  # a message whose receiver is a variable
     DELIVERY_FAILED = "delivery"  # a message that could not be delivered
+    LIMIT_EXCEEDED = "limit"  # a rule passed an inference or time limit

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TextIO
 
@@ -26,6 +26,7 @@ from goalagent.eis.terms import (
     percept_to_term,
 )
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
+from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import AgentDirectory
 from goalagent.kb.terms import Atom, Struct, Term, Var
 from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
@@ -101,8 +102,11 @@ class MultiAgentSystem:
         tracer: Tracer | None = None,
         warn: Callable[[str], None] | None = None,
         listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
     ) -> None:
         self.environment = environment
+        self.limits = limits or Limits()  # each agent's, unless its agent file says more
+        self._agent_limits: dict[str, Limits] = {}  # agent file name -> its agents' limits
         self.seed = seed
         self.output = output or sys.stdout
         self.tracer = tracer
@@ -140,6 +144,9 @@ class MultiAgentSystem:
             environment.home = Path(path).parent
         system = cls(environment, **kwargs)
         system._programs.update(programs)
+        for agentfile in mas.agentfiles:
+            if agentfile.limits:
+                system._agent_limits[agentfile.name] = system._limits_for(dict(agentfile.limits))
         for rule in mas.launches:
             if rule.on_entity:
                 system._entity_launches.append(rule)
@@ -147,12 +154,14 @@ class MultiAgentSystem:
                 number = rule.number if rule.number != 1 else numbers.get(rule.agentfile, 1)
                 for index in range(number):
                     name = rule.agent_name if number == 1 else f"{rule.agent_name}{index + 1}"
-                    system.launch(name, programs[rule.agentfile])
+                    system.launch(name, programs[rule.agentfile],
+                                  limits=system._agent_limits.get(rule.agentfile))
         if not mas.launches:
             for name, program in programs.items():
                 number = numbers.get(name, 1)
                 for index in range(number):
-                    system.launch(name if number == 1 else f"{name}{index + 1}", program)
+                    system.launch(name if number == 1 else f"{name}{index + 1}", program,
+                                  limits=system._agent_limits.get(name))
         system._start_environment(params)
         return system
 
@@ -175,8 +184,15 @@ class MultiAgentSystem:
         system._start_environment(dict(env_params or {}))
         return system
 
-    def launch(self, name: str, program: ast.AgentProgram, entity: str | None = None) -> Agent:
-        """Create an agent, register it for messages and (if any) with the environment."""
+    def _limits_for(self, options: dict[str, object]) -> Limits:
+        """The run's limits with an agent file's own (a sandbox stays a sandbox)."""
+        options["sandbox"] = bool(options.get("sandbox")) or self.limits.sandbox
+        return replace(self.limits, **options)  # type: ignore[arg-type]
+
+    def launch(self, name: str, program: ast.AgentProgram, entity: str | None = None, *,
+               limits: Limits | None = None) -> Agent:
+        """Create an agent (bounded by ``limits``, default the system's), register it for
+        messages and (if any) with the environment."""
         if any(agent.name == name for agent in self.agents):
             raise AgentError(f"there is already an agent called {name}")
         io = None
@@ -188,7 +204,7 @@ class MultiAgentSystem:
         self.postman.register(name)
         agent = Agent(program, name=name, io=io, postman=self.postman,
                       seed=self.seed + len(self.agents), output=self.output,
-                      tracer=self.tracer, warn=self.warn)
+                      tracer=self.tracer, warn=self.warn, limits=limits or self.limits)
         for listener in self.listeners:
             agent.listen(listener)
         self.agents.append(agent)
@@ -233,7 +249,8 @@ class MultiAgentSystem:
                 name = entity if rule.agent_name == "*" else rule.agent_name
                 if any(agent.name == name for agent in self.agents):
                     name = f"{name}{launched + 1}"
-                self.launch(name, self._programs[rule.agentfile], entity)
+                self.launch(name, self._programs[rule.agentfile], entity,
+                            limits=self._agent_limits.get(rule.agentfile))
             return
         for agent in self.agents:
             if not self.environment.associated_entities(agent.name):

@@ -1,6 +1,7 @@
 """One ``goalagent run`` from start to exit code: run hooks, signals, the end-of-run order.
 
-Ctrl-C (SIGINT) and SIGTERM stop the agents, say which agent was running, and still finish
+Ctrl-C (SIGINT) and SIGTERM stop the agents -- within a tick of the watchdog even while a
+Prolog query runs away --, say which agent and rule were running, and still finish
 the run: the hooks' ``finish`` -- ``--save-beliefs`` first, then the reports -- and the
 summaries; the exit code is then 130 or 143. A second signal ends at once (whatever is
 being saved is abandoned, and since saves are atomic the previous file stays whole). A run
@@ -17,6 +18,10 @@ from types import FrameType
 from typing import TYPE_CHECKING
 
 from goalagent.extensions import RunContext, RunHook
+from goalagent.kb.engine import get_engine
+from goalagent.kb.errors import Interrupted
+from goalagent.kb.interpreter import aborted_rule
+from goalagent.kb.watchdog import watchdog
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -25,9 +30,10 @@ if TYPE_CHECKING:
 EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
-class RunStopped(BaseException):
-    """A signal asked the run to stop (a BaseException, like KeyboardInterrupt, so that code
-    catching Exception does not swallow it)."""
+class RunStopped(KeyboardInterrupt):
+    """A signal asked the run to stop (a KeyboardInterrupt, so that code catching Exception
+    does not swallow it and code waiting for Ctrl-C, like the inspector's page after the
+    agents ended, ends as it would on Ctrl-C)."""
 
     def __init__(self, signum: int) -> None:
         super().__init__(signal.Signals(signum).name)
@@ -37,18 +43,41 @@ class RunStopped(BaseException):
 
 @contextlib.contextmanager
 def stop_on_signals() -> Iterator[None]:
-    """Within the block SIGINT and SIGTERM raise :class:`RunStopped` (each time one comes);
+    """Within the block SIGINT and SIGTERM raise :class:`RunStopped` (each time one comes),
+    also while Prolog runs (the watchdog aborts the running query: goalagent.kb.watchdog);
     the previous handlers come back afterwards."""
 
     def handler(signum: int, frame: FrameType | None) -> None:
+        engine = get_engine()
+        if engine.depth:  # inside Prolog (or a callback from it): the watchdog aborts the
+            engine.pending_stop = RunStopped(signum)  # query, and the stop comes after it
+            return
         raise RunStopped(signum)
+
+    def exit_code(signum: int) -> int:
+        return EXIT_CODES.get(signal.Signals(signum), 128 + signum)
 
     previous = {signum: signal.signal(signum, handler) for signum in EXIT_CODES}
     try:
-        yield
+        with watchdog().watching_signals(exit_code):
+            yield
     finally:
         for signum, old in previous.items():
             signal.signal(signum, old)
+
+
+def _stopped(error: BaseException) -> RunStopped:
+    """A signal's stop, whether Python's handler or the watchdog's abort came first (the
+    other one is then forgotten: it is the same stop)."""
+    engine = get_engine()
+    watchdog().stop_handled()
+    pending, engine.pending_stop = engine.pending_stop, None
+    if isinstance(error, RunStopped):
+        return error
+    if isinstance(pending, RunStopped):
+        return pending
+    signals = watchdog().signals
+    return RunStopped(signals[-1] if signals else signal.SIGINT)
 
 
 class Run:
@@ -71,12 +100,13 @@ class Run:
         with stop_on_signals():
             try:
                 return self._execute(max_cycles, status)
-            except RunStopped as stop:  # a second signal while finishing: end at once
+            except (RunStopped, Interrupted) as error:  # a second signal while finishing
+                stop = _stopped(error)
                 self.report(f"{stop}: stopped at once; what was being saved or reported is "
                             "left as it was")
                 return stop.exit_code
             finally:
-                with contextlib.suppress(RunStopped):
+                with contextlib.suppress(RunStopped, Interrupted):
                     self.system.close()
 
     def _execute(self, max_cycles: int | None,
@@ -87,10 +117,10 @@ class Run:
             for hook in self.hooks:
                 self._call(hook, "start")
             self.system.run(max_cycles, after_cycle=lambda agent: self._after(agent, status))
-        except RunStopped as stop:
-            stopped = stop
+        except (RunStopped, Interrupted) as error:
+            stopped = _stopped(error)
             self.system.interrupted = True
-            self.report(self._stop_message(stop))
+            self.report(self._stop_message(stopped))
         for hook in self.hooks:
             self._call(hook, "finish")
         summaries: list[AgentSummary] = self.system.summaries()
@@ -126,8 +156,11 @@ class Run:
         """``interrupted (SIGINT) in agent NAME, cycle N``: what was running (or the cycle
         that had just ended)."""
         agent = self.system.current
+        rule = aborted_rule(get_engine())
         if agent is not None:
             where = f" in agent {agent.name}, cycle {agent.cycle}"
+            if rule is not None:
+                where += f", module {rule.module}, rule at {rule.rule.pos}"
         elif self._last is not None:
             where = f" after agent {self._last.name}'s cycle {self._last.cycle}"
         else:

@@ -19,6 +19,7 @@ from typing import TextIO
 from goalagent import ast
 from goalagent.agent.actions import ActionFailed, AgentIO
 from goalagent.agent.checks import update_formulas, validate_program
+from goalagent.agent.errors import AgentError
 from goalagent.agent.events import (
     Event,
     Listener,
@@ -37,15 +38,12 @@ from goalagent.agent.rules import RuleApplication
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter import Problem
+from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Term, format_term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
-
-
-class AgentError(Exception):
-    """A user error found when loading an agent (unknown action, bad clause, ...)."""
 
 
 IDLE_WARNING_CYCLES = 100
@@ -67,6 +65,7 @@ class Agent:
         tracer: Tracer | None = None,
         warn: Callable[[str], None] | None = None,
         idle_warning: int | None = IDLE_WARNING_CYCLES,
+        limits: Limits | None = None,
     ) -> None:
         self.program = program
         self.name = name or program.name
@@ -91,7 +90,8 @@ class Agent:
         self.initialized_apart = False  # the init module ran on its own (initialize())
         validate_program(program)
         try:
-            self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs)
+            self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs,
+                                  limits=limits)
             self.ms.declare_updates(update_formulas(program))
             for goal in program.goals:
                 self.ms.adopt(goal)

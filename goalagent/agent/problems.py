@@ -21,6 +21,10 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
         assert problem.rule is not None
         return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: SWI-Prolog "
                 f"warning: {detail}")
+    if kind is ProblemKind.LIMIT_EXCEEDED:
+        assert problem.rule is not None
+        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: ran "
+                f"{detail}; the rule is not applicable")
     if kind is ProblemKind.PRECONDITION_ERROR:
         assert problem.spec_index is not None
         spec = program.actionspecs[problem.spec_index]

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 from goalagent import ast
 from goalagent.agent import actions, messages, modules
+from goalagent.agent.errors import AgentError
 from goalagent.agent.events import interpreter_event
 from goalagent.agent.problems import warning_text
 from goalagent.agent.reports import RunRecord, Span
@@ -18,6 +19,11 @@ from goalagent.kb.terms import Term
 
 if TYPE_CHECKING:
     from goalagent.agent.cycle import Agent
+
+MAX_MODULE_DEPTH = 24
+"""How deep module calls may nest (each level is a Prolog query inside a Python callback
+inside a Prolog query: without a bound a module calling itself ends in Python's recursion
+limit, or worse, the C stack)."""
 
 
 class _CyclePlans(dict):
@@ -49,6 +55,7 @@ class RuleApplication:
         self._agent = agent
         self._code = CompiledProgram(agent.ms, agent.program)
         self._calls: list[RunRecord] = []  # the interpreter calls in progress, innermost last
+        self._called: list[str] = []  # the modules of the module calls in progress
         self.cycle_plans = _CyclePlans(agent, self._code)
 
     def run_modules(self, modules: Sequence[tuple[ast.Module, Mapping[str, Term]]], *,
@@ -57,9 +64,19 @@ class RuleApplication:
         turn; exit-module leaves only its own module); ``count_last``: the outcome counts
         the last module's actions."""
         agent = self._agent
+        names = " + ".join(module.name for module, _ in modules)
+        if len(self._calls) >= MAX_MODULE_DEPTH:
+            chain = " -> ".join(self._called[-6:])
+            raise AgentError(f"module calls nested more than {MAX_MODULE_DEPTH} deep (... -> "
+                             f"{chain} -> {names}): a module that calls itself without end? "
+                             "The agent is stopped")
         plan = self._code.plan(modules, environment=agent.io is not None,
                                listen=bool(agent.listeners), count_last=count_last)
-        return self.run_plan(plan)
+        self._called.append(names)
+        try:
+            return self.run_plan(plan)
+        finally:
+            self._called.pop()
 
     def run_plan(self, plan: Term) -> RunOutcome:
         """Runs a plan (see ``CompiledProgram.plan``; ``cycle_plans`` has the cycles') in

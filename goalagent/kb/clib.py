@@ -76,6 +76,9 @@ PL_register_foreign_in_module = _declare("PL_register_foreign_in_module", c_int,
                                     c_char_p, c_int, c_void_p, c_int)
 PL_thread_self = _declare("PL_thread_self", c_int)
 PL_thread_attach_engine = _declare("PL_thread_attach_engine", c_int, c_void_p)
+PL_thread_destroy_engine = _declare("PL_thread_destroy_engine", c_int)
+PL_chars_to_term = _declare("PL_chars_to_term", c_int, c_char_p, term_t)
+PL_call = _declare("PL_call", c_int, term_t, c_void_p)
 
 PL_VARIABLE, PL_ATOM, PL_INTEGER, PL_RATIONAL, PL_FLOAT, PL_STRING = 1, 2, 3, 4, 5, 6
 PL_TERM, PL_NIL, PL_LIST_PAIR = 7, 8, 10

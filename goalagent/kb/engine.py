@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import ctypes
 import threading
+import time
 from collections.abc import Callable, Sequence
 from ctypes import c_size_t, c_void_p
 from pathlib import Path
@@ -50,7 +51,7 @@ from goalagent.kb.clib import (
     text_of,
 )
 from goalagent.kb.conversion import Kept, Record, TermConversion
-from goalagent.kb.errors import KBError, PrologRuntimeError, PrologSyntaxError
+from goalagent.kb.errors import Interrupted, KBError, PrologRuntimeError, PrologSyntaxError
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [
@@ -67,7 +68,8 @@ __all__ = [
 
 _PARSE_CACHE_MAX = 20_000
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
-_GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts
+_GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts, limits
+_CONFINE = Path(__file__).with_name("confine.pl")  # what agents' Prolog may call
 _PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
 
 # A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
@@ -84,9 +86,19 @@ class Engine(TermConversion):
         self._parsed: dict[str, Term] = {}
         self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
         self._python_errors: list[BaseException] = []  # raised inside foreign predicates
+        # The main thread's current stretch in Prolog (a query, or Prolog again after a
+        # callback into Python): its number and since when (None: in Python). The
+        # watchdog (goalagent.kb.watchdog) bounds stretches and interrupts them.
+        self.stretch = 0
+        self.stretch_since: float | None = None
+        self.abort_reason: str | None = None  # why the watchdog aborted the running query
+        self.depth = 0  # queries open (a callback into Python can open more)
+        # A stop a signal asked for while queries were open: raised when they are all closed
+        # (raising inside a callback would leave Prolog in between; see kb.watchdog).
+        self.pending_stop: BaseException | None = None
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
-        for support in (_SUPPORT, _GUARD):
+        for support in (_CONFINE, _SUPPORT, _GUARD):
             loaded = self.call(
                 "load_files",
                 Atom(str(support)),
@@ -198,6 +210,7 @@ class Engine(TermConversion):
         if threading.get_ident() != self._thread:
             self._attach_thread()
         fid = PL_open_foreign_frame()
+        outer_since = self._enter()
         try:
             base = PL_new_term_refs(arity)
             for index, value in inputs:
@@ -216,11 +229,13 @@ class Engine(TermConversion):
             PL_clear_exception()
             raise self._error_from(record)
         finally:
+            self._leave(outer_since)
             PL_discard_foreign_frame(fid)
             while self._transient_atoms:
                 PL_unregister_atom(self._transient_atoms.pop())
             while self._dead_records:
                 PL_erase(self._dead_records.pop())
+            self._stop_if_asked()
 
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
               limit: int | None, marks: bool = False,
@@ -246,6 +261,7 @@ class Engine(TermConversion):
             qid = PL_open_query(None, Q_CATCH, pred, base)
             answers: list[list[Term]] = []
             record = None
+            outer_since = self._enter()
             try:
                 get = self._get
                 while limit is None or len(answers) < limit:
@@ -266,6 +282,7 @@ class Engine(TermConversion):
                 raise KBError("an answer is a cyclic or too deeply nested term") from None
             finally:
                 PL_cut_query(qid)
+                self._leave(outer_since)
             if record is not None:
                 raise self._error_from(record)
             return answers
@@ -275,6 +292,37 @@ class Engine(TermConversion):
                 PL_unregister_atom(self._transient_atoms.pop())
             while self._dead_records:
                 PL_erase(self._dead_records.pop())
+            self._stop_if_asked()
+
+    # ------------------------------------------------------------------ stretches
+
+    def _enter(self) -> float | None:
+        """A query opens: a new stretch in Prolog (see goalagent.kb.watchdog); returns the
+        enclosing one's start, for :meth:`_leave`."""
+        outer_since = self.stretch_since
+        self.depth += 1
+        self.stretch += 1
+        self.stretch_since = time.monotonic()
+        return outer_since
+
+    def _leave(self, outer_since: float | None) -> None:
+        self.stretch_since = outer_since
+        self.depth -= 1
+
+    def _stop_if_asked(self) -> None:
+        """A signal that came while Prolog ran: once back in Python, the stop it asked for."""
+        if self.pending_stop is not None and self.depth == 0:
+            stop, self.pending_stop = self.pending_stop, None
+            raise stop
+
+    def _aborted(self) -> BaseException:
+        """The Python exception for a query the watchdog aborted: an interrupt (Ctrl-C,
+        SIGTERM) stops the run; a query that outlived its time limit twice is the error
+        of the agent that ran it."""
+        reason, self.abort_reason = self.abort_reason, None
+        if reason is None or reason.startswith("signal"):
+            return Interrupted(reason or "aborted")
+        return PrologRuntimeError(reason, Atom("$aborted"))
 
     # ------------------------------------------------------------------ internals
 
@@ -306,6 +354,8 @@ class Engine(TermConversion):
         """The exception to raise for a recorded Prolog exception: the Python exception a
         foreign predicate raised (see :func:`define_foreign`), or a PrologRuntimeError."""
         error = self._runtime_error(record)
+        if error.term == "$aborted":
+            return self._aborted()
         if error.term == _PYTHON_ERROR and self._python_errors:
             python_error = self._python_errors[-1]
             self._python_errors.clear()
@@ -356,13 +406,16 @@ def _copy(term: Term) -> Term:
 
 
 def define_foreign(engine: Engine, module: str, name: str,
-                   respond: Callable[[Term], Term | None]) -> None:
+                   respond: Callable[[Term], Term | None], *, stretch: bool = True) -> None:
     """Defines ``module:name(+Request, -Reply)``: Prolog's call converts Request to a Python
     term, calls ``respond`` and unifies Reply with its answer (None: leaves Reply unbound).
     A Python exception in ``respond`` leaves Prolog as the exception ``'$ga_python'`` and is
-    raised again where Python called Prolog (:meth:`Engine.solve`)."""
+    raised again where Python called Prolog (:meth:`Engine.solve`). A call ends the running
+    stretch (goalagent.kb.watchdog) unless ``stretch`` is False (a quick look that must not)."""
 
     def foreign(request: int, reply: int) -> int:
+        if stretch:
+            engine.stretch_since = None  # in Python now: not the watchdog's to time
         try:
             answer = respond(engine._get(request, [], False))
             if answer is None:
@@ -375,6 +428,10 @@ def define_foreign(engine: Engine, module: str, name: str,
             t = PL_new_term_ref()
             PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
             return PL_raise_exception(t)
+        finally:
+            if stretch:  # back to Prolog: a new stretch
+                engine.stretch += 1
+                engine.stretch_since = time.monotonic()
 
     callback = _FOREIGN_2(foreign)
     engine._foreign.append(callback)

@@ -34,3 +34,13 @@ class PrologRuntimeError(KBError):
     def __init__(self, message: str, term: Term | None = None) -> None:
         super().__init__(message)
         self.term = term
+
+
+class LimitError(KBError):
+    """An agent passed one of its bounds (goalagent.kb.limits) in a way that stops it."""
+
+
+class Interrupted(BaseException):  # noqa: N818 - it is not an error but a stop
+    """A signal (Ctrl-C, SIGTERM) aborted the running Prolog query (see goalagent.kb.watchdog).
+    A BaseException, like KeyboardInterrupt: code that handles an agent's errors lets it
+    through, so the run stops instead of one agent failing."""

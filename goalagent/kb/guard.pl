@@ -303,3 +303,91 @@ fact_changes(B, Key, Name, Arity, Gained, Lost) :-
     ->  true
     ;   nb_setval(Key, Now)
     ).
+
+		 /*******************************
+		 *            LIMITS            *
+		 *******************************/
+
+%!  stretch_signal(+Stretch, +Action) is det.
+%   Sent to the main thread by the watchdog (goalagent/kb/watchdog.py): if the main
+%   thread's Prolog is still in stretch number Stretch, abort it (Action = abort) or
+%   throw ga_limit(time(T)) in it (Action = time(T)); a signal that comes late does nothing.
+stretch_signal(Stretch, Action) :-
+    '$ga_stretch'(now, Current),
+    (   Current =:= Stretch
+    ->  stretch_action(Action)
+    ;   true
+    ).
+
+stretch_action(abort) :-
+    abort.
+stretch_action(time(T)) :-
+    throw(ga_limit(time(T))).
+
+%!  aborted_rule(-Id) is det.
+%   The rule the last aborted query was in (noted by rules.pl), or none; read once.
+aborted_rule(Id) :-
+    (   nb_current('$ga_aborted_rule', Id0),
+        integer(Id0)
+    ->  Id = Id0,
+        nb_setval('$ga_aborted_rule', none)
+    ;   Id = none
+    ).
+
+%!  set_limits(+B, +MaxInferences, +MaxBeliefs) is det.
+%   The limits of the agent whose belief module is B (rules.pl's run/3 reads them).
+set_limits(B, MaxInferences, MaxBeliefs) :-
+    retractall(B:'$ga_limits'(_, _)),
+    assertz(B:'$ga_limits'(MaxInferences, MaxBeliefs)).
+
+%!  belief_bound(+B, +Max) is det.
+%   Throws ga_limit(beliefs(N, Max)) when the agent of belief module B holds more than Max
+%   clauses in its belief and goal modules. Counted only when the whole process holds more
+%   than Max clauses (a counter SWI keeps), so the check costs nothing in ordinary runs.
+belief_bound(B, Max) :-
+    (   statistics(clauses, Total),
+        Total =< Max
+    ->  true
+    ;   B:'$ga_gm'(G),
+        module_clauses(B, NB),
+        module_clauses(G, NG),
+        N is NB + NG,
+        (   N =< Max
+        ->  true
+        ;   throw(ga_limit(beliefs(N, Max)))
+        )
+    ).
+
+module_clauses(M, N) :-
+    aggregate_all(sum(C),
+                  ( current_predicate(_, M:Head),
+                    \+ predicate_property(M:Head, imported_from(_)),
+                    predicate_property(M:Head, number_of_clauses(C)) ),
+                  N).
+
+%!  limit_message(+Limit, -Message) is det.
+%   The words for ga_limit(Limit) in an error message.
+limit_message(inferences(Max), Message) :- !,
+    format(string(Message), "more than ~D inferences (--max-inferences)", [Max]).
+limit_message(time(T), Message) :- !,
+    format(string(Message), "ran longer than ~w s (--max-query-seconds)", [T]).
+limit_message(beliefs(N, Max), Message) :- !,
+    format(string(Message), "~D beliefs and goals, more than ~D (--max-beliefs)", [N, Max]).
+limit_message(Limit, Message) :-
+    format(string(Message), "limit ~q", [Limit]).
+
+%!  solutions(:Goal, +Template, +MaxInferences, +Count, -Rows) is det.
+%   Rows: the instances of Template for all (Count = all) or the first Count solutions of
+%   Goal, made with at most MaxInferences inferences; else ga_limit(inferences(Max)).
+:- meta_predicate solutions(0, ?, +, +, -).
+
+solutions(Goal, Template, Max, Count, Rows) :-
+    (   Count == all
+    ->  findall(Template-R, call_with_inference_limit(Goal, Max, R), Pairs)
+    ;   findnsols(Count, Template-R, call_with_inference_limit(Goal, Max, R), Pairs),
+        !
+    ),
+    (   memberchk(_-inference_limit_exceeded, Pairs)
+    ->  Rows = ga_limit(inferences(Max))
+    ;   pairs_keys(Pairs, Rows)
+    ).

@@ -21,11 +21,13 @@ from typing import Protocol
 from goalagent import ast
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import Engine, KBError, Kept, Record, define_foreign
+from goalagent.kb.limits import limit_text
 from goalagent.kb.mentalstate import CompiledCondition, MentalState
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
-           "Requests", "RuleInfo", "RunOutcome", "Step", "listall_variables"]
+           "Requests", "RuleInfo", "RunOutcome", "Step", "aborted_rule",
+           "listall_variables"]
 
 _TRUE, _FALSE = Atom("true"), Atom("false")
 _RULES = "ga_rules"  # the Prolog module of every compiled rule and pass
@@ -463,8 +465,17 @@ def _problem(term: Struct) -> Problem:
     if name == "action":
         return Problem(ProblemKind.ACTION_ERROR, args[2], firing=_firing(args[0]),
                        action_index=int(args[1]))
+    if name == "limit":
+        return Problem(ProblemKind.LIMIT_EXCEEDED, limit_text(args[1]), rule=_rules[int(args[0])])
     return Problem(ProblemKind.ACTION_NOT_CLOSED, firing=_firing(args[0]),
                    action_index=int(args[1]), term=args[2])
+
+
+def aborted_rule(engine: Engine) -> RuleInfo | None:
+    """The rule a query the watchdog aborted was in (the innermost), if any; read once."""
+    result = engine.call("aborted_rule", None, module="ga_guard")
+    found = result[0] if result else None
+    return _rules[found] if isinstance(found, int) and 0 <= found < len(_rules) else None
 
 
 _CHANGES = {

@@ -185,6 +185,10 @@ write_text(Term, Quoted, String) :-
 %   A readable one-line message for Error, without agent-module qualifications.
 
 error_message(ga_error(Message), Message) :- !.
+error_message(ga_limit(Limit), Message) :- !,
+    ga_guard:limit_message(Limit, Message).
+error_message(ga_refused(Why), Message) :- !,
+    format(string(Message), "refused: ~w", [Why]).
 error_message(E, Message) :-
     E \= error(_, _),
     !,

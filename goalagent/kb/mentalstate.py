@@ -10,13 +10,17 @@ The rules themselves run in the interpreter (``goalagent.kb.interpreter``, rules
 
 from __future__ import annotations
 
+import secrets
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from goalagent import ast
 from goalagent.kb.engine import Engine, KBError, PrologRuntimeError, Record, get_engine
+from goalagent.kb.errors import LimitError
 from goalagent.kb.facts import FactFile, FactFileError, FactWatch
+from goalagent.kb.limits import Limits, limit_text, refused_precondition, stopping_error
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.kb.watchdog import watchdog
 
 __all__ = ["AgentDirectory", "CompiledCondition", "MentalState", "instantiate"]
 
@@ -150,7 +154,7 @@ class AgentDirectory:
 
     def __init__(self, engine: Engine | None = None) -> None:
         self._engine = engine or get_engine()
-        self.module = Atom(f"ga_dir{self._engine.unique_name('')}")
+        self.module = Atom(f"ga_dir_{secrets.token_hex(8)}")
         self.closed = False
         self._engine.call("new_directory", self.module)
 
@@ -172,12 +176,16 @@ class MentalState:
     """Knowledge, beliefs, goal bases, percepts and mailbox of one agent (two Prolog modules)."""
 
     def __init__(self, agent_name: str, *, knowledge: Sequence[ast.PrologText] = (),
-                 beliefs: Sequence[ast.PrologText] = (), engine: Engine | None = None) -> None:
+                 beliefs: Sequence[ast.PrologText] = (), engine: Engine | None = None,
+                 limits: Limits | None = None) -> None:
         self._engine = engine or get_engine()
         self.agent_name = agent_name
-        number = self._engine.unique_name("")
-        self._b = Atom(f"ga_b{number}")
-        self._g = Atom(f"ga_g{number}")
+        self.limits = limits or Limits()
+        self._watchdog = watchdog()
+        # Module names no agent can guess (another agent's are never named to it).
+        secret = secrets.token_hex(8)
+        self._b = Atom(f"ga_b_{secret}")
+        self._g = Atom(f"ga_g_{secret}")
         self._closed = False
         self._compiled: dict[str, CompiledCondition] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
@@ -193,7 +201,10 @@ class MentalState:
                                      if _text_of(text).lstrip().startswith(":-"))
         items = [Struct(kind[0], (_text_of(text),)) for kind, text in clauses]
         self._engine.call("new_agent", self._b, self._g)
-        result = self._call("load", self._b, self._g, items, None)[3]
+        self._engine.call("set_limits", self._b, self.limits.max_inferences,
+                          self.limits.max_beliefs, module="ga_guard")
+        result = self._call("load", self._b, self._g, items,
+                            _TRUE if self.limits.sandbox else _FALSE, None)[4]
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             kind, text = clauses[int(index)]
@@ -268,26 +279,30 @@ class MentalState:
             where = f"{pos}: " if pos else ""
             raise KBError(f"{where}`{_text_of(formula)}`: {message}", pos)
 
-    def compile(self, condition: ast.Condition) -> CompiledCondition:
-        """Compiles a condition once (cached per body text) into a clause of this agent."""
+    def compile(self, condition: ast.Condition, *, trusted: bool = False) -> CompiledCondition:
+        """Compiles a condition once (cached per body text) into a clause of this agent;
+        an agent's condition is confined (confine.pl: checked, dynamic calls guarded), a
+        ``trusted`` one (the runtime's own queries: the API, reports) is not."""
         text = ", ".join(_literal_text(literal) for literal in condition) or "true"
-        compiled = self._compiled.get(text)
+        key = f"trusted\0{text}" if trusted else text
+        compiled = self._compiled.get(key)
         if compiled is not None:
             assert isinstance(compiled, CompiledCondition)
             return compiled
-        name = _condition_names.get(text)
+        name = _condition_names.get(key)
         if name is None:
             name = self._engine.unique_name("$ga_c")
-            _condition_names[text] = name
+            _condition_names[key] = name
         try:
-            names = self._call("compile", self._b, self._g, Atom(name), text, None)[4]
+            names = self._call("compile", self._b, self._g, Atom(name), text,
+                               _FALSE if trusted else _TRUE, None)[5]
         except PrologRuntimeError as error:
-            raise self._condition_error(condition, error) from None
+            raise _condition_error(self._engine, condition, error) from None
         assert isinstance(names, list)
         names_tuple = tuple(str(item) for item in names)
         pred = self._engine.predicate(name, len(names_tuple), str(self._b), cache=False)
         compiled = CompiledCondition(self, pred, name, names_tuple, text)
-        self._compiled[text] = compiled
+        self._compiled[key] = compiled
         return compiled
 
     def declare_actions(self, specs: Sequence[ast.ActionSpec]) -> None:
@@ -300,7 +315,10 @@ class MentalState:
                 head += "(" + ", ".join(param.text for param in spec.params) + ")"
             text = f"'$spec'({head}, ({spec.pre.text}\n), ({spec.post.text}\n))"
             items.append(Struct("spec", (index, _TRUE if spec.internal else _FALSE, text)))
-        self._call("declare_actions", self._b, items)
+        try:
+            self._call("declare_actions", self._b, items)
+        except PrologRuntimeError as error:
+            raise refused_precondition(error, specs) from None
 
     def run(self, plan: Term) -> tuple[int, Record]:
         """Runs a plan of module passes in one call of the rule interpreter (run/3 in
@@ -310,21 +328,13 @@ class MentalState:
             raise KBError(f"the mental state of {self.agent_name} is closed")
         if self._run_pred is None:
             self._run_pred = self._engine.predicate("run", 3, "ga_kb")
-        outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
+        self._watchdog.time_limit = self.limits.max_query_seconds
+        try:
+            outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
+        except PrologRuntimeError as error:
+            raise stopping_error(error) from None
         self._recheck = bool(outcome & 1)
         return outcome, journal
-
-    def _condition_error(self, condition: ast.Condition, error: KBError) -> KBError:
-        """The error of the first literal SWI's reader rejects (with its position)."""
-        for literal in _literals(condition):
-            if literal.query is None:
-                continue
-            try:
-                self._engine.check_query(literal.query.text)
-            except KBError as syntax:
-                return KBError(f"{literal.op}({literal.query.text}) at {literal.query.pos}: "
-                               f"{syntax}", literal.query.pos)
-        return error
 
     def solutions(self, cond: CompiledCondition, bindings: Mapping[str, Term] | None = None,
                   *, limit: int | None = None) -> list[dict[str, Term]]:
@@ -334,14 +344,19 @@ class MentalState:
             raise KBError("this condition was compiled for another mental state")
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
-        index = cond._index
-        if bindings:
-            inputs = [(index[name], value) for name, value in bindings.items() if name in index]
-            extra = {name: value for name, value in bindings.items() if name not in index}
-        else:
-            inputs, extra = [], {}
-        rows = self._engine.solve(cond._pred, len(cond.names), inputs, limit)
         names = cond.names
+        given = dict(bindings or {})
+        extra = {name: value for name, value in given.items() if name not in cond._index}
+        args = tuple(given.get(name, Var(name)) for name in names)
+        goal = Struct(":", (self._b, Struct(cond._name, args) if args else Atom(cond._name)))
+        self._watchdog.time_limit = self.limits.max_query_seconds
+        result = self._engine.call("solutions", goal, list(args), self.limits.max_inferences,
+                                   limit if limit is not None else Atom("all"), None,
+                                   module="ga_guard")
+        assert result is not None
+        rows = result[4]
+        if not isinstance(rows, list):  # ga_limit(inferences(Max))
+            raise LimitError(f"the query ran {limit_text(rows.args[0])}")  # type: ignore
         if extra:
             return [{**extra, **dict(zip(names, row, strict=True))} for row in rows]
         return [dict(zip(names, row, strict=True)) for row in rows]
@@ -354,7 +369,7 @@ class MentalState:
                           f"{', '.join([*_WRAPPERS, 'true'])}")
         query = ast.PrologText(text, _QUERY_POS) if op != "true" else None
         literal = ast.MentalLiteral(op, query, _QUERY_POS)  # type: ignore[arg-type]
-        return self.solutions(self.compile((literal,)), bindings, limit=limit)
+        return self.solutions(self.compile((literal,), trusted=True), bindings, limit=limit)
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
@@ -556,3 +571,23 @@ class MentalState:
         self._engine.forget_atom(self._g)
         self._compiled.clear()
         self._closed = True
+
+
+def _condition_error(engine: Engine, condition: ast.Condition, error: KBError) -> KBError:
+    """The error of the literal confine.pl refused or of the first literal SWI's reader
+    rejects (with its position)."""
+    term = getattr(error, "term", None)
+    if isinstance(term, Struct) and term.name == "ga_refused_literal":
+        literal = list(_literals(condition))[int(term.args[0])]  # type: ignore[arg-type]
+        pos = literal.query.pos if literal.query is not None else literal.pos
+        text = literal.query.text if literal.query is not None else ""
+        return KBError(f"{literal.op}({text}): refused: {term.args[1]}", pos)
+    for literal in _literals(condition):
+        if literal.query is None:
+            continue
+        try:
+            engine.check_query(literal.query.text)
+        except KBError as syntax:
+            return KBError(f"{literal.op}({literal.query.text}) at {literal.query.pos}: "
+                           f"{syntax}", literal.query.pos)
+    return error

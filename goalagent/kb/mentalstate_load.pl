@@ -14,7 +14,8 @@ new_agent(B, G) :-
              forall(member(PI, [percept/1, received/2, sent/2, me/1, agent/1]),
                     dynamic(M:PI))
            )),
-    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4, '$ga_pre_body'/3, '$ga_wk'/2)),
+    dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4, '$ga_pre_body'/3, '$ga_wk'/2,
+               '$ga_confine'/1, '$ga_limits'/2)),
     assertz(B:'$ga_gm'(G)),
     recheck(B),
     dynamic(G:('$gf'/3, '$goal'/3, '$top'/1, '$fwd'/1, '$rule_inserted'/0)),
@@ -28,42 +29,45 @@ destroy(B, G) :-
     '$destroy_module'(B),
     '$destroy_module'(G).
 
-%!  load(+B, +G, +Items, -Result) is det.
-%   Items: list of k(Text) (knowledge) and b(Text) (belief) clauses, loaded in order.
-%   Result = ok or error(Index, Message) for the first clause that fails (0-based).
+%!  load(+B, +G, +Items, +Sandbox, -Result) is det.
+%   Items: list of k(Text) (knowledge) and b(Text) (belief) clauses, loaded in order, each
+%   prepared by confine.pl (checked, calls known only at run time wrapped; Sandbox: true
+%   or false, kept for what the agent runs later). Result = ok or error(Index, Message)
+%   for the first clause that fails (0-based); nothing of a program with an error runs.
 
-load(B, G, Items, Result) :-
-    load_(Items, 0, B, G, Result).
+load(B, G, Items, Sandbox, Result) :-
+    assertz(B:'$ga_confine'(Sandbox)),
+    load_(Items, 0, B, G, c(B, Sandbox, []), Result).
 
-load_([], _, _, _, ok).
-load_([Item|Items], I, B, G, Result) :-
-    (   catch(load_item(Item, B, G), E, true)
+load_([], _, _, _, _, ok).
+load_([Item|Items], I, B, G, Ctx, Result) :-
+    Item =.. [Kind, Text],
+    (   catch(( read_text(Text, B, Term, _),     % after earlier directives (operators)
+                load_term(Term, Kind, B, G, Ctx) ), E, true)
     ->  (   var(E)
         ->  I1 is I + 1,
-            load_(Items, I1, B, G, Result)
-        ;   E = error(syntax_error(What), Context)
-        ->  syntax_message(What, Msg0),
-            arg(1, Item, Text),
-            error_offset(What, Context, Text, Offset),
-            format(string(Msg), "syntax error: ~w (at character ~w)", [Msg0, Offset]),
-            Result = error(I, Msg)
-        ;   error_message(E, Msg),
-            Result = error(I, Msg)
+            load_(Items, I1, B, G, Ctx, Result)
+        ;   load_error(E, I, Text, Result)
         )
     ;   Result = error(I, "directive failed")
     ).
 
-load_item(Item, B, G) :-
-    Item =.. [Kind, Text],
-    read_text(Text, B, Term, _),
-    load_term(Term, Kind, B, G).
+load_error(error(syntax_error(What), Context), I, Text, error(I, Msg)) :- !,
+    syntax_message(What, Msg0),
+    error_offset(What, Context, Text, Offset),
+    format(string(Msg), "syntax error: ~w (at character ~w)", [Msg0, Offset]).
+load_error(ga_refused(Why), I, _, error(I, Msg)) :- !,
+    format(string(Msg), "refused: ~w", [Why]).
+load_error(E, I, _, error(I, Msg)) :-
+    error_message(E, Msg).
 
-load_term((:- Directive), Kind, B, G) :- !,
-    directive(Directive, Kind, B, G).
-load_term((Head --> Body), Kind, B, G) :- !,
+load_term((:- Directive), Kind, B, G, Ctx) :- !,
+    directive(Directive, Kind, B, G, Ctx).
+load_term((Head --> Body), Kind, B, G, Ctx) :- !,
     dcg_translate_rule((Head --> Body), Clause),
-    load_term(Clause, Kind, B, G).
-load_term(Clause, Kind, B, G) :-
+    load_term(Clause, Kind, B, G, Ctx).
+load_term(Clause0, Kind, B, G, Ctx) :-
+    ga_confine:prepare_clause(Clause0, Ctx, Clause),
     clause_head(Clause, Head),
     make_own(B, Head),
     assertz(B:Clause),
@@ -81,15 +85,19 @@ load_term(Clause, Kind, B, G) :-
 clause_head((Head :- _), Head) :- !.
 clause_head(Head, Head).
 
-directive(dynamic(Spec), _, B, G) :- !,
+directive(Directive, Kind, B, G, Ctx) :-
+    ga_confine:prepare_directive(Directive, Ctx, Prepared),
+    directive_(Prepared, Kind, B, G).
+
+directive_(dynamic(Spec), _, B, G) :- !,
     dynamic(B:Spec),
     dynamic(G:Spec).
-directive(discontiguous(_), _, _, _) :- !.
-directive(op(Priority, Type, Names), _, B, G) :- !,
+directive_(discontiguous(_), _, _, _) :- !.
+directive_(op(Priority, Type, Names), _, B, G) :- !,
     forall(member(M, [B, G]),
            ( qualify_op_names(Names, M, Qualified),
              op(Priority, Type, Qualified) )).
-directive(Directive, Kind, B, G) :-
+directive_(Directive, Kind, B, G) :-
     once(B:Directive),
     (   Kind == k, load_directive(Directive)
     ->  once(G:Directive)
@@ -217,17 +225,22 @@ forwarder(G, Head) :-
 		 *        CONDITIONS            *
 		 *******************************/
 
-%!  compile(+B, +G, +Name, +Text, -Names) is det.
+%!  compile(+B, +G, +Name, +Text, +Confined, -Names) is det.
 %   Text is a conjunction of '$bel'(Q), '$goal'(Q), '$agoal'(Q), '$goala'(Q),
 %   '$percept'(Q), true and \+ (...); asserts B:Name(Vars...) :- Body and returns the
 %   variable names in order of first appearance (= the arguments). Each goal literal becomes
 %   an auxiliary clause Name_I in G, called through the module name stored in B (a clause of
-%   one temporary module may not name another one).
+%   one temporary module may not name another one). Confined = true (the agent's own
+%   conditions): its queries are prepared by confine.pl first.
 
-compile(B, G, Name, Text, Names) :-
-    read_text(Text, B, Cond, Bindings),
+compile(B, G, Name, Text, Confined, Names) :-
+    read_text(Text, B, Cond0, Bindings),
     binding_names(Bindings, Names),
     maplist(arg(2), Bindings, Vars),
+    (   Confined == true
+    ->  ga_confine:prepare_condition(Cond0, B, Cond)
+    ;   Cond = Cond0                    % the runtime's own query (API, reports)
+    ),
     translate(Cond, Name, Body, 0, _, Auxes, []),
     forall(member(Aux, Auxes), assertz(G:Aux)),
     Head =.. [Name|Vars],

@@ -333,13 +333,14 @@ remove_goal(G, Id, Facts) :-
 %!  drop(+B, +G, +Formula, -Removed) is det.
 %   Removes every goal of the top goal base from which Formula follows.
 
-drop(B, G, Formula, Removed) :-
-    (   callable(Formula),
-        functor(Formula, Name, Arity),
-        G:'$fwd'(Name/Arity)                % a goal predicate: declared already
-    ->  true
-    ;   declare(B, G, [Formula], Declared),
-        (   Declared = error(_, Message) -> throw(ga_error(Message)) ; true )
+drop(B, G, Formula0, Removed) :-
+    (   callable(Formula0),
+        functor(Formula0, Name, Arity),
+        G:'$fwd'(Name/Arity)                % a goal predicate: declared already, the
+    ->  Formula = Formula0                  % agent's own
+    ;   declare(B, G, [Formula0], Declared),
+        (   Declared = error(_, Message) -> throw(ga_error(Message)) ; true ),
+        ga_confine:prepare_query(Formula0, B, Formula)
     ),
     G:'$top'(Base),
     findall(Id, entails(G, Base, Formula, Id), Ids),

@@ -35,13 +35,28 @@
 %   Exited << 1 + Recheck, Total being the actions performed, LastActions those of the
 %   last pass (0 unless asked), Exited 1 when the last pass performed exit-module,
 %   Recheck 1 when goals still need a full blind commitment check.
+%   The agent's limits (B:'$ga_limits'(MaxInferences, MaxBeliefs), see guard.pl): the
+%   call may make at most MaxInferences inferences (one call_with_inference_limit/3 per
+%   call: per rule it cost a fifth of a cycle) -- the rule running when they are used up is
+%   not applicable, with a warning (see limit_error/2), and the rest of the call is bounded
+%   by the time limit only (the watchdog's, goalagent/kb/watchdog.py) --, and the agent may
+%   hold at most MaxBeliefs facts after the call (else ga_limit(beliefs(N, Max)) is thrown).
 
 run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     (   Listen == true -> b_setval('$ga_listen', true) ; true ),
     (   nb_current('$ga_rule', Outer) -> true ; Outer = none ),  % a module call runs inside
+    B:'$ga_limits'(MaxInferences, MaxBeliefs),
+    b_setval('$ga_max_inferences', MaxInferences),
+    nb_setval('$ga_aborted_rule', none),
     Ctx = ctx(B, G, Env, Listen, Journal),
-    run_passes(Passes, Ctx, Journal, Status, Last),
+    call_with_inference_limit(run_passes(Passes, Ctx, Journal, Status, Last), MaxInferences,
+                              Result),
+    (   Result == inference_limit_exceeded   % between rules: the call ends there
+    ->  throw(ga_limit(inferences(MaxInferences)))
+    ;   true
+    ),
     b_setval('$ga_rule', Outer),           % warnings after the run belong to no rule
+    ga_guard:belief_bound(B, MaxBeliefs),
     journal_actions(Journal, 0, Total),
     (   CountLast == true -> journal_actions(Last, 0, LastActions) ; LastActions = 0 ),
     (   nb_getval(B, true) -> Recheck = 1 ; Recheck = 0 ),
@@ -124,6 +139,49 @@ apply_rules([Rule|Rules], Stop, Ctx, Given, J0, J, Status0, Status) :-
         )
     ;   apply_rules(Rules, Stop, Ctx, Given, J1, J, Status0, Status)
     ).
+
+		 /*******************************
+		 *            LIMITS            *
+		 *******************************/
+
+%   A limit met in a rule's condition or action (inference_limit_exceeded from run/3's
+%   call_with_inference_limit/3, ga_limit(time(T)) from the watchdog) makes the rule not
+%   applicable, with a warning naming it; an abort ('$aborted': Ctrl-C, SIGTERM, a
+%   query that outlived its time limit twice) and a Python exception on its way out pass
+%   on, whatever catches them on the way (the rule an abort met is noted for the message).
+
+%   condition_error(+E, +Id): an error in the condition of rule Id.
+condition_error(E, Id) :-
+    (   limit_error(E, Limit)
+    ->  problem(limit(Id, Limit))
+    ;   passes_on(E, Id)
+    ->  throw(E)
+    ;   problem(condition(Id, E))
+    ).
+
+limit_error(E, _) :- var(E), !, fail.
+limit_error(inference_limit_exceeded, inferences(Max)) :-
+    b_getval('$ga_max_inferences', Max).
+limit_error(ga_limit(Limit), Limit).
+
+%   passes_on(+E, +Id): E ends more than the rule Id (noting Id for an abort's message).
+passes_on(E, _) :- var(E), !, fail.
+passes_on('$ga_python', _).
+passes_on('$aborted', Id) :-
+    (   nb_current('$ga_aborted_rule', none) -> nb_setval('$ga_aborted_rule', Id) ; true ).
+
+%   caught(+E, +Id): in the recovery of catch/3 for rule Id: catch/3 throws '$aborted' again
+%   right after it, so the rule is noted (and the condition's findall bag freed) here.
+caught(E, Id) :-
+    (   E == '$aborted'
+    ->  '$destroy_findall_bag',
+        passes_on(E, Id)
+    ;   true
+    ).
+
+%   stops_action(+E): E ends the action it is raised in (handled by action_error/3).
+stops_action(E) :- limit_error(E, _), !.
+stops_action(E) :- passes_on(E, none).
 
 		 /*******************************
 		 *            RULES             *
@@ -240,11 +298,11 @@ shuffled(List, Shuffled) :-
 %   overhead; the bag is freed on both ways out.
 instances_code(Template, Goal, Id, List, Ok,
                ( '$new_findall_bag',
-                 catch(ga_kb:collect(Template, Goal, List0), E, true),
+                 catch(ga_kb:collect(Template, Goal, List0), E, ga_kb:caught(E, Id)),
                  '$destroy_findall_bag',
                  (   var(E)
                  ->  List = List0, Ok = true
-                 ;   ga_kb:problem(condition(Id, E)), List = [], Ok = false
+                 ;   ga_kb:condition_error(E, Id), List = [], Ok = false
                  ) )).
 
 %   collect(+Template, +Goal, -List): the solutions into the current findall bag.
@@ -413,7 +471,7 @@ user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     ->  '$ga_py'(act(Firing, K, Action), Reply),
         (   Reply == done
         ->  catch(update(B, G, insert, Post, _, _, _), E,
-                  problem(action(Firing, K, E)))
+                  ( stops_action(E) -> throw(E) ; problem(action(Firing, K, E)) ))
         ;   true
         )
     ;   update(B, G, insert, Post, _, _, _)
@@ -432,8 +490,13 @@ module_call(Ctx, K, Firing, Index, Args) :-
     journal_position(Ctx, K, Entries, Position),
     '$ga_py'(call(Firing, K, Index, Args, Entries, Position), true).
 
-action_error('$ga_python', _, _) :- !,
-    throw('$ga_python').                  % a Python exception on its way out
+action_error(E, _, f(Id, _)) :-
+    limit_error(E, Limit), !,
+    problem(limit(Id, Limit)),
+    fail.
+action_error(E, _, f(Id, _)) :-
+    passes_on(E, Id), !,
+    throw(E).                             % an abort or a Python exception
 action_error(ga_open(Action), K, Firing) :- !,
     problem(open(Firing, K, Action)),
     fail.
@@ -464,7 +527,9 @@ journal_position([f(_, _, Done, _)|J], N0, N, P0, P) :-
 
 declare_actions(B, Specs) :-
     forall(member(spec(Index, Internal, Text), Specs),
-           ( read_text(Text, B, '$spec'(Action, Pre, Post), _),
+           ( read_text(Text, B, '$spec'(Action, Pre0, Post), _),
+             catch(ga_confine:prepare_query(Pre0, B, Pre), ga_refused(Why),
+                   throw(ga_refused_spec(Index, Why))),
              local_cut(Pre, Body),
              assertz(B:('$ga_pre_body'(Index, Action, Post) :- Body)),
              assertz(B:('$ga_pre'(Action, Post, Index, Internal) :-
@@ -472,7 +537,8 @@ declare_actions(B, Specs) :-
                                               Action))) )).
 
 precondition(Body, Index, Action) :-
-    (   catch(Body, E, ( problem(precondition(Index, E)), fail ))
+    (   catch(Body, E, ( stops_action(E) -> throw(E)
+                         ;   problem(precondition(Index, E)), fail ))
     ->  true
     ;   listening,
         tell(precondition_failed(Index, Action)),

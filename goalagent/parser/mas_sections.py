@@ -15,6 +15,8 @@ from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase
 from goalagent.parser.errors import GoalSyntaxError
 
+LIMIT_OPTIONS = ("sandbox", "max_inferences", "max_query_seconds", "max_beliefs")
+"""Agent file options that bound an agent (goalagent.kb.limits), overriding the run's."""
 MAX_NUMBER = 100_000
 """The largest ``number`` (agents launched from one file) or ``max`` a .mas2g may ask for."""
 
@@ -74,13 +76,31 @@ class MasParts(BuilderBase):
         path = reference_path(str(children[0])[1:-1])
         options = next((c for c in children[1:] if isinstance(c, list)), [])
         values = {str(k): (str(v), k) for k, v in options}
-        unknown = [key for key in values if key not in ("name", "number")]
+        unknown = [key for key in values if key not in ("name", "number", *LIMIT_OPTIONS)]
         if unknown:
             raise GoalSyntaxError.at(self._token_pos(values[unknown[0]][1]),
-                                     f"unknown agent file option {unknown[0]!r}")
+                                     f"unknown agent file option {unknown[0]!r} (name, "
+                                     f"number, {', '.join(LIMIT_OPTIONS)})")
         name = values.get("name", (Path(path).stem, None))[0]
         number = self._whole_number_option(values, "number")
-        return ast.AgentFile(path, name, self._pos(meta), number or 1)
+        limits = tuple((key, self._limit_option(key, *values[key])) for key in LIMIT_OPTIONS
+                       if key in values)
+        return ast.AgentFile(path, name, self._pos(meta), number or 1, limits)
+
+    def _limit_option(self, key: str, text: str, token: Token) -> object:
+        """The value of a bound (goalagent.kb.limits) set for an agent file."""
+        if key == "sandbox":
+            if text not in ("true", "false"):
+                raise GoalSyntaxError.at(self._token_pos(token), "sandbox is true or false")
+            return text == "true"
+        try:
+            value = float(text) if key == "max_query_seconds" else int(text)
+            if not 0 < value <= 2**62:
+                raise ValueError
+        except ValueError:
+            raise GoalSyntaxError.at(self._token_pos(token), f"{key} must be a positive "
+                                     "number") from None
+        return value
 
     def _whole_number_option(self, values: dict, key: str) -> int | None:
         """The option ``key`` as a whole number (None when absent)."""

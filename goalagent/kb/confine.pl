@@ -1,0 +1,463 @@
+/*  What an agent's Prolog may call: every goal of agent text (knowledge, conditions,
+    preconditions, directives, clauses it asserts) goes through prepare/3 before it is
+    loaded, so each goal is checked once, when the program is loaded, with a located error
+    for what is refused; goals only known at run time (call(G), findall(T, G, L) with G
+    built by the program, assertz(C) of a built clause) are wrapped in call_checked/2,
+    which checks them, the same way, when they run.
+
+    Always (sandbox or not) -- minds are private and the runtime is not the agents' to
+    change: no module qualification (M:G, @/2, assertz(M:C), dynamic(M:P), ...), no
+    predicate whose name starts with '$' (SWI's internals and the runtime's), nothing that
+    enumerates modules or atoms (module names could be read from them), no global
+    variable, flag or recorded key that is unbound or reserved ('$...', ga_...).
+
+    With the sandbox, in addition, every built-in or library predicate called must be
+    safe as SWI-Prolog's library(sandbox) defines it (safe_goal/1: no files, OS, network,
+    processes, halt, flags, foreign code, consult, ...): a whitelist, not a blacklist.
+    Directives are then only dynamic/1, discontiguous/1, op/3 and loading library modules.
+*/
+:- module(ga_confine, []).
+
+:- use_module(library(sandbox)).
+:- use_module(library(apply)).
+:- use_module(library(lists)).
+
+:- set_prolog_flag(generate_debug_info, false).
+
+%   Placeholders for goal arguments when asking library(sandbox) about a meta-predicate
+%   (the arguments themselves are checked here, one by one).
+free.
+free(_).
+free(_, _).
+free(_, _, _).
+free(_, _, _, _).
+free(_, _, _, _, _).
+free(_, _, _, _, _, _).
+free(_, _, _, _, _, _, _).
+free(_, _, _, _, _, _, _, _).
+
+:- multifile sandbox:safe_primitive/1.
+sandbox:safe_primitive(ga_confine:free).
+sandbox:safe_primitive(ga_confine:free(_)).
+sandbox:safe_primitive(ga_confine:free(_, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _, _, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _, _, _, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _, _, _, _, _)).
+sandbox:safe_primitive(ga_confine:free(_, _, _, _, _, _, _, _)).
+
+		 /*******************************
+		 *          PREPARING           *
+		 *******************************/
+
+%!  prepare(+Goal0, +Ctx, -Goal) is det.
+%   Goal0 checked (throws ga_refused(Why) for what is not allowed) and with every goal
+%   only known at run time wrapped in call_checked/2. Ctx = c(Module, Sandbox, Own):
+%   the agent's module, true/false, and a list of Name/Arity it defines itself (runtime
+%   when call_checked/2 prepares a goal as it runs: arguments still unbound stay so).
+
+prepare(G, Ctx, ga_confine:call_checked(Sb, G)) :-
+    var(G), !,
+    arg(2, Ctx, Sb).
+prepare((A0, B0), Ctx, (A, B)) :- !,
+    prepare(A0, Ctx, A),
+    prepare(B0, Ctx, B).
+prepare((A0 ; B0), Ctx, (A ; B)) :- !,
+    prepare(A0, Ctx, A),
+    prepare(B0, Ctx, B).
+prepare((A0 -> B0), Ctx, (A -> B)) :- !,
+    prepare(A0, Ctx, A),
+    prepare(B0, Ctx, B).
+prepare((A0 *-> B0), Ctx, (A *-> B)) :- !,
+    prepare(A0, Ctx, A),
+    prepare(B0, Ctx, B).
+prepare(\+ A0, Ctx, \+ A) :- !,
+    prepare(A0, Ctx, A).
+prepare(not(A0), Ctx, not(A)) :- !,
+    prepare(A0, Ctx, A).
+prepare(M:G, _, _) :- !,
+    refuse("~q is qualified with a module: an agent calls in its own mind only", [M:G]).
+prepare(G, _, _) :-
+    \+ callable(G), !,
+    refuse("~q is not a goal", [G]).
+prepare(G, Ctx, Prepared) :-
+    functor(G, Name, Arity),
+    (   sub_atom(Name, 0, _, _, $)
+    ->  refuse("~q/~w is reserved for SWI-Prolog and the runtime", [Name, Arity])
+    ;   private(Name/Arity)
+    ->  refuse("~q/~w would reveal other agents' or the runtime's modules", [Name, Arity])
+    ;   own(G, Ctx)
+    ->  Prepared = G
+    ;   keys_allowed(G),
+        prepare_call(G, Ctx, Prepared)
+    ).
+
+%   A predicate the agent defines itself: its clauses are prepared where they are loaded.
+%   (also one SWI-Prolog has that the agent made its own, see make_own/2: implementation_module/1
+%   is asked because it does not link M to a library's or the system's predicate).
+own(G, c(M, _, Own)) :-
+    functor(G, Name, Arity),
+    (   Own \== runtime,
+        memberchk(Name/Arity, Own)
+    ->  true
+    ;   predicate_property(M:G, implementation_module(M)),
+        predicate_property(M:G, defined)
+    ).
+
+%   A built-in or library predicate: its goal and module arguments are checked (or the
+%   whole call is left to run time when one is not known yet); under the sandbox it must
+%   be safe.
+prepare_call(G, Ctx, Prepared) :-
+    (   format_goal(G)
+    ->  fail                                % refused above if it could run a goal
+    ;   meta_specs(G, Specs)
+    ->  G =.. [Name|Args0],
+        (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)
+        ->  Prepared =.. [Name|Args],
+            sandbox_allows(Prepared, Ctx)
+        ;   arg(2, Ctx, Sb),              % call_checked/2 asks the sandbox when it runs
+            Prepared = ga_confine:call_checked(Sb, G)
+        )
+    ;   Prepared = G,
+        sandbox_allows(G, Ctx)
+    ).
+
+%   format/1,2,3 run goals written as ~@ in their format: only a known format without ~@
+%   (format_goal/1 refuses the others and fails for these).
+format_goal(G) :-
+    (   G = format(F) ; G = format(F, _) ; G = format(_, F, _) ),
+    !,
+    (   var(F)
+    ->  refuse("format/2,3 with a format only known at run time", [])
+    ;   text_contains(F, "~@")
+    ->  refuse("format's ~~@ calls a goal; write the goal's output another way", [])
+    ;   fail
+    ).
+
+text_contains(Text, Part) :-
+    catch(( text_to_string(Text, String), sub_string(String, _, _, _, Part) ), _, fail).
+
+meta_specs(G, Specs) :-
+    (   predicate_property(system:G, meta_predicate(Head))
+    ->  true
+    ;   functor(G, Name, Arity),
+        functor(Probe, Name, Arity),
+        predicate_property(Probe, meta_predicate(Head)),
+        predicate_property(Probe, imported_from(_))
+    ),
+    Head =.. [_|Specs],
+    once(( member(Spec, Specs), goal_spec(Spec) )).
+meta_specs(G, Specs) :-
+    assert_family(G),
+    G =.. [_|Args],
+    findall(S, ( member(_, Args), S = (:) ), Specs).
+
+goal_spec(S) :- integer(S), !.
+goal_spec(^).
+goal_spec(//).
+goal_spec(:).
+
+%   One argument of a meta-predicate call: a goal (spec N: with N more arguments), a
+%   clause or predicate (spec :), or data. ga_later: not known before run time.
+prepare_arg(Ctx, 0, A0, A) :- !,
+    (   var(A0) -> later(Ctx), A = A0 ; prepare(A0, Ctx, A) ).
+prepare_arg(Ctx, ^, A0, A) :- !,
+    (   var(A0) -> later(Ctx), A = A0 ; strip_carets(A0, Ctx, A) ).
+prepare_arg(Ctx, N, A0, A) :-
+    integer(N), !,
+    (   var(A0)
+    ->  later(Ctx), A = A0
+    ;   A0 = _:_
+    ->  refuse("~q is qualified with a module: an agent calls in its own mind only", [A0])
+    ;   callable(A0)
+    ->  length(Extra, N),
+        extend(A0, Extra, Goal),
+        Ctx = c(M, Sb, _),                % Extra: arguments only known when it is called
+        (   catch(prepare(Goal, c(M, Sb, []), Prepared), ga_later, fail),
+            Prepared \= ga_confine:call_checked(_, _)
+        ->  A = A0
+        ;   A = ga_confine:closure_checked(Sb, A0)  % checked when it is called
+        )
+    ;   refuse("~q is not a goal", [A0])
+    ).
+prepare_arg(Ctx, //, A0, A0) :- !,
+    prepare_arg(Ctx, 2, A0, _).
+prepare_arg(Ctx, :, A0, A) :- !,
+    prepare_module_arg(A0, Ctx, A).
+prepare_arg(_, _, A, A).
+
+strip_carets(V^G0, Ctx, V^G) :- !,
+    (   var(G0) -> later(Ctx), G = G0 ; strip_carets(G0, Ctx, G) ).
+strip_carets(G0, Ctx, G) :-
+    prepare(G0, Ctx, G).
+
+%   later(+Ctx): an argument not known yet. When loading: ga_later (the call is checked when
+%   it runs, see call_checked/2); when it runs (Ctx's third argument is runtime): still
+%   unbound, it can name no module nor goal -- the built-in raises its own error.
+later(Ctx) :-
+    (   arg(3, Ctx, runtime)
+    ->  true
+    ;   throw(ga_later)
+    ).
+
+extend(M:G, Extra, M:G1) :- !,
+    extend(G, Extra, G1).
+extend(G, Extra, G1) :-
+    G =.. List0,
+    append(List0, Extra, List),
+    G1 =.. List.
+
+%   A module-sensitive argument (a clause to assert, a predicate to declare, a head to
+%   look up): never qualified; a clause's body is prepared like any goal.
+prepare_module_arg(A, Ctx, A) :-
+    var(A), !,
+    later(Ctx).
+prepare_module_arg(M:X, _, _) :- !,
+    refuse("~q is qualified with a module: an agent changes its own mind only", [M:X]).
+prepare_module_arg((H :- B0), Ctx, (H :- B)) :- !,
+    clause_head_allowed(H),
+    (   var(B0) -> later(Ctx), B = B0 ; prepare(B0, Ctx, B) ).
+prepare_module_arg(A, _, A) :-
+    (   callable(A)
+    ->  clause_head_allowed(A)
+    ;   true
+    ).
+
+clause_head_allowed(H) :-
+    (   var(H)
+    ->  true
+    ;   H = M:_
+    ->  refuse("~q is qualified with a module", [M])
+    ;   callable(H), functor(H, Name, _), sub_atom(Name, 0, _, _, $)
+    ->  refuse("~q is reserved for the runtime", [Name])
+    ;   true
+    ).
+
+assert_family(G) :-
+    functor(G, Name, Arity),
+    memberchk(Name/Arity, [assert/1, asserta/1, assertz/1, assert/2, asserta/2, assertz/2,
+                           retract/1, retractall/1]).
+
+%   Global variables, flags and recorded keys are process-wide: an agent names its own,
+%   never one of the runtime's ('$...', ga_...), and never enumerates them.
+keys_allowed(G) :-
+    (   key_arg(G, Key)
+    ->  (   var(Key)
+        ->  refuse("~q with a key only known at run time", [G])
+        ;   atom(Key), ( sub_atom(Key, 0, _, _, $) ; sub_atom(Key, 0, _, _, ga_) )
+        ->  refuse("the key ~q is reserved for the runtime", [Key])
+        ;   true
+        )
+    ;   true
+    ).
+
+key_arg(G, Key) :-
+    functor(G, Name, Arity),
+    memberchk(Name/Arity, [nb_setval/2, b_setval/2, nb_getval/2, b_getval/2, nb_current/2,
+                           nb_delete/1, flag/3, recorda/2, recorda/3, recordz/2, recordz/3,
+                           recorded/2, recorded/3]),
+    arg(1, G, Key).
+
+%   Built-ins that enumerate modules or atoms, or reach into frames or the module system.
+private(current_module/1).
+private(module_property/2).
+private(current_atom/1).
+private(current_blob/2).
+private(current_functor/2).
+private(current_key/1).
+private(current_flag/1).
+private(prolog_current_frame/1).
+private(prolog_frame_attribute/3).
+private(prolog_choice_attribute/3).
+private((@)/2).
+private(set_module/1).
+private(module/2).
+private(add_import_module/3).
+private(delete_import_module/2).
+private(context_module/1).
+private(strip_module/3).
+
+%   Under the sandbox, library(sandbox) must find the call safe (its goal arguments,
+%   checked here, replaced by a safe placeholder of the same arity).
+sandbox_allows(_, c(_, false, _)) :- !.
+sandbox_allows(G, _) :-
+    own_introspection(G), !.
+sandbox_allows(G, c(M, true, _)) :-
+    placeholders(G, Probe),
+    catch(sandbox:safe_goal(M:Probe), E, unsafe(E, G)).
+
+%   Looking at the agent's own predicates: library(sandbox) refuses these because a module
+%   could be named in them, which prepare/3 has refused already.
+own_introspection(current_predicate(_)).
+own_introspection(current_predicate(_, _)).
+own_introspection(predicate_property(_, _)).
+
+placeholders(G, Probe) :-
+    (   predicate_property(system:G, meta_predicate(Head))
+    ->  G =.. [Name|Args],
+        Head =.. [_|Specs],
+        maplist(placeholder, Specs, Args, ProbeArgs),
+        Probe =.. [Name|ProbeArgs]
+    ;   Probe = G
+    ).
+
+placeholder(0, _, ga_confine:free) :- !.
+placeholder(^, _, ga_confine:free) :- !.
+placeholder(N, _, ga_confine:free) :- integer(N), !.
+placeholder(//, _, ga_confine:free) :- !.
+placeholder(_, A, A).
+
+unsafe(error(permission_error(call, sandboxed, Culprit), _), G) :- !,
+    functor(Culprit, Name, Arity),
+    (   functor(G, Name, Arity)
+    ->  refuse("~q/~w is not allowed in the sandbox", [Name, Arity])
+    ;   refuse("~q is not allowed in the sandbox (it calls ~q/~w)", [G, Name, Arity])
+    ).
+unsafe(error(existence_error(procedure, Missing), _), G) :-
+    missing_predicate(Missing, Name, Arity),
+    functor(G, Name, Arity), !.          % neither built-in nor library: the agent's own
+unsafe(error(existence_error(procedure, PI), _), _) :- !,
+    refuse("~q is not a predicate the sandbox knows", [PI]).
+unsafe(error(instantiation_error, _), G) :- !,
+    refuse("the sandbox cannot tell what ~q calls", [G]).
+unsafe(E, G) :-
+    refuse("the sandbox refuses ~q: ~q", [G, E]).
+
+missing_predicate(_:X, Name, Arity) :- !,
+    missing_predicate(X, Name, Arity).
+missing_predicate(Name/Arity, Name, Arity) :- !.
+missing_predicate(Head, Name, Arity) :-
+    callable(Head),
+    functor(Head, Name, Arity).
+
+refuse(Format, Args) :-
+    format(string(Why), Format, Args),
+    throw(ga_refused(Why)).
+
+		 /*******************************
+		 *     WHAT AGENT TEXT HOLDS    *
+		 *******************************/
+
+%!  prepare_clause(+Clause0, +Ctx, -Clause) is det.
+%   A knowledge or belief clause: its head is the agent's own, its body prepared.
+prepare_clause((H :- B0), Ctx, (H :- B)) :- !,
+    clause_head_allowed(H),
+    prepare(B0, Ctx, B).
+prepare_clause(H, _, H) :-
+    clause_head_allowed(H).
+
+%!  prepare_directive(+Directive0, +Ctx, -Directive) is det.
+%   Declarations (dynamic, discontiguous, op) of the agent's own predicates and operators,
+%   loading library modules; under the sandbox nothing else, otherwise any goal as
+%   prepare/3 allows it.
+prepare_directive(D, _, _) :-
+    var(D), !,
+    refuse("a directive must be known when the program is loaded", []).
+prepare_directive(D, _, D) :-
+    declaration(D), !,
+    arg(1, D, Spec),
+    unqualified(Spec).
+prepare_directive(op(P, T, Names), _, op(P, T, Names)) :- !,
+    unqualified(Names).
+prepare_directive(D, _, D) :-
+    library_load(D), !.
+prepare_directive(D, c(_, true, _), _) :- !,
+    refuse("the directive ~q is not allowed in the sandbox (only dynamic, discontiguous, op and loading library modules)", [D]).
+prepare_directive(D, Ctx, Prepared) :-
+    prepare(D, Ctx, Prepared).
+
+declaration(dynamic(_)).
+declaration(discontiguous(_)).
+
+library_load(use_module(library(L))) :- atom(L).
+library_load(use_module(library(L), _)) :- atom(L).
+library_load(ensure_loaded(library(L))) :- atom(L).
+
+unqualified(X) :- var(X), !.
+unqualified(M:X) :- !,
+    refuse("~q is qualified with a module", [M:X]).
+unqualified(X) :-
+    compound(X), !,
+    X =.. [_|Args],
+    maplist(unqualified, Args).
+unqualified(_).
+
+%!  prepare_condition(+Cond0, +B, -Cond) is det.
+%   A rule's condition as mentalstate_load.pl's compile/5 reads it: the queries inside its
+%   '$bel'/'$goal'/'$agoal'/'$goala' literals prepared for the agent of belief module B. A
+%   refused query throws ga_refused_literal(I, Why), I counting its mental literals from 0
+%   (those under \+ included, left to right).
+prepare_condition(Cond0, B, Cond) :-
+    context(B, Ctx),
+    prepare_literals(Cond0, Ctx, Cond, 0, _).
+
+prepare_literals((A0, B0), Ctx, (A, B), I0, I) :- !,
+    prepare_literals(A0, Ctx, A, I0, I1),
+    prepare_literals(B0, Ctx, B, I1, I).
+prepare_literals(\+ A0, Ctx, \+ A, I0, I) :- !,
+    prepare_literals(A0, Ctx, A, I0, I).
+prepare_literals(true, _, true, I, I) :- !.
+prepare_literals('$percept'(Q), _, '$percept'(Q), I0, I) :- !,
+    I is I0 + 1.
+prepare_literals(Literal0, Ctx, Literal, I0, I) :-
+    Literal0 =.. [Op, Q0],
+    catch(prepare(Q0, Ctx, Q), ga_refused(Why), throw(ga_refused_literal(I0, Why))),
+    Literal =.. [Op, Q],
+    I is I0 + 1.
+
+%!  prepare_query(+Query0, +B, -Query) is det.
+%   A query the runtime runs for the agent of belief module B (a precondition, a drop).
+prepare_query(Q0, B, Q) :-
+    context(B, Ctx),
+    prepare(Q0, Ctx, Q).
+
+context(B, c(B, Sandbox, [])) :-
+    (   catch(B:'$ga_confine'(Sandbox0), _, fail)
+    ->  Sandbox = Sandbox0
+    ;   Sandbox = false
+    ).
+
+		 /*******************************
+		 *           RUN TIME           *
+		 *******************************/
+
+%!  call_checked(+Sandbox, :Goal) is nondet.
+%   Calls Goal, known only now, after preparing it as prepare/3 does when loading: a goal
+%   that is refused raises ga_refused(Why) (the rule is then not applicable, with a
+%   warning).
+:- meta_predicate call_checked(+, 0).
+
+call_checked(Sb, M:G) :-
+    catch(prepare(G, c(M, Sb, runtime), Prepared), ga_refused(Why), throw(ga_refused(Why))),
+    (   Prepared = ga_confine:call_checked(_, G1), G1 == G
+    ->  throw(error(instantiation_error, _))
+    ;   call(M:Prepared)
+    ).
+
+%!  closure_checked(+Sandbox, :Closure, ?A1, ...) is nondet.
+%   A closure whose goal depends on the arguments it gets (maplist(assertz, Clauses),
+%   call(P, X)): the goal is checked as call_checked/2 does when it is called.
+:- meta_predicate
+    closure_checked(+, 1, ?),
+    closure_checked(+, 2, ?, ?),
+    closure_checked(+, 3, ?, ?, ?),
+    closure_checked(+, 4, ?, ?, ?, ?),
+    closure_checked(+, 5, ?, ?, ?, ?, ?),
+    closure_checked(+, 6, ?, ?, ?, ?, ?, ?),
+    closure_checked(+, 7, ?, ?, ?, ?, ?, ?, ?).
+
+closure_checked(Sb, M:C, A1) :- closure_goal(Sb, M, C, [A1]).
+closure_checked(Sb, M:C, A1, A2) :- closure_goal(Sb, M, C, [A1, A2]).
+closure_checked(Sb, M:C, A1, A2, A3) :- closure_goal(Sb, M, C, [A1, A2, A3]).
+closure_checked(Sb, M:C, A1, A2, A3, A4) :- closure_goal(Sb, M, C, [A1, A2, A3, A4]).
+closure_checked(Sb, M:C, A1, A2, A3, A4, A5) :-
+    closure_goal(Sb, M, C, [A1, A2, A3, A4, A5]).
+closure_checked(Sb, M:C, A1, A2, A3, A4, A5, A6) :-
+    closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6]).
+closure_checked(Sb, M:C, A1, A2, A3, A4, A5, A6, A7) :-
+    closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6, A7]).
+
+closure_goal(Sb, M, C, Args) :-
+    extend(C, Args, G),
+    call_checked(Sb, M:G).

@@ -1,0 +1,78 @@
+"""How much Prolog work one agent may cause, and what it may call: the bounds the runtime
+puts on an agent (``goalagent run --max-inferences/--max-query-seconds/--max-beliefs``,
+``--sandbox``, or per agent file in a .mas2g).
+
+Defaults are generous: measured on every shipped agent and the benchmarks (see
+docs in README "Limits"), the busiest rule makes a few hundred thousand inferences
+and the slowest stretch of Prolog takes well under a second, so only runaway rules meet
+them. What happens at each bound: a rule passing the inference or time limit is not
+applicable, with a warning naming agent, module and rule (rules.pl, watchdog.py); an agent
+holding more beliefs and goals than ``max_beliefs`` is stopped with a message.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from goalagent import ast
+from goalagent.kb.errors import KBError, LimitError, PrologRuntimeError
+from goalagent.kb.terms import Struct, Term, format_term
+
+__all__ = ["Limits", "limit_text", "refused_precondition", "stopping_error"]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """An agent's bounds. ``max_query_seconds``: the longest stretch the main thread may
+    spend in Prolog for it without returning to Python (a rule's condition, its actions'
+    Prolog part); ``sandbox``: its Prolog text may call only safe built-ins (guard.pl)."""
+
+    max_inferences: int = 10_000_000
+    max_query_seconds: float = 20.0
+    max_beliefs: int = 2_000_000
+    sandbox: bool = False
+
+    def __post_init__(self) -> None:
+        if not 0 < self.max_inferences <= 2**62:
+            raise ValueError("max_inferences must be a positive whole number")
+        if not 0 < self.max_query_seconds <= 10**7:
+            raise ValueError("max_query_seconds must be a positive number of seconds")
+        if not 0 < self.max_beliefs <= 2**62:
+            raise ValueError("max_beliefs must be a positive whole number")
+
+
+def limit_text(limit: Term) -> str:
+    """What a ``ga_limit(Limit)`` of guard.pl / rules.pl says was passed."""
+    assert isinstance(limit, Struct)
+    value = limit.args[0]
+    if limit.name == "inferences":
+        return f"more than {value:,} inferences (--max-inferences)"
+    if limit.name == "time":
+        return f"longer than {value:g} s (--max-query-seconds)"
+    if limit.name == "beliefs":
+        return f"{value:,} beliefs, more than {limit.args[1]:,} (--max-beliefs)"
+    return format_term(limit)
+
+
+def stopping_error(error: PrologRuntimeError) -> KBError:
+    """The error that stops an agent for ``ga_limit(Limit)`` escaping an interpreter call
+    (rules.pl: its beliefs over --max-beliefs, or a limit met between rules); any other
+    error as it is."""
+    term = error.term
+    if not (isinstance(term, Struct) and term.name == "ga_limit"):
+        return error
+    limit = term.args[0]
+    if isinstance(limit, Struct) and limit.name == "beliefs":
+        return LimitError(f"holds {limit_text(limit)}; stopped")
+    return LimitError(f"ran {limit_text(limit)} outside a rule; stopped")
+
+
+def refused_precondition(error: PrologRuntimeError, specs: Sequence[ast.ActionSpec]) -> KBError:
+    """The located error for a precondition confine.pl refused (``ga_refused_spec``)."""
+    term = error.term
+    if not (isinstance(term, Struct) and term.name == "ga_refused_spec"):
+        return error
+    spec = specs[int(term.args[0])]  # type: ignore[arg-type]
+    return KBError(f"{spec.pre.pos}: precondition of {spec.name}: refused: {term.args[1]}",
+                   spec.pre.pos)

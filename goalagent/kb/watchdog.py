@@ -1,0 +1,181 @@
+"""A thread that bounds what the main thread's Prolog does: wall-clock time per stretch, and
+Ctrl-C / SIGTERM while a query runs.
+
+Python runs a signal handler only between bytecodes, so while the main thread is inside a
+Prolog query (ctypes releases the GIL) Ctrl-C would wait for the query to end -- for ever,
+if it runs away. The engine notes each *stretch* the main thread spends in Prolog (a query,
+or Prolog again after a callback into Python: ``Engine.stretch`` / ``stretch_since``). This
+daemon thread reads the signals Python's C-level handler writes
+to a wakeup pipe, and checks the running stretch every ``TICK`` seconds:
+
+- a stretch older than the time limit gets ``ga_limit(time(T))`` thrown in it (the rule it
+  is in is not applicable, with a warning); if the agent's code catches that and runs on,
+  the next time it is aborted (``'$aborted'`` cannot be swallowed) and the agent stopped;
+- a signal aborts the running stretch (the run then stops as Ctrl-C says); a second signal
+  that has not ended the process within a second ends it at once.
+
+Both use ``thread_signal/2`` from the watchdog's engine; the goal it sends checks that the
+same stretch is still running (its number), so nothing strays into a later query. Why a
+thread of our own: SWI's ``call_with_time_limit/2`` would time Python callbacks (physics,
+rendering) too, and cost an alarm per call; this costs two clock reads per query.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import select
+import signal
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+
+from goalagent.kb.clib import (
+    PL_call,
+    PL_chars_to_term,
+    PL_discard_foreign_frame,
+    PL_new_term_ref,
+    PL_open_foreign_frame,
+    PL_thread_attach_engine,
+    PL_thread_destroy_engine,
+)
+from goalagent.kb.engine import Engine, define_foreign, get_engine
+
+__all__ = ["TICK", "Watchdog", "watchdog"]
+
+TICK = 0.05  # seconds between looks at the running stretch
+WAKE = signal.SIGUSR2  # sent to the main thread after a Prolog signal, to end a sleep
+HARD_EXIT_AFTER = 1.0  # a second signal ends the process if this much later it still runs
+
+
+class Watchdog:
+    """The process's watchdog (see :func:`watchdog`); ``time_limit`` is the running agent's
+    ``--max-query-seconds`` (None: no limit)."""
+
+    def __init__(self, engine: Engine) -> None:
+        self.engine = engine
+        self.time_limit: float | None = None
+        self.signals: list[int] = []  # signals received while watching them
+        self._read, self._write = os.pipe()
+        os.set_blocking(self._read, False)
+        os.set_blocking(self._write, False)
+        self._struck: int | None = None  # the stretch a time limit was thrown in
+        self._stopping: int | None = None  # a signal asking to stop, not yet done
+        self._aborted: int | None = None  # the stretch last aborted for it
+        self._exit_code: Callable[[int], int] = lambda signum: 128 + signum
+        define_foreign(engine, "ga_guard", "$ga_stretch", lambda _: engine.stretch,
+                       stretch=False)
+        self._main = threading.main_thread().ident
+        if threading.get_ident() == self._main and signal.getsignal(WAKE) in (
+                signal.SIG_DFL, signal.SIG_IGN, None):
+            signal.signal(WAKE, lambda signum, frame: None)  # only to interrupt a sleep
+        threading.Thread(target=self._watch, name="goalagent-watchdog", daemon=True).start()
+
+    @contextlib.contextmanager
+    def watching_signals(self, exit_code: Callable[[int], int]) -> Iterator[None]:
+        """Within the block, signals also reach the watchdog (Python's handlers still run
+        as installed); ``exit_code`` gives the code of a hard exit. Main thread only."""
+        self.signals.clear()
+        self._exit_code = exit_code
+        previous = signal.set_wakeup_fd(self._write, warn_on_full_buffer=False)
+        try:
+            yield
+        finally:
+            signal.set_wakeup_fd(previous)
+
+    def stop_handled(self) -> None:
+        """Python has taken the stop a signal asked for: later queries (finishing the run)
+        are not aborted for it."""
+        self._stopping = None
+
+    # ------------------------------------------------------------------ the thread
+
+    def _watch(self) -> None:
+        while True:
+            ready, _, _ = select.select([self._read], [], [], TICK)
+            if ready:
+                with contextlib.suppress(BlockingIOError):
+                    for byte in os.read(self._read, 64):
+                        if byte != WAKE:  # our own, sent to end a sleep
+                            self._signal(byte)
+            self._check_stop()
+            self._check_time()
+
+    def _signal(self, signum: int) -> None:
+        """A signal arrived: abort the running query (now, or as soon as Prolog runs again
+        if the main thread is in a callback, see :meth:`_check_stop`); a second one: exit
+        if the process is still here a second later."""
+        self.signals.append(signum)
+        if len(self.signals) >= 2:
+            threading.Timer(HARD_EXIT_AFTER, self._hard_exit, (signum,)).start()
+        self._stopping = signum
+        self._check_stop()
+
+    def _check_stop(self) -> None:
+        """While a stop is asked for and queries are open, abort each stretch once."""
+        engine = self.engine
+        if self._stopping is None:
+            return
+        if engine.depth == 0:
+            self._stopping = None  # back in Python: its handler stops the run
+        elif engine.stretch_since is not None and engine.stretch != self._aborted:
+            self._aborted = engine.stretch
+            self._send("abort", f"signal {signal.Signals(self._stopping).name}")
+
+    def _hard_exit(self, signum: int) -> None:
+        sys.stderr.write(f"{signal.Signals(signum).name} again: ending at once\n")
+        sys.stderr.flush()
+        os._exit(self._exit_code(signum))
+
+    def _check_time(self) -> None:
+        """Throw ``ga_limit(time(T))`` in a stretch older than the limit; abort it if it is
+        still running one limit after that."""
+        limit, since, stretch = self.time_limit, self.engine.stretch_since, self.engine.stretch
+        if limit is None or since is None or time.monotonic() - since < limit:
+            return
+        if self._struck == stretch:
+            self._send("abort", f"ran on for {2 * limit:g} s past its time limit of "
+                       f"{limit:g} s (--max-query-seconds) although interrupted; stopped")
+        else:
+            self._struck = stretch
+            self._send(f"time({limit!r})", None)
+        self.engine.stretch_since = time.monotonic()  # the next strike after another limit
+
+    def _send(self, action: str, reason: str | None) -> None:
+        """Asks the main thread's Prolog to do ``action`` in the running stretch, if any."""
+        stretch = self.engine.stretch
+        if self.engine.stretch_since is None:
+            return  # the main thread is in Python: its own handler (if any) acts
+        if reason is not None:
+            self.engine.abort_reason = reason
+        goal = f"thread_signal(main, ga_guard:stretch_signal({stretch}, {action}))".encode()
+        if PL_thread_attach_engine(None) < 0:  # a Prolog engine only while it signals: one
+            return  # left attached would keep SWI from cleaning up at exit
+        try:
+            frame = PL_open_foreign_frame()
+            term = PL_new_term_ref()
+            if PL_chars_to_term(goal, term):
+                PL_call(term, None)
+            PL_discard_foreign_frame(frame)
+        finally:
+            PL_thread_destroy_engine()
+        if self._main is not None and signal.getsignal(WAKE) not in (signal.SIG_DFL,
+                                                                      signal.SIG_IGN, None):
+            # A blocking call (sleep/1, waiting for input) ends with EINTR and SWI then
+            # handles the signal sent above (SWI installs no signal handler of its own
+            # when embedded by pyswip: --nosignals).
+            signal.pthread_kill(self._main, WAKE)
+
+
+_watchdog: Watchdog | None = None
+_lock = threading.Lock()
+
+
+def watchdog() -> Watchdog:
+    """The process's watchdog, started on first use."""
+    global _watchdog
+    with _lock:
+        if _watchdog is None:
+            _watchdog = Watchdog(get_engine())
+        return _watchdog
