@@ -1,5 +1,7 @@
 """The ``goalagent`` command in a child process, measured: exit code, output, wall-clock
-seconds and peak resident memory (the child reports its own ``ru_maxrss`` when it exits)."""
+seconds and peak resident memory (the child reports its own ``VmHWM`` when it exits: not
+``ru_maxrss``, which Linux carries over from the parent a child was forked from, so a child
+of a large pytest process would report the parent's size)."""
 
 from __future__ import annotations
 
@@ -13,10 +15,12 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 _LAUNCHER = (
-    "import atexit, os, resource, sys\n"
+    "import atexit, os, sys\n"
     "def _report():\n"
+    "    with open('/proc/self/status') as status:\n"
+    "        peak = next(line.split()[1] for line in status if line.startswith('VmHWM:'))\n"
     "    with open(os.environ['GOALAGENT_TEST_RSS'], 'w') as out:\n"
-    "        out.write(str(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss))\n"
+    "        out.write(peak)\n"
     "atexit.register(_report)\n"
     "sys.argv = ['goalagent', *sys.argv[1:]]\n"
     "from goalagent.cli import main\n"
