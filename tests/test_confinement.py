@@ -63,6 +63,17 @@ STATIC = [
     (":- dynamic(ga_kb:foo/1).", "", "qualified with a module"),
     (":- initialization(assertz(user:foo)).", "", "qualified with a module"),
     ("'$ga_gm'(evil).", "", "reserved for the runtime"),
+    # module-sensitive built-ins without a meta declaration, code loading, the process
+    ("", "if bel(abolish(ga_kb:run/3)) then print(x).", "names the module ga_kb"),
+    ("", "if bel(clause(ga_kb:run(_, _, _), B)) then print(B).", "qualified with a module"),
+    ("", "if bel(apply(assertz, [ga_kb:foo])) then print(x).", "qualified with a module"),
+    ("", "if bel(foldl([X, A, A]>>ga_kb:assertz(X), [foo], 0, _)) then print(x).",
+     "qualified with a module"),
+    ("", "if bel(consult('/etc/passwd')) then print(x).", "whole process"),
+    ("", "if bel(use_module('/tmp/evil.pl')) then print(x).", "loads code"),
+    ("", "if bel(set_prolog_flag(unknown, fail)) then print(x).", "whole process"),
+    ("", "if bel(halt) then print(x).", "whole process"),
+    ("", "if bel(thread_create(true, _, [])) then print(x).", "whole process"),
 ]
 
 
@@ -90,6 +101,13 @@ DYNAMIC = [
     "atom_to_term('nb_current(K, _)', T, _), call(T)",
     "atom_concat('$destroy_', 'module', N), G =.. [N, ga_kb], call(G)",
     "G = format(\"~@\", [assertz(user:foo)]), call(G)",
+    "forall(member(G, [assertz(ga_kb:foo)]), G)",
+    "foldl([X, A, A]>>assertz(X), [ga_kb:foo], 0, _)",
+    "maplist([C]>>assertz(C), [ga_kb:foo])",
+    "forall(member(C, [ga_kb:foo]), assertz(C))",
+    "X = ga_kb:run(_, _, _), abolish(X)",
+    "G = apply(assertz, [ga_kb:foo]), call(G)",
+    "G = halt, call(G)",
 ]
 
 
@@ -144,8 +162,8 @@ SANDBOX_STATIC = [
     ("evil :- shell('touch PWNED').", "", "shell"),
     ("evil :- open('out.txt', write, S), close(S).", "", "open"),
     ("evil :- halt.", "", "halt"),
-    ("evil :- consult('other.pl').", "", "not allowed in the sandbox"),
-    ("evil :- set_prolog_flag(stack_limit, 1000).", "", "set_prolog_flag"),
+    ("evil :- consult('other.pl').", "", "whole process"),
+    ("evil :- set_prolog_flag(stack_limit, 1000).", "", "set_prolog_flag/2 would end"),
     ("evil :- thread_create(true, _, []).", "", "thread_create"),
     (":- initialization(shell(ls)).", "", "not allowed in the sandbox"),
     (":- use_module('/tmp/other.pl').", "", "not allowed in the sandbox"),

@@ -2,7 +2,7 @@
     preconditions, directives, clauses it asserts) goes through prepare/3 before it is
     loaded, so each goal is checked once, when the program is loaded, with a located error
     for what is refused; goals only known at run time (call(G), findall(T, G, L) with G
-    built by the program, assertz(C) of a built clause) are wrapped in call_checked/2,
+    built by the program, assertz(C) of a built clause) are wrapped in call_checked/3,
     which checks them, the same way, when they run.
 
     Always (sandbox or not) -- minds are private and the runtime is not the agents' to
@@ -20,6 +20,10 @@
 
 :- use_module(library(sandbox)).
 :- use_module(library(apply)).
+:- use_module(library(yall)).               % these define meta-predicates agents use: their
+:- use_module(library(aggregate)).          % goal arguments are found through the imports
+:- use_module(library(solution_sequences)).
+:- use_module(library(apply_macros), []).
 :- use_module(library(lists)).
 
 :- set_prolog_flag(generate_debug_info, false).
@@ -53,13 +57,13 @@ sandbox:safe_primitive(ga_confine:free(_, _, _, _, _, _, _, _)).
 
 %!  prepare(+Goal0, +Ctx, -Goal) is det.
 %   Goal0 checked (throws ga_refused(Why) for what is not allowed) and with every goal
-%   only known at run time wrapped in call_checked/2. Ctx = c(Module, Sandbox, Own):
+%   only known at run time wrapped in call_checked/3. Ctx = c(Module, Sandbox, Own):
 %   the agent's module, true/false, and a list of Name/Arity it defines itself (runtime
-%   when call_checked/2 prepares a goal as it runs: arguments still unbound stay so).
+%   when call_checked/3 prepares a goal as it runs: arguments still unbound stay so).
 
-prepare(G, Ctx, ga_confine:call_checked(Sb, G)) :-
+prepare(G, Ctx, Checked) :-
     var(G), !,
-    arg(2, Ctx, Sb).
+    checked(Ctx, G, Checked).
 prepare((A0, B0), Ctx, (A, B)) :- !,
     prepare(A0, Ctx, A),
     prepare(B0, Ctx, B).
@@ -81,12 +85,31 @@ prepare(M:G, _, _) :- !,
 prepare(G, _, _) :-
     \+ callable(G), !,
     refuse("~q is not a goal", [G]).
+prepare(G0, c(M, Sb, _), G) :-                 % a lambda (library(yall)) applied: its body
+    compound(G0),                               % is checked as a goal whose variables are
+    compound_name_arguments(G0, >>, [Ps, B0|Extra]), !,   % bound later (by the call)
+    prepare(B0, c(M, Sb, []), B),
+    compound_name_arguments(G, >>, [Ps, B|Extra]).
+prepare(apply(G0, Extra), Ctx, Prepared) :- !,  % apply/2: a goal with arguments added
+    (   callable(G0), is_list(Extra)
+    ->  extend(G0, Extra, G),
+        prepare(G, Ctx, Prepared)
+    ;   arg(3, Ctx, runtime)
+    ->  throw(error(instantiation_error, _))
+    ;   checked(Ctx, apply(G0, Extra), Prepared)
+    ).
 prepare(G, Ctx, Prepared) :-
     functor(G, Name, Arity),
     (   sub_atom(Name, 0, _, _, $)
     ->  refuse("~q/~w is reserved for SWI-Prolog and the runtime", [Name, Arity])
     ;   private(Name/Arity)
     ->  refuse("~q/~w would reveal other agents' or the runtime's modules", [Name, Arity])
+    ;   process_wide(Name/Arity)
+    ->  refuse("~q/~w would end or change the whole process, every agent in it", [Name, Arity])
+    ;   lambda(Name, Arity)
+    ->  refuse("~q/~w: this lambda form (library(yall)) cannot be checked; write Params>>Body or a helper predicate", [Name, Arity])
+    ;   \+ library_goal(G)
+    ->  refuse("~q loads code into the process: only library modules (use_module(library(Name)))", [G])
     ;   own(G, Ctx)
     ->  Prepared = G
     ;   keys_allowed(G),
@@ -116,9 +139,16 @@ prepare_call(G, Ctx, Prepared) :-
         (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)
         ->  Prepared =.. [Name|Args],
             sandbox_allows(Prepared, Ctx)
-        ;   arg(2, Ctx, Sb),              % call_checked/2 asks the sandbox when it runs
-            Prepared = ga_confine:call_checked(Sb, G)
+        ;   checked(Ctx, G, Prepared)     % call_checked/3 asks the sandbox when it runs
         )
+    ;   predicate_property(system:G, transparent),
+        \+ ground(G),
+        \+ arg(3, Ctx, runtime)
+    ->  checked(Ctx, G, Prepared)         % module-sensitive (abolish/1, clause/3, ...):
+                                          % its arguments checked when it runs
+    ;   predicate_property(system:G, transparent),
+        sub_term(Q, G), nonvar(Q), Q = M:_, atom(M)
+    ->  refuse("~q names the module ~q: an agent reaches its own mind only", [G, M])
     ;   Prepared = G,
         sandbox_allows(G, Ctx)
     ).
@@ -161,13 +191,14 @@ goal_spec(:).
 %   One argument of a meta-predicate call: a goal (spec N: with N more arguments), a
 %   clause or predicate (spec :), or data. ga_later: not known before run time.
 prepare_arg(Ctx, 0, A0, A) :- !,
-    (   var(A0) -> later(Ctx), A = A0 ; prepare(A0, Ctx, A) ).
+    (   var(A0) -> checked_later(A0, Ctx, A) ; prepare(A0, Ctx, A) ).
 prepare_arg(Ctx, ^, A0, A) :- !,
-    (   var(A0) -> later(Ctx), A = A0 ; strip_carets(A0, Ctx, A) ).
+    (   var(A0) -> checked_later(A0, Ctx, A) ; strip_carets(A0, Ctx, A) ).
 prepare_arg(Ctx, N, A0, A) :-
     integer(N), !,
     (   var(A0)
-    ->  later(Ctx), A = A0
+    ->  Ctx = c(M, Sb, _),                % a closure bound later: checked when called
+        A = ga_confine:closure_checked(Sb, M, A0)
     ;   A0 = _:_
     ->  refuse("~q is qualified with a module: an agent calls in its own mind only", [A0])
     ;   callable(A0)
@@ -175,9 +206,9 @@ prepare_arg(Ctx, N, A0, A) :-
         extend(A0, Extra, Goal),
         Ctx = c(M, Sb, _),                % Extra: arguments only known when it is called
         (   catch(prepare(Goal, c(M, Sb, []), Prepared), ga_later, fail),
-            Prepared \= ga_confine:call_checked(_, _)
-        ->  A = A0
-        ;   A = ga_confine:closure_checked(Sb, A0)  % checked when it is called
+            Prepared == Goal              % nothing in it to check later (e.g. a lambda's
+        ->  A = A0                        % body with a wrapped call: checked when called)
+        ;   A = ga_confine:closure_checked(Sb, M, A0)  % checked when it is called
         )
     ;   refuse("~q is not a goal", [A0])
     ).
@@ -188,12 +219,21 @@ prepare_arg(Ctx, :, A0, A) :- !,
 prepare_arg(_, _, A, A).
 
 strip_carets(V^G0, Ctx, V^G) :- !,
-    (   var(G0) -> later(Ctx), G = G0 ; strip_carets(G0, Ctx, G) ).
+    (   var(G0) -> checked_later(G0, Ctx, G) ; strip_carets(G0, Ctx, G) ).
 strip_carets(G0, Ctx, G) :-
     prepare(G0, Ctx, G).
 
-%   later(+Ctx): an argument not known yet. When loading: ga_later (the call is checked when
-%   it runs, see call_checked/2); when it runs (Ctx's third argument is runtime): still
+%   checked_later(+G0, +Ctx, -G): a goal not known yet (it may be bound by the very
+%   meta-predicate that calls it, e.g. forall(member(G, L), G)): checked when it is called.
+checked_later(G0, Ctx, G) :-
+    checked(Ctx, G0, G).
+
+%   checked(+Ctx, +G, -Checked): G called through call_checked/3 (Ctx's module and sandbox
+%   written in, never taken from G: a goal bound to M:X at run time is refused there).
+checked(c(M, Sb, _), G, ga_confine:call_checked(Sb, M, G)).
+
+%   later(+Ctx): a clause or predicate argument not known yet. When loading: ga_later (the call is checked when
+%   it runs, see call_checked/3); when it runs (Ctx's third argument is runtime): still
 %   unbound, it can name no module nor goal -- the built-in raises its own error.
 later(Ctx) :-
     (   arg(3, Ctx, runtime)
@@ -217,7 +257,7 @@ prepare_module_arg(M:X, _, _) :- !,
     refuse("~q is qualified with a module: an agent changes its own mind only", [M:X]).
 prepare_module_arg((H :- B0), Ctx, (H :- B)) :- !,
     clause_head_allowed(H),
-    (   var(B0) -> later(Ctx), B = B0 ; prepare(B0, Ctx, B) ).
+    (   var(B0) -> checked_later(B0, Ctx, B) ; prepare(B0, Ctx, B) ).
 prepare_module_arg(A, _, A) :-
     (   callable(A)
     ->  clause_head_allowed(A)
@@ -258,6 +298,50 @@ key_arg(G, Key) :-
                            nb_delete/1, flag/3, recorda/2, recorda/3, recordz/2, recordz/3,
                            recorded/2, recorded/3]),
     arg(1, G, Key).
+
+lambda(/, Arity) :- Arity >= 2.             % yall's Free/Lambda and \X^Body: copy rules
+lambda(\, Arity) :- Arity >= 1.             % this check does not follow
+
+%   library_goal(+G): G loads no code, or only a library module.
+library_goal(G) :-
+    (   G = use_module(Spec) ; G = use_module(Spec, _) ; G = '[|]'(Spec, _) ; G = load_files(Spec, _) )
+    ->  nonvar(Spec), Spec = library(L), atom(L)
+    ;   true.
+
+%   Built-ins no agent may call, sandbox or not: the other agents run in the same process.
+process_wide(set_prolog_flag/2).
+process_wide(create_prolog_flag/3).
+process_wide(consult/1).
+process_wide(load_files/1).
+process_wide(ensure_loaded/1).
+process_wide(include/1).
+process_wide(make/0).
+process_wide(qcompile/1).
+process_wide(qcompile/2).
+process_wide(load_foreign_library/1).
+process_wide(load_foreign_library/2).
+process_wide(use_foreign_library/1).
+process_wide(use_foreign_library/2).
+process_wide(open_shared_object/2).
+process_wide(open_shared_object/3).
+process_wide(chdir/1).
+process_wide(halt/0).
+process_wide(halt/1).
+process_wide(abort/0).
+process_wide(thread_signal/2).
+process_wide(set_prolog_stack/2).
+process_wide(garbage_collect_atoms/0).
+process_wide(thread_create/2).          % a thread runs outside the agent's limits, beside
+process_wide(thread_create/3).          % the one thread the runtime drives Prolog from
+process_wide(thread_create_in_pool/4).
+process_wide(concurrent/3).
+process_wide(concurrent_forall/2).
+process_wide(concurrent_forall/3).
+process_wide(concurrent_maplist/2).
+process_wide(concurrent_maplist/3).
+process_wide(concurrent_maplist/4).
+process_wide(first_solution/3).
+process_wide(call_in_thread/2).
 
 %   Built-ins that enumerate modules or atoms, or reach into frames or the module system.
 private(current_module/1).
@@ -422,42 +506,37 @@ context(B, c(B, Sandbox, [])) :-
 		 *           RUN TIME           *
 		 *******************************/
 
-%!  call_checked(+Sandbox, :Goal) is nondet.
-%   Calls Goal, known only now, after preparing it as prepare/3 does when loading: a goal
-%   that is refused raises ga_refused(Why) (the rule is then not applicable, with a
-%   warning).
-:- meta_predicate call_checked(+, 0).
-
-call_checked(Sb, M:G) :-
-    catch(prepare(G, c(M, Sb, runtime), Prepared), ga_refused(Why), throw(ga_refused(Why))),
-    (   Prepared = ga_confine:call_checked(_, G1), G1 == G
+%!  call_checked(+Sandbox, +Module, +Goal) is nondet.
+%   Calls Goal of the agent whose module is Module, known only now, after preparing it as
+%   prepare/3 does when loading: a goal that is refused raises ga_refused(Why) (the rule
+%   is then not applicable, with a warning). Not a meta-predicate: Goal comes as the
+%   program built it, so a module it names is seen (and refused).
+call_checked(Sb, M, G) :-
+    prepare(G, c(M, Sb, runtime), Prepared),
+    (   Prepared = ga_confine:call_checked(_, _, G1), G1 == G
     ->  throw(error(instantiation_error, _))
     ;   call(M:Prepared)
     ).
 
-%!  closure_checked(+Sandbox, :Closure, ?A1, ...) is nondet.
+%!  closure_checked(+Sandbox, +Module, +Closure, ?A1, ...) is nondet.
 %   A closure whose goal depends on the arguments it gets (maplist(assertz, Clauses),
-%   call(P, X)): the goal is checked as call_checked/2 does when it is called.
-:- meta_predicate
-    closure_checked(+, 1, ?),
-    closure_checked(+, 2, ?, ?),
-    closure_checked(+, 3, ?, ?, ?),
-    closure_checked(+, 4, ?, ?, ?, ?),
-    closure_checked(+, 5, ?, ?, ?, ?, ?),
-    closure_checked(+, 6, ?, ?, ?, ?, ?, ?),
-    closure_checked(+, 7, ?, ?, ?, ?, ?, ?, ?).
-
-closure_checked(Sb, M:C, A1) :- closure_goal(Sb, M, C, [A1]).
-closure_checked(Sb, M:C, A1, A2) :- closure_goal(Sb, M, C, [A1, A2]).
-closure_checked(Sb, M:C, A1, A2, A3) :- closure_goal(Sb, M, C, [A1, A2, A3]).
-closure_checked(Sb, M:C, A1, A2, A3, A4) :- closure_goal(Sb, M, C, [A1, A2, A3, A4]).
-closure_checked(Sb, M:C, A1, A2, A3, A4, A5) :-
+%   call(P, X)): the goal is checked as call_checked/3 does when it is called.
+closure_checked(Sb, M, C, A1) :- closure_goal(Sb, M, C, [A1]).
+closure_checked(Sb, M, C, A1, A2) :- closure_goal(Sb, M, C, [A1, A2]).
+closure_checked(Sb, M, C, A1, A2, A3) :- closure_goal(Sb, M, C, [A1, A2, A3]).
+closure_checked(Sb, M, C, A1, A2, A3, A4) :- closure_goal(Sb, M, C, [A1, A2, A3, A4]).
+closure_checked(Sb, M, C, A1, A2, A3, A4, A5) :-
     closure_goal(Sb, M, C, [A1, A2, A3, A4, A5]).
-closure_checked(Sb, M:C, A1, A2, A3, A4, A5, A6) :-
+closure_checked(Sb, M, C, A1, A2, A3, A4, A5, A6) :-
     closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6]).
-closure_checked(Sb, M:C, A1, A2, A3, A4, A5, A6, A7) :-
+closure_checked(Sb, M, C, A1, A2, A3, A4, A5, A6, A7) :-
     closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6, A7]).
 
 closure_goal(Sb, M, C, Args) :-
-    extend(C, Args, G),
-    call_checked(Sb, M:G).
+    (   var(C)
+    ->  throw(error(instantiation_error, _))
+    ;   C = _:_
+    ->  refuse("~q is qualified with a module: an agent calls in its own mind only", [C])
+    ;   extend(C, Args, G),
+        call_checked(Sb, M, G)
+    ).
