@@ -1,10 +1,12 @@
 """Runs that explain themselves: an idle agent with goals left is warned about once, a
 warning repeated every cycle is not shown every cycle, ``--version``, ``--env module:Class``
 from the current directory, the README's description of ``make demo``, and where the
-afford/6 reliability plot goes without ``--plot`` (never the current directory)."""
+afford/6 reliability plot goes without ``--plot`` (never the current directory), a Python
+RecursionError in one agent, ``--max-cycles`` negatives and ``--save-beliefs`` permissions."""
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import subprocess
@@ -143,3 +145,42 @@ def test_the_reliability_plot_never_lands_in_the_current_directory(tmp_path: Pat
     assert f"reliability plot: {saved.parent / 'afford-learner.png'}" in beside.stderr
     assert (saved.parent / "afford-learner.png").is_file()
     assert list(work.iterdir()) == []
+
+
+DEEP = """
+init module { knowledge { nest(0, a) :- !. nest(N, f(T)) :- M is N - 1, nest(M, T). } }
+main module [exit=always] { program { if bel(nest(5000, T)) then insert(deep(T)). } }
+"""
+STEADY = "main module { program { if true then print(ok). } }\n"
+
+
+def test_a_recursion_error_in_one_agent_is_reported_for_it_and_the_others_go_on(
+        tmp_path: Path) -> None:
+    """Tracing a belief 5000 terms deep: converting it to Python recurses too deep."""
+    (tmp_path / "deep.goal").write_text(DEEP)
+    (tmp_path / "steady.goal").write_text(STEADY)
+    (tmp_path / "two.mas2g").write_text('agentfiles { "deep.goal". "steady.goal". }\n')
+    result = goalagent("run", str(tmp_path / "two.mas2g"), "--max-cycles", "3",
+                       "--trace=beliefs")
+    assert result.returncode == 1 and "Traceback" not in result.stderr
+    assert re.search(r"error: agent deep failed: .*RecursionError", result.stderr)
+    assert "deep: failed after 1 cycles" in result.stderr
+    assert "steady: stopped at the cycle limit after 3 cycles" in result.stderr
+    assert result.stdout.count("ok\n") == 3
+
+
+def test_max_cycles_rejects_negatives() -> None:
+    result = goalagent("run", "agents/examples/hello_world.goal", "--max-cycles", "-1")
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert "--max-cycles must be 0 or more" in result.stderr
+
+
+def test_saved_beliefs_get_normal_permissions(tmp_path: Path) -> None:
+    (tmp_path / "steady.goal").write_text(STEADY)
+    target = tmp_path / "saved.pl"
+    result = goalagent("run", str(tmp_path / "steady.goal"), "--max-cycles", "1",
+                       "--save-beliefs", str(target), "--save-predicate", "p/1")
+    assert result.returncode == 0, result.stderr
+    mask = os.umask(0)
+    os.umask(mask)
+    assert target.stat().st_mode & 0o777 == 0o666 & ~mask  # not mkstemp's 0600
