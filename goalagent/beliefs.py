@@ -12,6 +12,7 @@ nothing run, the checks of the extensions' saved predicates (e.g. afford/6's typ
 from __future__ import annotations
 
 import os
+import re
 import stat
 import tempfile
 import time
@@ -24,7 +25,10 @@ from goalagent.extensions import RunContext, RunHook, SavedPredicate, saved_pred
 from goalagent.kb.facts import FactCheck, FactFile, FactFileError, read_facts
 from goalagent.kb.terms import Atom, Struct, Term, format_term, quote_atom
 from goalagent.parser import GoalSyntaxError
-from goalagent.parser.source import MAX_FACT_FILE_BYTES, read_program_file
+from goalagent.parser.source import MAX_FACT_FILE_BYTES, Source, read_program_file
+
+_BRACKETS = re.compile(r"[()\[\]{}]")
+_SWI_SAFE_DEPTH = 5000  # nesting SWI's reader (C recursion) takes without risk
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -75,6 +79,20 @@ def check_save_target(path: Path) -> Path:
     return target
 
 
+def _check_nesting(text: str, file: str) -> None:
+    """Brackets nested more than 200 deep (when they may pass 5,000) are a located error
+    before SWI reads the file: its reader recurses in C per level and, embedded with
+    --nosignals, has no C-stack guard (a 100,000-deep list crashed the process). The count
+    over every bracket is a quick bound; only a text that may pass it is scanned exactly
+    (quotes, comments)."""
+    depth = deepest = 0
+    for match in _BRACKETS.finditer(text):
+        depth = depth + 1 if match.group() in "([{" else max(depth - 1, 0)
+        deepest = max(deepest, depth)
+    if deepest > _SWI_SAFE_DEPTH:  # else SWI's own check says more (guard.pl, 200 levels)
+        Source(text, file)  # raises GoalSyntaxError at the first bracket too deep
+
+
 def read_belief_file(path: str | Path,
                      predicates: Sequence[SavedPredicate] | None = None) -> FactFile:
     """The checked facts of a ``--load-beliefs`` file, kept in Prolog (close it, or use it
@@ -85,6 +103,7 @@ def read_belief_file(path: str | Path,
     if predicates is None:
         predicates = saved_predicates()
     text = read_program_file(path, MAX_FACT_FILE_BYTES)
+    _check_nesting(text, str(path))
     checks = [FactCheck(predicate.template, condition, meaning) for predicate in predicates
               if predicate.template for condition, meaning in predicate.checks]
     try:

@@ -166,3 +166,28 @@ def test_a_backslash_in_a_mas_agent_file_is_a_windows_separator_not_an_escape():
     mas = parse_mas('environment { env = "blocksworld". }\nagentfiles { "a\\=b.goal". }\n',
                     "x.mas2g")
     assert [agentfile.path for agentfile in mas.agentfiles] == ["a/=b.goal"]
+
+
+def test_a_belief_file_nested_too_deep_is_refused_before_swi_reads_it(tmp_path: Path):
+    deep = tmp_path / "deep.pl"
+    deep.write_text("f(" + "[" * 100_000 + "]" * 100_000 + ").\n")
+    program = tmp_path / "a.goal"
+    program.write_text(_condition("true"))
+    result = goalagent_measured("run", str(program), "--load-beliefs", str(deep),
+                                "--max-cycles", "1")
+    assert result.returncode == 2, result.stderr  # it was a segmentation fault (-11)
+    assert result.stderr == f"error: {deep}:1:202: brackets nested more than 200 deep\n"
+
+
+def test_printing_a_term_too_deep_for_swis_writer_is_the_agents_problem(tmp_path: Path):
+    path = tmp_path / "deep.goal"
+    path.write_text("init module { knowledge { nest(0, a) :- !.\n"
+                    "    nest(N, f(T)) :- N1 is N - 1, nest(N1, T). } }\n"
+                    "main module [exit=always] { program [order=linearall] {\n"
+                    "    if bel(X = 1) then print(X).\n"
+                    "    if bel(nest(1000000, T)) then print(T).\n"
+                    "    if true then print(after). } }\n")
+    result = goalagent_measured("run", str(path))
+    assert result.returncode in (0, 1), result.stderr  # it was a segmentation fault (-11)
+    assert result.stdout.splitlines()[0] == "1"
+    assert "Traceback" not in result.stderr

@@ -173,9 +173,18 @@ name_var(Name=Var) :- Var = '$ga_var'(Name).
 %   Term as write/1 (Quoted = false) or writeq/1 shows it, with ga_read's operators.
 
 write_text(Term, Quoted, String) :-
-    with_output_to(string(String),
-                   write_term(Term, [quoted(Quoted), module(ga_read), numbervars(true),
-                                     portray(false), spacing(standard)])).
+    (   writable(Term)
+    ->  with_output_to(string(String),
+                       write_term(Term, [quoted(Quoted), module(ga_read), numbervars(true),
+                                         portray(false), spacing(standard)]))
+    ;   throw(ga_error("a term nested too deeply to write (more than 5,000 levels)"))
+    ).
+
+%   writable(@Term): SWI's writer recurses in C once per level, and embedded by pyswip
+%   (--nosignals) SWI has no guard against running out of C stack: the process would
+%   crash (segmentation fault). So only terms at most 5,000 deep are written.
+writable(Term) :-
+    ga_guard:within(Term, 5000).
 
 		 /*******************************
 		 *            ERRORS            *
@@ -185,6 +194,9 @@ write_text(Term, Quoted, String) :-
 %   A readable one-line message for Error, without agent-module qualifications.
 
 error_message(ga_error(Message), Message) :- !.
+error_message(E, Message) :-
+    \+ writable(E), !,
+    Message = "an error whose term is nested too deeply to show (more than 5,000 levels)".
 error_message(ga_limit(Limit), Message) :- !,
     ga_guard:limit_message(Limit, Message).
 error_message(ga_refused(Why), Message) :- !,
