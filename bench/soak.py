@@ -64,7 +64,7 @@ def run_rounds(system: MultiAgentSystem, rounds: int) -> Window:
     cpu0, wall0 = time.process_time(), time.perf_counter()
     for _ in range(rounds):
         for agent in system.agents:
-            system._step(agent)
+            system.step(agent)
     cpu, wall = time.process_time() - cpu0, time.perf_counter() - wall0
     return Window(rounds, rounds * len(system.agents), cpu, wall)
 
