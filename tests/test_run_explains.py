@@ -169,6 +169,15 @@ def test_a_recursion_error_in_one_agent_is_reported_for_it_and_the_others_go_on(
     assert result.stdout.count("ok\n") == 3
 
 
+def test_a_goal_too_deep_to_convert_still_gets_its_summary(tmp_path: Path) -> None:
+    """The end-of-run summary counts goals in Prolog: a 5000-deep goal made it an
+    "internal error" that lost every agent's summary."""
+    (tmp_path / "deep.goal").write_text(DEEP.replace("insert(deep(T))", "adopt(deep(T))"))
+    result = goalagent("run", str(tmp_path / "deep.goal"))
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == "deep: terminated after 1 cycles, 1 actions, 1 goals left\n"
+
+
 def test_max_cycles_rejects_negatives() -> None:
     result = goalagent("run", "agents/examples/hello_world.goal", "--max-cycles", "-1")
     assert result.returncode == 2 and "Traceback" not in result.stderr

@@ -591,3 +591,8 @@ def _condition_error(engine: Engine, condition: ast.Condition, error: KBError) -
             return KBError(f"{literal.op}({literal.query.text}) at {literal.query.pos}: "
                            f"{syntax}", literal.query.pos)
     return error
+
+
+def goal_count(state: MentalState) -> int:
+    """How many goals the top goal base holds, none converted (a summary needs no more)."""
+    return int(state._call("goal_count", state._g, None)[1])

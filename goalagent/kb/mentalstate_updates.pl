@@ -393,6 +393,13 @@ goals(G, Goals) :-
     G:'$top'(Base),
     findall(Facts, ( G:'$goal'(Base, Id, _), goal_facts(G, Id, Facts) ), Goals).
 
+%!  goal_count(+G, -N) is det.
+%   How many goals the top goal base holds (without copying them out: a summary needs only
+%   the number, and a goal too deeply nested to convert must not stop the report).
+goal_count(G, N) :-
+    G:'$top'(Base),
+    aggregate_all(count, G:'$goal'(Base, _, _), N).
+
 %!  push(+B, +G, +Goals) is det.
 push(B, G, Goals) :-
     maplist(conjuncts_or_list, Goals, FactLists),
