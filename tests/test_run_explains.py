@@ -13,7 +13,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from goalagent.agent import Agent
+import pytest
+
+from goalagent.agent import Agent, AgentError
 from goalagent.agent.events import plain_variables
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -73,6 +75,14 @@ def test_warnings_show_no_prolog_variable_numbers_so_repeats_read_the_same() -> 
     assert "adopt: handled(_) is not ground" in shown[1]
     assert len(shown) == 4 and all("again in cycle 2" in line for line in shown[2:])
     assert plain_variables("p(_12, _G3, _12) foo_12 '_7'") == "p(_G1, _, _G1) foo_12 '_7'"
+
+
+def test_load_errors_show_no_prolog_variable_numbers() -> None:
+    """``clear(X) : block(X)`` (a colon for ``:-``) is refused naming ``clear(_)``, the same
+    text in every run (it named ``clear(_10642)`` or ``clear(_9808)``)."""
+    with pytest.raises(AgentError, match=r"refused: clear\(_\) is qualified with a module"):
+        Agent.from_string("init module { knowledge { clear(X) : block(X). } }\n"
+                          "main module { program { if true then print(x). } }", name="colon")
 
 
 def test_version() -> None:

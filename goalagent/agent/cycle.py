@@ -103,6 +103,7 @@ class Agent:
             text = str(err)
             if pos is not None and not text.startswith(str(pos)):
                 text = f"{pos}: {text}"
+            text = plain_variables(text)  # Prolog's variable numbers mean nothing to users
             raise AgentError(text if pos else f"{program.file}: {text}") from None
 
     # ------------------------------------------------------------------ construction
