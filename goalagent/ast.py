@@ -209,6 +209,10 @@ class AgentProgram:
     goals: tuple[PrologText, ...] = ()
     actionspecs: tuple[ActionSpec, ...] = ()
     warnings: tuple[str, ...] = field(default=(), compare=False)
+    # GOAL 6+ (an agent definition's module files) keeps a received message for the one
+    # cycle after it arrives (its MentalState: "a message base is cleared after every
+    # decision cycle"); GOAL 4/5 .goal files keep received/2 until the agent deletes it.
+    messages_for_one_cycle: bool = False
 
     def module(self, name: str) -> Module | None:
         """The module called ``name`` (``init``, ``main``, ``event`` or a user module)."""

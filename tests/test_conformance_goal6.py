@@ -1,7 +1,8 @@
 """Conformance of the two formats: each example of agents/examples/goal6 is an agent of
 agents/examples written in GOAL 6's multi-file format, and must do exactly what the
 single-file agent does -- the same lines printed, the same rules fired with the same
-bindings in the same order, the same end state."""
+bindings in the same order, the same end state (but for the mailbox: GOAL 6 keeps a received
+message one cycle, GOAL 4/5 until the agent deletes it)."""
 
 from __future__ import annotations
 
@@ -58,7 +59,7 @@ def run(path: Path, environment: str | None, params: dict[str, str]) -> dict[str
             "printed": output.getvalue(),
             "firings": firings,
             "beliefs": [sorted(unnamed(str(b)) for b in agent.beliefs()
-                               if not str(b).startswith("me("))  # names differ by file
+                               if not str(b).startswith(("me(", "received(")))
                         for agent in system.agents],
             "goals": [agent.goals() for agent in system.agents],
             "cycles": [(s.cycles, s.actions, s.status) for s in system.summaries()],

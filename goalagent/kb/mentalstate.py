@@ -539,6 +539,13 @@ class MentalState:
         self._call("add_once", self._b, fact, None)
         self._recheck = True
 
+    def set_mailbox(self, messages: Iterable[tuple[str, str, Term]]) -> None:
+        """Replaces every ``received/2`` belief by those of ``messages`` (sender, mood,
+        content): GOAL 6+ keeps a message for the one cycle after it arrives."""
+        facts = [Struct("received", tuple(self._message(*message))) for message in messages]
+        self._call("set_mailbox", self._b, facts)
+        self._recheck = True
+
     def add_sent(self, receiver: str, mood: str, content: Term) -> bool:
         """Believes ``sent(Receiver, φ)`` (moods as for received); False if already there."""
         fact = Struct("sent", tuple(self._message(receiver, mood, content)))

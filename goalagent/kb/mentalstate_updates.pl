@@ -462,6 +462,13 @@ set_percepts(B, Percepts) :-
 percepts(B, Percepts) :-
     findall(P, B:percept(P), Percepts).
 
+%!  set_mailbox(+B, +Messages) is det.
+%   The received/2 facts become Messages: GOAL 6+'s message base holds one cycle's mail.
+set_mailbox(B, Messages) :-
+    retractall(B:received(_, _)),
+    forall(member(M, Messages), ( clause(B:M, true) -> true ; assertz(B:M) )),
+    recheck(B).
+
 %!  add_once(+B, +Fact, -Added) is det.
 %   Asserts Fact unless already there; Added is true or false.
 

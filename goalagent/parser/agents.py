@@ -199,7 +199,8 @@ class _AgentLoader:
         modules = [*self.roles, *self.users.values()]
         if self.newest:
             self.top["actionspecs"].extend(_environment_actions(modules, self.top["actionspecs"]))
-        return finish_program(self.definition.name, file, modules, self.macros, self.top)
+        program = finish_program(self.definition.name, file, modules, self.macros, self.top)
+        return replace(program, messages_for_one_cycle=True)
 
 
 def _text(text: str, pos: ast.Pos) -> ast.PrologText:
