@@ -194,6 +194,7 @@ class MentalState:
         self._recheck = True
         self._run_pred: int | None = None
         self._has_percepts = False  # the percept base is not empty
+        self._has_mail = False  # received/2 holds messages (GOAL 6+ mailbox)
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         # Directives (op/3, use_module/1, ...) change how this agent reads text.
@@ -541,9 +542,13 @@ class MentalState:
 
     def set_mailbox(self, messages: Iterable[tuple[str, str, Term]]) -> None:
         """Replaces every ``received/2`` belief by those of ``messages`` (sender, mood,
-        content): GOAL 6+ keeps a message for the one cycle after it arrives."""
+        content): GOAL 6+ keeps a message for the one cycle after it arrives. An empty
+        mailbox replaced by an empty one costs no Prolog call."""
         facts = [Struct("received", tuple(self._message(*message))) for message in messages]
+        if not facts and not self._has_mail:
+            return
         self._call("set_mailbox", self._b, facts)
+        self._has_mail = bool(facts)
         self._recheck = True
 
     def add_sent(self, receiver: str, mood: str, content: Term) -> bool:
