@@ -269,15 +269,18 @@ def test_goal_bases_for_module_focus(blocks: MentalState) -> None:
 
 
 def test_messages_received_and_sent_moods(empty: MentalState) -> None:
-    empty.add_received("bob", ":", on("a", "b"))
-    empty.add_received("bob", "!", on("a", "b"))
-    empty.add_received("eve", "?", Struct("free", (a("c"),)))
+    empty.receive([("bob", ":", on("a", "b")), ("bob", "!", on("a", "b"))])
+    empty.receive([("eve", "?", Struct("free", (a("c"),)))])
     answers = empty.query("bel", "received(S, M)")
     assert [(x["S"], x["M"]) for x in answers] == [
         (a("bob"), on("a", "b")),
         (a("bob"), Struct("imp", (on("a", "b"),))),
         (a("eve"), Struct("int", (Struct("free", (a("c"),)),))),
     ]
+    empty.receive([("eve", ":", on("c", "d"))], replace=True)  # GOAL 6+: one cycle's mail
+    assert empty.query("bel", "received(S, M)") == [{"S": a("eve"), "M": on("c", "d")}]
+    empty.receive([], replace=True)
+    assert empty.query("bel", "received(S, M)") == []
     assert empty.add_sent("bob", "!", on("a", "b"))
     assert not empty.add_sent("bob", "!", on("a", "b"))
     assert empty.query("bel", "sent(bob, imp(on(a, b)))") == [{}]

@@ -236,12 +236,9 @@ class Agent:
             self.tell(percepts_event(self.name, percepts))
         if self.postman is not None:
             messages = self.postman.collect(self.name)
-            if self.program.messages_for_one_cycle:
-                self.ms.set_mailbox(messages)
-            for sender, mood, content in messages:
-                if not self.program.messages_for_one_cycle:
-                    self.ms.add_received(sender, mood, content)
-                if self.listeners:
+            self.ms.receive(messages, replace=self.program.messages_for_one_cycle)
+            if self.listeners:
+                for sender, mood, content in messages:
                     self.tell(message_event(self.name, sender, mood, content))
             self.report.messages = messages
 

@@ -193,8 +193,7 @@ class MentalState:
         # goals may be achieved in a way updates did not check (percepts, messages, ...).
         self._recheck = True
         self._run_pred: int | None = None
-        self._has_percepts = False  # the percept base is not empty
-        self._has_mail = False  # received/2 holds messages (GOAL 6+ mailbox)
+        self._has_percepts = self._has_mail = False  # the percept base, received/2 not empty
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         # Directives (op/3, use_module/1, ...) change how this agent reads text.
@@ -534,22 +533,12 @@ class MentalState:
         body = Struct(wrapper, (content,)) if wrapper else content
         return [peer if isinstance(peer, Atom) else Atom(peer), body]
 
-    def add_received(self, sender: str, mood: str, content: Term) -> None:
-        """Believes ``received(Sender, φ)`` (``imp(φ)`` for '!', ``int(φ)`` for '?')."""
-        fact = Struct("received", tuple(self._message(sender, mood, content)))
-        self._call("add_once", self._b, fact, None)
-        self._recheck = True
-
-    def set_mailbox(self, messages: Iterable[tuple[str, str, Term]]) -> None:
-        """Replaces every ``received/2`` belief by those of ``messages`` (sender, mood,
-        content): GOAL 6+ keeps a message for the one cycle after it arrives. An empty
-        mailbox replaced by an empty one costs no Prolog call."""
+    def receive(self, messages: Sequence[tuple[str, str, Term]], replace: bool = False) -> None:
+        """Believes received(S, φ), imp(φ) for '!', int(φ) for '?'; ``replace``: GOAL 6+'s mail."""
         facts = [Struct("received", tuple(self._message(*message))) for message in messages]
-        if not facts and not self._has_mail:
-            return
-        self._call("set_mailbox", self._b, facts)
-        self._has_mail = bool(facts)
-        self._recheck = True
+        if facts or (replace and self._has_mail):  # no Prolog call for no change
+            self._call("receive", self._b, facts, Atom("true" if replace else "false"))
+            self._has_mail, self._recheck = bool(facts) or (self._has_mail and not replace), True
 
     def add_sent(self, receiver: str, mood: str, content: Term) -> bool:
         """Believes ``sent(Receiver, φ)`` (moods as for received); False if already there."""

@@ -462,11 +462,12 @@ set_percepts(B, Percepts) :-
 percepts(B, Percepts) :-
     findall(P, B:percept(P), Percepts).
 
-%!  set_mailbox(+B, +Messages) is det.
-%   The received/2 facts become Messages: GOAL 6+'s message base holds one cycle's mail.
-set_mailbox(B, Messages) :-
-    retractall(B:received(_, _)),
-    forall(member(M, Messages), ( clause(B:M, true) -> true ; assertz(B:M) )),
+%!  receive(+B, +Messages, +Replace) is det.
+%   B believes each of the received/2 facts Messages (once); Replace == true: instead of the
+%   received/2 facts it had (GOAL 6+'s message base holds one cycle's mail).
+receive(B, Messages, Replace) :-
+    (   Replace == true -> retractall(B:received(_, _)) ; true ),
+    forall(member(M, Messages), add_once(B, M, _)),
     recheck(B).
 
 %!  add_once(+B, +Fact, -Added) is det.
