@@ -27,6 +27,7 @@ from goalagent.agent import Event, EventKind
 from goalagent.agent.events import show_term
 from goalagent.debugger import Debugger, DebuggerError, Stop
 from goalagent.extensions import Extension, InspectorPanel, PanelView
+from goalagent.inspector.environment_panel import EnvironmentPanel
 from goalagent.inspector.server import Command, InspectorServer
 
 if TYPE_CHECKING:
@@ -60,8 +61,8 @@ class Inspector:
         self.server = InspectorServer(host, port)
         self.host = host
         self.port = port
-        self.panels: list[InspectorPanel] = [make() for extension in extensions
-                                             for make in extension.inspector_panels]
+        self.panels: list[InspectorPanel] = [EnvironmentPanel()] + [
+            make() for extension in extensions for make in extension.inspector_panels]
         self._events: dict[str, list[dict[str, Any]]] = {}  # the cycle in progress, per agent
         self._last: dict[str, list[dict[str, Any]]] = {}  # the last cycle's, per agent
         self._stop: Stop | None = None
