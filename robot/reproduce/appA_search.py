@@ -21,6 +21,7 @@ from robot.reproduce.framework import (
 from robot.reproduce.task_runs import (
     MODES,
     RULE_COLUMNS,
+    even_trials,
     experienced_rules,
     experiment,
     identical_runs,
@@ -37,12 +38,8 @@ LAST_EXPLOIT = 3
 RULES_LISTED = 5
 
 
-def _per_place(scale: float) -> int:
-    return max(2, 2 * round(TRIALS_PER_PLACE * scale / 2))
-
-
 def run_seed(seed: int, scale: float, progress: Progress) -> dict:
-    per_place = _per_place(scale)
+    per_place = even_trials(TRIALS_PER_PLACE, scale, 2)
     result: dict = {"per_place": per_place}
     with opened_world("search") as world:
         for index, mode in enumerate(MODES):

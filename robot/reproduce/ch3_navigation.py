@@ -20,6 +20,7 @@ from robot.reproduce.framework import (
 )
 from robot.reproduce.task_runs import (
     MODES,
+    even_trials,
     experienced_rules,
     experiment,
     identical_runs,
@@ -39,13 +40,8 @@ RULES_LISTED = 21
 """Table 3.2 lists 21 rules."""
 
 
-def _trials(scale: float) -> int:
-    """An even number of trials, at least 4 (two before the exchange, two after)."""
-    return max(4, 2 * round(TRIALS * scale / 2))
-
-
 def run_seed(seed: int, scale: float, progress: Progress) -> dict:
-    trials = _trials(scale)
+    trials = even_trials(TRIALS, scale, 4)  # two before the exchange, two after
     result: dict = {"trials": trials}
     done = 0
     with opened_world("navigation") as world:

@@ -23,6 +23,7 @@ from robot.reproduce.framework import (
 )
 from robot.reproduce.task_runs import (
     MODES,
+    even_trials,
     experiment,
     identical_runs,
     majority_movability,
@@ -42,12 +43,8 @@ squatting moved; the high box (thesis 1000) pushed standing moved."""
 CHOICES = {"choose_box": "box", "choose_foam": "foam"}
 
 
-def _trials(scale: float) -> int:
-    return max(4, 2 * round(TRIALS * scale / 2))
-
-
 def run_seed(seed: int, scale: float, progress: Progress) -> dict:
-    trials = _trials(scale)
+    trials = even_trials(TRIALS, scale, 4)
     result: dict = {"trials": trials}
     with opened_world("stacking") as world:
         for index, mode in enumerate(MODES):

@@ -38,6 +38,12 @@ def opened_world(task_name: str) -> Iterator[object]:
         world.close()
 
 
+def even_trials(full: int, scale: float, minimum: int) -> int:
+    """``full`` trials scaled by ``scale`` and rounded to an even number (explore and exploit
+    trials alternate), at least ``minimum``."""
+    return max(minimum, 2 * round(full * scale / 2))
+
+
 def experiment(world: object, task_name: str, mode: str, method: str, seed: int,
                trials: int, change_after: int) -> dict:
     """One experiment of ``trials`` alternating trials in ``world``; the world changes after
