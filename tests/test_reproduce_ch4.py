@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from behaviours.learners.convergence import VARIANTS, first_convergence
 from robot.reproduce import ch4_exploration, ch4_skills
 from robot.reproduce._ch4 import CONFIGURATIONS, METHODS, SETUPS, budget
 from robot.reproduce.framework import find
@@ -34,7 +35,9 @@ def test_exploration_summary_counts_converged_seeds_and_their_median_step() -> N
     assert summary["lid-1d"] == {"active": {"converged": 3, "median_step": 35.0},
                                  "random": {"converged": 1, "median_step": 25.0}}
     assert summary["handle-3d"]["random"] == {"converged": 0, "median_step": None}
-    assert set(summary) == {"lid-1d", "lid-3d", "handle-1d", "handle-3d"}
+    assert set(summary) == {"lid-1d", "lid-3d", "handle-1d", "handle-3d", "variants"}
+    assert summary["variants"]["sustained"]["lid-1d"]["active"] == {  # 24 steps < 2N
+        "converged": 0, "median_step": None}
     rows = {row.quantity: row for row in ch4_exploration.compare(summary, seeds)}
     share = rows["lid-1d random: share of seeds converged (4.10)"]
     assert share.measured == pytest.approx(1 / 3) and share.reference == 0.0
@@ -53,6 +56,34 @@ def test_exploration_summary_counts_converged_seeds_and_their_median_step() -> N
     assert "lid-3d active: " + opening.format("4.4") not in rows
     one_slice_wrong = {"surface": [[-0.01, 0.0, 0.02]] * 4 + [[0.01, 0.0, 0.0]]}
     assert not ch4_exploration._opens_as_thesis(one_slice_wrong, 1.0)
+
+
+def test_variants_are_summarized_beside_the_thesis_on_the_recorded_td_errors() -> None:
+    """Active: |δ| constant (after-transient at 41, sustained and window-to-window at 40);
+    random: one error of 0.01 more at k = 35 in a spike every 10 steps (75, 41, 75, 75)."""
+    spiky = [0.01 if k % 10 == 0 or k == 35 else 0.0 for k in range(1, 101)]
+    seed = seed_with({})
+    for name in CONFIGURATIONS:
+        runs = seed["configurations"][name]
+        runs["active"].update(converged_at=21, td_errors=[-0.05] * 100,
+                              averaged=[None] * 19 + [0.05] * 81)
+        runs["random"].update(converged_at=None, td_errors=spiky,
+                              averaged=[None] * 19 + [0.001] * 81)
+    summary = ch4_exploration.summarize([seed, seed])
+    assert summary["lid-1d"]["random"] == {"converged": 0, "median_step": None}  # the thesis's
+    variants = summary["variants"]
+    assert set(variants) == {"after-transient", "sustained", "window-to-window"}
+    assert variants["after-transient"]["lid-3d"] == {
+        "active": {"converged": 2, "median_step": 41.0},
+        "random": {"converged": 2, "median_step": 41.0}}
+    assert variants["sustained"]["handle-1d"]["random"] == {"converged": 2, "median_step": 75.0}
+    assert variants["window-to-window"]["handle-3d"]["active"]["median_step"] == 40.0
+    listing = ch4_exploration.REPRODUCTION.listings(summary, [seed, seed])
+    assert "VARIANT stop criteria — NOT the thesis's (4.10)" in listing
+    assert "| lid-1d | thesis (4.10) | 2/2, 21 | 0/2, — | 2 / 0 / 0 | 0.0500 / — |" in listing
+    assert ("| lid-1d | sustained (VARIANT) | 2/2, 40 | 2/2, 75 | 2 / 0 / 0 | 0.0500 / 0.0010 |"
+            in listing)
+    assert "| handle-3d | after-transient (VARIANT) | 2/2, 41 | 2/2, 41 | 0 / 2 / 0 |" in listing
 
 
 def test_budgets_follow_the_thesis_and_shrink_with_the_scale() -> None:
@@ -91,6 +122,10 @@ def test_exploration_runs_small_and_reports_every_configuration(tmp_path: Path) 
             measured = document["seeds"][0]["configurations"][name][method]
             assert measured["steps"] == 22 == len(measured["averaged"])  # N_s at 5 %: 22
             assert result["converged"] == int(measured["converged_at"] is not None)
+            assert first_convergence(measured["td_errors"], "thesis") == measured["converged_at"]
+            for criterion in VARIANTS:  # 22 steps: too few for any variant (k >= 2N)
+                assert document["summary"]["variants"][criterion][name][method] == {
+                    "converged": 0, "median_step": None}
     seed = document["seeds"][0]["configurations"]
     assert seed["lid-1d"]["active"]["actions"][:20] == seed["lid-1d"]["random"]["actions"][:20]
     assert len(seed["handle-1d"]["active"]["surface"]) == 5

@@ -38,6 +38,10 @@ SETUPS = {
 }
 N_RANDOM = 20
 """The first actions are random in both methods (thesis §4.6.1: N = 20)."""
+TOLERANCE = 1e-4
+"""ε of (4.10) (thesis §4.6.1)."""
+
+
 def budget(setup: Configuration, scale: float) -> int:
     """N_s shrunk by ``scale``, never below N + 2 (the least that lets (4.10) be tested)."""
     return max(N_RANDOM + 2, round(setup.budget * scale))

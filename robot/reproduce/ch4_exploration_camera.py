@@ -22,5 +22,6 @@ REPRODUCTION = Reproduction(
     figures=ch4_exploration.figures,
     notes=ch4_exploration.notes("here measured on each rendered 320×240 frame (the dark "
                                 "region's bounding box, OpenCV)"),
+    listings=ch4_exploration.variant_listing,
     default_seeds=5,
 )
