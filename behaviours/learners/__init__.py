@@ -9,8 +9,9 @@ Chapter 4 (active affordance learning): ``network`` (the small tanh network), ``
 (F_ψ, eq. 4.1–4.4), ``cacla`` (actor-critic and the TD-error stop test, eq. 4.5–4.11),
 ``convergence`` ((4.10) on a recorded TD-error series, beside labelled variants that are
 not the thesis's), ``exploration`` (Algorithm 3 and the random baseline over a
-``ContinuousWorld``), ``skill_acquisition`` (goal generation and paired skills, eq. 4.12–4.18); ``validation`` and
-``persist`` (versioned JSON files, written atomically) serve them all.
+``ContinuousWorld``), ``skill_acquisition`` (goal generation and paired skills,
+eq. 4.12–4.18); ``validation`` and ``persist`` (versioned JSON files, written
+atomically) serve them all.
 
 Chapter 5 (part-based affordance models and transfer): ``part_models`` (ĝ, ĥ, 5.9–5.12),
 ``protocol`` (the object under test), ``baseline`` (Algorithm 4), ``similarity``
