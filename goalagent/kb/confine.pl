@@ -18,12 +18,10 @@
 */
 :- module(ga_confine, []).
 
-:- use_module(library(sandbox)).
 :- use_module(library(apply)).
 :- use_module(library(yall)).               % these define meta-predicates agents use: their
 :- use_module(library(aggregate)).          % goal arguments are found through the imports
 :- use_module(library(solution_sequences)).
-:- use_module(library(apply_macros), []).
 :- use_module(library(lists)).
 
 :- set_prolog_flag(generate_debug_info, false).
@@ -363,12 +361,16 @@ private(context_module/1).
 private(strip_module/3).
 
 %   Under the sandbox, library(sandbox) must find the call safe (its goal arguments,
-%   checked here, replaced by a safe placeholder of the same arity).
+%   checked here, replaced by a safe placeholder of the same arity). The library is loaded
+%   when first needed: it loads library(apply_macros), whose goal expansion then applies to
+%   every file compiled in the process (a run without --sandbox must not change how
+%   Prolog compiles the user's own files).
 sandbox_allows(_, c(_, false, _)) :- !.
 sandbox_allows(G, _) :-
     own_introspection(G), !.
 sandbox_allows(G, c(M, true, _)) :-
     placeholders(G, Probe),
+    use_module(library(sandbox), []),
     catch(sandbox:safe_goal(M:Probe), E, unsafe(E, G)).
 
 %   Looking at the agent's own predicates: library(sandbox) refuses these because a module

@@ -44,7 +44,6 @@
 
 run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     (   Listen == true -> b_setval('$ga_listen', true) ; true ),
-    (   nb_current('$ga_rule', Outer) -> true ; Outer = none ),  % a module call runs inside
     B:'$ga_limits'(MaxInferences, MaxBeliefs),
     b_setval('$ga_max_inferences', MaxInferences),
     nb_setval('$ga_aborted_rule', none),
@@ -55,8 +54,11 @@ run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     ->  throw(ga_limit(inferences(MaxInferences)))
     ;   true
     ),
-    b_setval('$ga_rule', Outer),           % warnings after the run belong to no rule
-    ga_guard:belief_bound(B, MaxBeliefs),
+    (   statistics(clauses, Clauses),       % the process's count: see belief_bound/2
+        Clauses =< MaxBeliefs
+    ->  true
+    ;   ga_guard:belief_bound(B, MaxBeliefs)
+    ),
     journal_actions(Journal, 0, Total),
     (   CountLast == true -> journal_actions(Last, 0, LastActions) ; LastActions = 0 ),
     (   nb_getval(B, true) -> Recheck = 1 ; Recheck = 0 ),
