@@ -173,6 +173,21 @@ def test_calling_a_deprecated_builtin_gives_a_located_warning_not_a_bare_one(
     assert "Deprecated" not in capfd.readouterr().err
 
 
+def test_a_warning_after_a_module_call_belongs_to_the_calling_rule() -> None:
+    """The called module's rules run in a query of their own; when it returns, the rule that
+    called it is again the one a warning names (rules.pl: the call's frame restores it)."""
+    warnings: list[str] = []
+    a = agent("""init module { actionspec { act { pre { index(_) ; true } post { true } } } }
+    main module [exit=always] { program {
+        if true then sub + act.
+    } }
+    module sub { program {
+        if true then print(inner).
+    } }""", warn=warnings.append)
+    a.step()
+    assert len(warnings) == 1 and "semantics.goal:3:9" in warnings[0], warnings
+
+
 def test_an_agent_without_the_belief_still_sees_its_absence() -> None:
     a = agent("""
         init module { knowledge { :- dynamic told/0. } }
