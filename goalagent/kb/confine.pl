@@ -362,16 +362,21 @@ private(strip_module/3).
 
 %   Under the sandbox, library(sandbox) must find the call safe (its goal arguments,
 %   checked here, replaced by a safe placeholder of the same arity). The library is loaded
-%   when first needed: it loads library(apply_macros), whose goal expansion then applies to
-%   every file compiled in the process (a run without --sandbox must not change how
-%   Prolog compiles the user's own files).
+%   when the first sandboxed agent is (load_sandbox/0): it loads library(apply_macros),
+%   whose goal expansion then applies to every file compiled in the process (a run without
+%   --sandbox must not change how Prolog compiles the user's own files).
 sandbox_allows(_, c(_, false, _)) :- !.
 sandbox_allows(G, _) :-
     own_introspection(G), !.
 sandbox_allows(G, c(M, true, _)) :-
     placeholders(G, Probe),
-    use_module(library(sandbox), []),
     catch(sandbox:safe_goal(M:Probe), E, unsafe(E, G)).
+
+%!  load_sandbox is det.
+%   Loads library(sandbox) before the first sandboxed agent is read (load/5), not under an
+%   agent's inference limit in the middle of a rule.
+load_sandbox :-
+    use_module(library(sandbox), []).
 
 %   Looking at the agent's own predicates: library(sandbox) refuses these because a module
 %   could be named in them, which prepare/3 has refused already.

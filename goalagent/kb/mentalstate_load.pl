@@ -36,6 +36,7 @@ destroy(B, G) :-
 %   for the first clause that fails (0-based); nothing of a program with an error runs.
 
 load(B, G, Items, Sandbox, Result) :-
+    (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
     load_(Items, 0, B, G, c(B, Sandbox, []), Result).
 

@@ -109,11 +109,19 @@ pass_until_fired([Rule|Rules], Ctx, Given, J0, J, Status,
     pass_until_fired(Rules, Ctx, Given, J1, J, Status, Rest).
 
 pass_all([], _, _, J0, J, Status, Statuses,
-         (J = J0, ( memberchk(fired, Statuses) -> Status = fired ; Status = none ))).
+         (J = J0, ( Fired -> Status = fired ; Status = none ))) :-
+    any_fired(Statuses, Fired).
 pass_all([Rule|Rules], Ctx, Given, J0, J, Status, Statuses,
          (Call, ( Status1 == exit -> J = J1, Status = exit ; Rest ))) :-
     Call =.. [Rule, Ctx, Given, J0, J1, Status1],
     pass_all(Rules, Ctx, Given, J1, J, Status, [Status1|Statuses], Rest).
+
+%   any_fired(+Statuses, -Test): a goal true when one of the rules' statuses is fired,
+%   written out (the pass runs every cycle: no list built, no memberchk/2 call).
+any_fired([], fail).
+any_fired([Status], Status == fired) :- !.
+any_fired([Status|Statuses], ( Status == fired ; Test )) :-
+    any_fired(Statuses, Test).
 
 apply_shuffled(Stop, Rules0, Ctx, Given, J0, J, Status) :-
     (   Rules0 = [_, _|_]
