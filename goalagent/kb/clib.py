@@ -1,20 +1,99 @@
 """libswipl's C foreign interface as goalagent uses it: typed ctypes handles on its
-functions, its type and flag constants, and the output buffers of the getters.
+functions, its type and flag constants, and the output buffers of the getters; and how SWI
+is started.
 
-pyswip loads and initialises ``libswipl``; we declare our own handles (pyswip's keep their
-own argument types) because the raw interface is an order of magnitude faster than the
-string API. Only goalagent.kb (engine.py, conversion.py) uses this module.
+pyswip loads ``libswipl``; we declare our own handles (pyswip's keep their own argument
+types) because the raw interface is an order of magnitude faster than the string API. Only
+goalagent.kb (engine.py, conversion.py, watchdog.py) uses this module.
+
+SWI is started here, before pyswip would start it with ``--nosignals``: that flag also
+turns off SWI's C-stack guard, so writing or reading a term nested ~100,000 deep (an
+agent's ``term_to_atom/2``, ``format/2``, ``print``) was a segmentation fault of the whole
+process. With SWI's signal handling on, its writer and reader meet the C-stack limit as a
+``resource_error(c_stack)`` in the query, which the rule's condition catches like any other
+error. SWI then also takes over other signals (SIGTERM, SIGHUP, SIGALRM, SIGPIPE, SIGILL,
+SIGBUS, ...); those are given back exactly as they were before SWI started, so Python's
+Ctrl-C/SIGTERM handling (goalagent/runner.py, watchdog.py) and subprocesses see what
+they did with ``--nosignals``. SWI keeps only SIGSEGV (the guard: a C-stack overflow in a
+guarded built-in longjmps back with the error, any other segmentation fault still ends
+the process after SWI's crash report) and SIGUSR2 (its thread alert, as with
+``--nosignals``). Its background garbage-collection thread stays off, as with
+``--nosignals``.
 """
 
 from __future__ import annotations
 
 import ctypes
+import importlib
+import importlib.util
+import signal
+import sys
 from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_int64, c_size_t, c_uint, c_void_p
-
-from pyswip import core as _pyswip_core  # loads libswipl and runs PL_initialise once
+from types import ModuleType
 
 from goalagent.kb.errors import KBError
 
+SWI_KEEPS = frozenset({signal.SIGSEGV, signal.SIGUSR2})
+"""The signals whose handlers SWI installs and keeps (see the module docstring)."""
+_SIGACTION_BYTES = 512  # more than any libc's struct sigaction (glibc x86-64: 152)
+_HANDLER_BYTES = ctypes.sizeof(c_void_p)  # the handler is the struct's first member
+_swi_argv: ctypes.Array | None = None  # SWI keeps pointers into its argv: kept alive here
+
+
+def _dispositions(libc: ctypes.CDLL) -> dict[int, ctypes.Array]:
+    """Each signal's current ``struct sigaction``, as opaque bytes."""
+    saved = {}
+    for signum in range(1, signal.NSIG):
+        action = ctypes.create_string_buffer(_SIGACTION_BYTES)
+        if libc.sigaction(signum, None, action) == 0:
+            saved[signum] = action
+    return saved
+
+
+def _initialise_swi(core: ModuleType) -> None:
+    """Starts SWI with its signal handling on (pyswip's own PL_initialise then does
+    nothing), then gives back every signal handler it replaced but those of ``SWI_KEEPS``."""
+    global _swi_argv
+    libc = ctypes.CDLL(None, use_errno=True)
+    before = _dispositions(libc)
+    args = [b"./", b"-q"]  # pyswip's arguments without --nosignals
+    if core.SWI_HOME_DIR:
+        args.append(f"--home={core.SWI_HOME_DIR}".encode())
+    _swi_argv = (c_char_p * (len(args) + 1))(*args, None)
+    initialise = ctypes.CDLL(core._lib._name, mode=ctypes.RTLD_GLOBAL).PL_initialise
+    initialise.argtypes = (c_int, POINTER(c_char_p))
+    if not initialise(len(args), _swi_argv):
+        raise ImportError("SWI-Prolog could not be initialised")
+    for signum, action in _dispositions(libc).items():
+        old = before.get(signum)
+        if signum not in SWI_KEEPS and old is not None and \
+                action.raw[:_HANDLER_BYTES] != old.raw[:_HANDLER_BYTES]:
+            libc.sigaction(signum, old, None)
+
+
+def _load_pyswip() -> ModuleType:
+    """pyswip's ``core`` module, with SWI started by :func:`_initialise_swi` between
+    loading ``libswipl`` (pyswip.core) and pyswip's own start (its package import). If
+    pyswip was imported before goalagent, SWI already runs as pyswip started it."""
+    if "pyswip" in sys.modules:
+        return importlib.import_module("pyswip.core")
+    spec = importlib.util.find_spec("pyswip")
+    if spec is None or spec.loader is None:
+        raise ImportError("pyswip is not installed")
+    package = importlib.util.module_from_spec(spec)
+    sys.modules["pyswip"] = package  # its __init__ not run yet: it would start SWI
+    try:
+        core = importlib.import_module("pyswip.core")  # finds and loads libswipl only
+        _initialise_swi(core)
+        spec.loader.exec_module(package)
+    except BaseException:
+        for name in [name for name in sys.modules if name.partition(".")[0] == "pyswip"]:
+            del sys.modules[name]
+        raise
+    return core
+
+
+_pyswip_core = _load_pyswip()
 LIB = ctypes.CDLL(_pyswip_core._lib._name, mode=ctypes.RTLD_GLOBAL)
 
 term_t = c_size_t
@@ -79,6 +158,22 @@ PL_thread_attach_engine = _declare("PL_thread_attach_engine", c_int, c_void_p)
 PL_thread_destroy_engine = _declare("PL_thread_destroy_engine", c_int)
 PL_chars_to_term = _declare("PL_chars_to_term", c_int, c_char_p, term_t)
 PL_call = _declare("PL_call", c_int, term_t, c_void_p)
+
+
+def _call_text(goal: bytes) -> bool:
+    """Runs a goal given as text, once (used while starting, before the engine exists)."""
+    frame = PL_open_foreign_frame()
+    try:
+        term = PL_new_term_ref()
+        return bool(PL_chars_to_term(goal, term) and PL_call(term, None))
+    finally:
+        PL_discard_foreign_frame(frame)
+
+
+# With signal handling on SWI starts a thread for atom and clause garbage collection;
+# --nosignals had none: collect in the thread that needs it, as before.
+if not _call_text(b"set_prolog_gc_thread(false)"):
+    raise ImportError("SWI-Prolog's garbage-collection thread could not be stopped")
 
 PL_VARIABLE, PL_ATOM, PL_INTEGER, PL_RATIONAL, PL_FLOAT, PL_STRING = 1, 2, 3, 4, 5, 6
 PL_TERM, PL_NIL, PL_LIST_PAIR = 7, 8, 10
