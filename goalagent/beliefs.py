@@ -28,7 +28,7 @@ from goalagent.parser import GoalSyntaxError
 from goalagent.parser.source import MAX_FACT_FILE_BYTES, Source, read_program_file
 
 _BRACKETS = re.compile(r"[()\[\]{}]")
-_SWI_SAFE_DEPTH = 5000  # nesting SWI's reader (C recursion) takes without risk
+_EXACT_SCAN_DEPTH = 5000  # nesting from which the brackets are located exactly first
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -80,16 +80,16 @@ def check_save_target(path: Path) -> Path:
 
 
 def _check_nesting(text: str, file: str) -> None:
-    """Brackets nested more than 200 deep (when they may pass 5,000) are a located error
-    before SWI reads the file: its reader recurses in C per level and, embedded with
-    --nosignals, has no C-stack guard (a 100,000-deep list crashed the process). The count
-    over every bracket is a quick bound; only a text that may pass it is scanned exactly
-    (quotes, comments)."""
+    """Brackets nested more than 200 deep (when they may pass 5,000) are an error at the
+    first bracket too deep, before SWI reads the file: its reader recurses in C per level
+    and would stop on a 100,000-deep list with a C-stack error located at the file's start.
+    The count over every bracket is a quick bound; only a text that may pass it is scanned
+    exactly (quotes, comments)."""
     depth = deepest = 0
     for match in _BRACKETS.finditer(text):
         depth = depth + 1 if match.group() in "([{" else max(depth - 1, 0)
         deepest = max(deepest, depth)
-    if deepest > _SWI_SAFE_DEPTH:  # else SWI's own check says more (guard.pl, 200 levels)
+    if deepest > _EXACT_SCAN_DEPTH:  # else SWI's own check says more (guard.pl, 200 levels)
         Source(text, file)  # raises GoalSyntaxError at the first bracket too deep
 
 

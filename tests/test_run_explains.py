@@ -173,7 +173,8 @@ def test_a_recursion_error_in_one_agent_is_reported_for_it_and_the_others_go_on(
     result = goalagent("run", str(tmp_path / "two.mas2g"), "--max-cycles", "3",
                        "--trace=beliefs")
     assert result.returncode == 1 and "Traceback" not in result.stderr
-    assert re.search(r"error: agent deep failed: .*RecursionError", result.stderr)
+    assert ("error: agent deep failed: cannot pass a cyclic term, or one nested over ~1,000 "
+            "levels, to Python\n") in result.stderr
     assert "deep: failed after 1 cycles" in result.stderr
     assert "steady: stopped at the cycle limit after 3 cycles" in result.stderr
     assert result.stdout.count("ok\n") == 3

@@ -283,7 +283,7 @@ class Engine(TermConversion):
                         answers.append([Record(self, PL_record(base + i)) if i == keep
                                         else get(base + i, seen, marks) for i in outputs])
             except (RecursionError, ctypes.ArgumentError) as error:
-                if isinstance(error, ctypes.ArgumentError) and "Recursion" not in str(error):
+                if not _too_deep(error):
                     raise
                 raise KBError("an answer is a cyclic or too deeply nested term") from None
             finally:
@@ -415,6 +415,15 @@ def _copy(term: Term) -> Term:
     return term
 
 
+_TOO_DEEP_FOR_PYTHON = "cannot pass a cyclic term, or one nested over ~1,000 levels, to Python"
+
+
+def _too_deep(error: BaseException) -> bool:
+    """Python's recursion limit met converting a term (in Python, or in a ctypes call)."""
+    return isinstance(error, RecursionError) or (
+        isinstance(error, ctypes.ArgumentError) and "RecursionError" in str(error))
+
+
 def define_foreign(engine: Engine, module: str, name: str,
                    respond: Callable[[Term], Term | None], *, stretch: bool = True) -> None:
     """Defines ``module:name(+Request, -Reply)``: Prolog's call converts Request to a Python
@@ -434,7 +443,8 @@ def define_foreign(engine: Engine, module: str, name: str,
             engine._put(t, answer, {})
             return 1 if PL_unify(reply, t) else 0
         except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
-            engine._python_errors.append(error)
+            engine._python_errors.append(KBError(_TOO_DEEP_FOR_PYTHON) if _too_deep(error)
+                                         else error)
             t = PL_new_term_ref()
             PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
             return PL_raise_exception(t)

@@ -317,8 +317,9 @@ class CompiledProgram:
         """The rule's condition compiled in this agent (its own clause)."""
         try:
             return self._state.compile(rule.condition)
-        except KBError as err:
-            raise KBError(f"{rule.pos}: {err}", err.pos or rule.pos) from None
+        except KBError as err:  # located once: at the literal when known, else the rule
+            pos = err.pos or rule.pos
+            raise KBError(f"{pos}: {err}", pos) from None
 
     @staticmethod
     def _rule_info(module: ast.Module, rule: ast.Rule, names: tuple[str, ...],

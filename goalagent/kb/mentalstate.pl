@@ -172,17 +172,18 @@ name_var(Name=Var) :- Var = '$ga_var'(Name).
 %!  write_text(+Term, +Quoted, -String) is det.
 %   Term as write/1 (Quoted = false) or writeq/1 shows it, with ga_read's operators.
 
+%   SWI's writer recurses in C once per level; its C-stack guard (on: goalagent/kb/clib.py
+%   starts SWI with signal handling) stops a term too deep for the C stack with a
+%   resource error, said here in the agent's words.
 write_text(Term, Quoted, String) :-
-    (   writable(Term)
-    ->  with_output_to(string(String),
-                       write_term(Term, [quoted(Quoted), module(ga_read), numbervars(true),
-                                         portray(false), spacing(standard)]))
-    ;   throw(ga_error("a term nested too deeply to write (more than 5,000 levels)"))
-    ).
+    catch(with_output_to(string(String),
+                         write_term(Term, [quoted(Quoted), module(ga_read), numbervars(true),
+                                           portray(false), spacing(standard)])),
+          error(resource_error(c_stack), _),
+          throw(ga_error("a term nested too deeply to write (SWI's writer ran out of C stack)"))).
 
-%   writable(@Term): SWI's writer recurses in C once per level, and embedded by pyswip
-%   (--nosignals) SWI has no guard against running out of C stack: the process would
-%   crash (segmentation fault). So only terms at most 5,000 deep are written.
+%   writable(@Term): Term is at most 5,000 deep, short enough to show in a message (a
+%   deeper one would fill the screen, or run SWI's writer out of C stack).
 writable(Term) :-
     ga_guard:within(Term, 5000).
 

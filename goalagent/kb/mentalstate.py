@@ -210,8 +210,8 @@ class MentalState:
             kind, text = clauses[int(index)]
             self.close()
             pos = text.pos if isinstance(text, ast.PrologText) else None
-            where = f" at {pos}" if pos else ""
-            raise KBError(f"{kind} clause `{_text_of(text)}`{where}: {message}", pos)
+            where = f"{pos}: " if pos else ""
+            raise KBError(f"{where}{kind} clause `{_text_of(text)}`: {message}", pos)
 
     # ------------------------------------------------------------------ plumbing
 
