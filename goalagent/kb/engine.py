@@ -83,6 +83,8 @@ class Engine(TermConversion):
     def __init__(self) -> None:
         super().__init__()
         self._thread = get_ident()
+        if PL_thread_self() == -1:  # made in another thread than SWI's first one
+            self._attach_thread()
         self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
         self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
@@ -174,6 +176,8 @@ class Engine(TermConversion):
         key = (name, arity, module)
         handle = self._preds.get(key)
         if handle is None:
+            if get_ident() != self._thread:  # SWI needs an engine in this thread
+                self._attach_thread()
             handle = PL_predicate(name.encode(), arity, module.encode())
             if cache:
                 self._preds[key] = handle
