@@ -565,7 +565,10 @@ listening :-
     b_getval('$ga_listen', true).
 
 %   A warning SWI-Prolog prints while a rule runs (say, a deprecated built-in called from a
-%   condition) is told as the rule's problem, with its place, instead of printed bare.
+%   condition) is told as the rule's problem, with its place, instead of printed bare. Each
+%   rule clause sets '$ga_rule' with b_setval/2: a module call's rules run in a query of
+%   their own, and when it returns Python discards its frame, which gives the calling rule
+%   back its id (undone like a binding).
 :- multifile user:message_hook/3.
 user:message_hook(_, warning, Lines) :-
     nb_current('$ga_rule', Id),
