@@ -61,10 +61,14 @@ class Watchdog:
         os.set_blocking(self._read, False)
         os.set_blocking(self._write, False)
         self._struck: int | None = None  # the stretch a time limit was thrown in
+        self._struck_at = 0.0  # when (the next strike comes one limit later)
         self._stopping: int | None = None  # a signal asking to stop, not yet done
         self._aborted: int | None = None  # the stretch last aborted for it
         self._exit_code: Callable[[int], int] = lambda signum: 128 + signum
-        define_foreign(engine, "ga_guard", "$ga_stretch", lambda _: engine.stretch,
+        # The running stretch's number, -1 when none runs (a signal that arrives after the
+        # query ended, e.g. handled as the process exits, then does nothing).
+        define_foreign(engine, "ga_guard", "$ga_stretch",
+                       lambda _: engine.stretch if engine.stretch_since is not None else -1,
                        stretch=False)
         self._main = threading.main_thread().ident
         if threading.get_ident() == self._main and signal.getsignal(WAKE) in (
@@ -130,17 +134,23 @@ class Watchdog:
 
     def _check_time(self) -> None:
         """Throw ``ga_limit(time(T))`` in a stretch older than the limit; abort it if it is
-        still running one limit after that."""
-        limit, since, stretch = self.time_limit, self.engine.stretch_since, self.engine.stretch
-        if limit is None or since is None or time.monotonic() - since < limit:
+        still running one limit after that. Reads the engine's stretch, never writes it
+        (the main thread may end the stretch at any moment: a time written back here could
+        outlive it and strike a later, idle moment)."""
+        engine = self.engine
+        limit, since, stretch = self.time_limit, engine.stretch_since, engine.stretch
+        if limit is None or since is None or engine.depth == 0:
             return
-        if self._struck == stretch:
+        struck = self._struck == stretch
+        if time.monotonic() - (self._struck_at if struck else since) < limit:
+            return
+        if struck:
             self._send("abort", f"ran on for {2 * limit:g} s past its time limit of "
                        f"{limit:g} s (--max-query-seconds) although interrupted; stopped")
         else:
             self._struck = stretch
             self._send(f"time({limit!r})", None)
-        self.engine.stretch_since = time.monotonic()  # the next strike after another limit
+        self._struck_at = time.monotonic()  # the next strike after another limit
 
     def _send(self, action: str, reason: str | None) -> None:
         """Asks the main thread's Prolog to do ``action`` in the running stretch, if any."""
