@@ -78,18 +78,23 @@ def test_a_rule_that_stalls_without_inferences_meets_the_time_limit():
                         "longer than 0.5 s (--max-query-seconds); the rule is not applicable"]
 
 
-def test_a_rule_that_swallows_the_time_limit_stops_its_agent_not_the_others():
+def test_a_catch_all_cannot_swallow_the_time_limit():
+    # catch(sleep(60), _, true) in a loop: the agent's catch/3 lets the limit pass, so
+    # the rule is not applicable (each cycle, within the limit) and the others go on
     stubborn = RUNAWAYS + "main module { program { if bel(stubborn) then print(never). } }"
-    mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None,
+    warnings: list[str] = []
+    mas = MultiAgentSystem(output=io.StringIO(), warn=warnings.append,
                            limits=Limits(max_query_seconds=0.3))
     mas.launch("stubborn", parse_agent(stubborn, "stubborn.goal"))
     mas.launch("counter", parse_agent(COUNTER, "counter.goal"))
+    start = time.monotonic()
     try:
-        summaries = {summary.name: summary for summary in mas.run(max_cycles=20)}
+        summaries = {summary.name: summary for summary in mas.run(max_cycles=6)}
     finally:
         mas.close()
-    assert summaries["stubborn"].status == "failed"
-    assert "past its time limit" in mas.failures["stubborn"]
+    assert time.monotonic() - start < 15
+    assert summaries["stubborn"].status != "failed" and summaries["stubborn"].cycles == 6
+    assert "stubborn.goal:9:25: ran longer than 0.3 s (--max-query-seconds)" in warnings[0]
     assert summaries["counter"].status == "terminated" and summaries["counter"].cycles == 5
 
 

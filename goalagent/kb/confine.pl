@@ -26,6 +26,8 @@
 
 :- set_prolog_flag(generate_debug_info, false).
 
+:- include(confine_builtins).
+
 %   Placeholders for goal arguments when asking library(sandbox) about a meta-predicate
 %   (the arguments themselves are checked here, one by one).
 free.
@@ -104,10 +106,12 @@ prepare(G, Ctx, Prepared) :-
     ->  refuse("~q/~w would reveal other agents' or the runtime's modules", [Name, Arity])
     ;   process_wide(Name/Arity)
     ->  refuse("~q/~w would end or change the whole process, every agent in it", [Name, Arity])
+    ;   attribute_hook(Name/Arity)
+    ->  refuse("~q/~w makes the module it names run code (its attribute hooks); use freeze/2, when/2 or dif/2", [Name, Arity])
     ;   lambda(Name, Arity)
     ->  refuse("~q/~w: this lambda form (library(yall)) cannot be checked; write Params>>Body or a helper predicate", [Name, Arity])
-    ;   \+ library_goal(G)
-    ->  refuse("~q loads code into the process: only library modules (use_module(library(Name)))", [G])
+    ;   \+ library_goal(G, Ctx)
+    ->  library_refused(G, Ctx)
     ;   own(G, Ctx)
     ->  Prepared = G
     ;   keys_allowed(G),
@@ -132,11 +136,16 @@ own(G, c(M, _, Own)) :-
 prepare_call(G, Ctx, Prepared) :-
     (   format_goal(G)
     ->  fail                                % refused above if it could run a goal
+    ;   printing_goal(G),
+        \+ ground(G),
+        \+ arg(3, Ctx, runtime)
+    ->  checked(Ctx, G, Prepared)           % its text checked when it is printed
     ;   meta_specs(G, Specs)
     ->  G =.. [Name|Args0],
         (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)
-        ->  Prepared =.. [Name|Args],
-            sandbox_allows(Prepared, Ctx)
+        ->  Allowed =.. [Name|Args],
+            sandbox_allows(Allowed, Ctx),
+            stoppable(Allowed, Ctx, Prepared)
         ;   checked(Ctx, G, Prepared)     % call_checked/3 asks the sandbox when it runs
         )
     ;   predicate_property(system:G, transparent),
@@ -160,8 +169,29 @@ format_goal(G) :-
     ->  refuse("format/2,3 with a format only known at run time", [])
     ;   text_contains(F, "~@")
     ->  refuse("format's ~~@ calls a goal; write the goal's output another way", [])
+    ;   text_contains(F, "~W"),
+        \+ ground(G)
+    ->  refuse("format's ~~W with write options only known at run time", [])
+    ;   hidden_call(G)
+    ->  refuse("~q: its write options call a goal (portray_goal)", [G])
     ;   fail
     ).
+format_goal(G) :-
+    printing_goal(G),
+    hidden_call(G),
+    refuse("~q would call a goal hidden in its text (~~@) or options (portray_goal)", [G]).
+
+%   hidden_call(@G): some argument of G is text holding ~@ (an atom, string or list of
+%   codes or characters) or a write option portray_goal(_).
+hidden_call(G) :-
+    sub_term(T, G),
+    nonvar(T),
+    (   T = portray_goal(_)
+    ;   ( atom(T) ; string(T) ), sub_string(T, _, _, _, "~@")
+    ;   T = [C1, C2|_], nonvar(C1), nonvar(C2),
+        ( C1 == 0'~ ; C1 == '~' ), ( C2 == 0'@ ; C2 == '@' )
+    ),
+    !.
 
 text_contains(Text, Part) :-
     catch(( text_to_string(Text, String), sub_string(String, _, _, _, Part) ), _, fail).
@@ -300,83 +330,33 @@ key_arg(G, Key) :-
 lambda(/, Arity) :- Arity >= 2.             % yall's Free/Lambda and \X^Body: copy rules
 lambda(\, Arity) :- Arity >= 1.             % this check does not follow
 
-%   library_goal(+G): G loads no code, or only a library module.
-library_goal(G) :-
-    (   G = use_module(Spec) ; G = use_module(Spec, _) ; G = '[|]'(Spec, _) ; G = load_files(Spec, _) )
-    ->  nonvar(Spec), Spec = library(L), atom(L)
+%   library_goal(+G, +Ctx): G loads no code, or only a library module.
+library_goal(G, Ctx) :-
+    (   G = use_module(Spec) ; G = use_module(Spec, _) )
+    ->  nonvar(Spec), Spec = library(L), library_name(L, Ctx)
     ;   true.
 
-%   Built-ins no agent may call, sandbox or not: the other agents run in the same process.
-process_wide(set_prolog_flag/2).
-process_wide(create_prolog_flag/3).
-process_wide(consult/1).
-process_wide(load_files/1).
-process_wide(ensure_loaded/1).
-process_wide(include/1).
-process_wide(make/0).
-process_wide(qcompile/1).
-process_wide(qcompile/2).
-process_wide(load_foreign_library/1).
-process_wide(load_foreign_library/2).
-process_wide(use_foreign_library/1).
-process_wide(use_foreign_library/2).
-process_wide(open_shared_object/2).
-process_wide(open_shared_object/3).
-process_wide(chdir/1).
-process_wide(halt/0).
-process_wide(halt/1).
-process_wide(abort/0).
-process_wide(thread_signal/2).
-process_wide(set_prolog_stack/2).
-process_wide(garbage_collect_atoms/0).
-process_wide(thread_create/2).          % a thread runs outside the agent's limits, beside
-process_wide(thread_create/3).          % the one thread the runtime drives Prolog from
-process_wide(thread_create_in_pool/4).
-process_wide(concurrent/3).
-process_wide(concurrent_forall/2).
-process_wide(concurrent_forall/3).
-process_wide(concurrent_maplist/2).
-process_wide(concurrent_maplist/3).
-process_wide(concurrent_maplist/4).
-process_wide(first_solution/3).
-process_wide(call_in_thread/2).
+library_refused(G, c(_, true, _)) :- !,
+    refuse("~q is not allowed in the sandbox: it loads code, and agents load only these libraries: ~w", [G, "lists, apply, aggregate, pairs, assoc, ordsets, ugraphs, rbtrees, nb_set, heaps, random, solution_sequences, yall, occurs, terms, sort, option, error, gensym, varnumbers, when, dif, dicts, strings, tables, dcg/basics, dcg/high_order"]).
+library_refused(G, _) :-
+    refuse("~q loads code into the process: only library modules (use_module(library(Name)))", [G]).
 
-%   Built-ins that enumerate modules or atoms, or reach into frames or the module system.
-private(current_module/1).
-private(module_property/2).
-private(current_atom/1).
-private(current_blob/2).
-private(current_functor/2).
-private(current_key/1).
-private(current_flag/1).
-private(prolog_current_frame/1).
-private(prolog_frame_attribute/3).
-private(prolog_choice_attribute/3).
-private((@)/2).
-private(set_module/1).
-private(module/2).
-private(add_import_module/3).
-private(delete_import_module/2).
-private(context_module/1).
-private(strip_module/3).
-
-%   Under the sandbox, library(sandbox) must find the call safe (its goal arguments,
-%   checked here, replaced by a safe placeholder of the same arity). The library is loaded
-%   when the first sandboxed agent is (load_sandbox/0): it loads library(apply_macros),
-%   whose goal expansion then applies to every file compiled in the process (a run without
-%   --sandbox must not change how Prolog compiles the user's own files).
-sandbox_allows(_, c(_, false, _)) :- !.
-sandbox_allows(G, _) :-
-    own_introspection(G), !.
-sandbox_allows(G, c(M, true, _)) :-
-    placeholders(G, Probe),
-    catch(sandbox:safe_goal(M:Probe), E, unsafe(E, G)).
-
-%!  load_sandbox is det.
-%   Loads library(sandbox) before the first sandboxed agent is read (load/5), not under an
-%   agent's inference limit in the middle of a rule.
-load_sandbox :-
-    use_module(library(sandbox), []).
+%   library_name(+L, +Ctx): a library of SWI-Prolog's own (library(lists), library(dcg/basics)),
+%   never a path out of its folders (library('../../tmp/evil') would load any file); in
+%   the sandbox one of a few whose loading changes nothing else in the process (many
+%   libraries hook into how the whole process compiles code: library(apply_macros), which
+%   library(clpfd) and others load, changes every file compiled after it).
+library_name(L, Ctx) :-
+    (   atom(L) -> Name = L ; term_to_atom(L, Name) ),
+    split_string(Name, "/", "", Parts),
+    forall(member(Part, Parts),
+           ( string_chars(Part, [First|Rest]),
+             char_type(First, lower),
+             forall(member(C, Rest), ( char_type(C, alnum) ; C == '_' )) )),
+    (   arg(2, Ctx, true)
+    ->  sandbox_library(Name)
+    ;   true
+    ).
 
 %   Looking at the agent's own predicates: library(sandbox) refuses these because a module
 %   could be named in them, which prepare/3 has refused already.
@@ -451,8 +431,11 @@ prepare_directive(D, _, D) :-
     unqualified(Spec).
 prepare_directive(op(P, T, Names), _, op(P, T, Names)) :- !,
     unqualified(Names).
-prepare_directive(D, _, D) :-
-    library_load(D), !.
+prepare_directive(D, Ctx, D) :-
+    library_load(D, Ctx), !.
+prepare_directive(D, c(M, true, O), _) :-
+    ( D = use_module(_) ; D = use_module(_, _) ; D = ensure_loaded(_) ), !,
+    library_refused(D, c(M, true, O)).
 prepare_directive(D, c(_, true, _), _) :- !,
     refuse("the directive ~q is not allowed in the sandbox (only dynamic, discontiguous, op and loading library modules)", [D]).
 prepare_directive(D, Ctx, Prepared) :-
@@ -461,9 +444,9 @@ prepare_directive(D, Ctx, Prepared) :-
 declaration(dynamic(_)).
 declaration(discontiguous(_)).
 
-library_load(use_module(library(L))) :- atom(L).
-library_load(use_module(library(L), _)) :- atom(L).
-library_load(ensure_loaded(library(L))) :- atom(L).
+library_load(use_module(library(L)), Ctx) :- library_name(L, Ctx).
+library_load(use_module(library(L), _), Ctx) :- library_name(L, Ctx).
+library_load(ensure_loaded(library(L)), Ctx) :- library_name(L, Ctx).
 
 unqualified(X) :- var(X), !.
 unqualified(M:X) :- !,

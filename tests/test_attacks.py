@@ -1,0 +1,144 @@
+"""Attack programs from the red team of 2026-11-23 evening (issue 14): each hole they found,
+as the smallest program that showed it. Runaway programs run in a child process with a
+timeout (one regression would otherwise hang the suite: SWI-Prolog cannot interrupt a
+cleanup handler while an exception unwinds)."""
+
+from __future__ import annotations
+
+import io
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from goalagent.agent import Agent, AgentError
+from goalagent.kb.engine import get_engine
+from goalagent.kb.limits import Limits
+from goalagent.kb.terms import Atom, Struct
+from goalagent.parser import parse_agent
+
+RUNTIME_MODULES = ("ga_kb", "ga_rules", "ga_read", "ga_guard", "ga_confine", "user", "system")
+COUNTER = """
+init module { beliefs { n(0). } goals { n(5). } }
+main module [exit=nogoals] { program {
+    if bel(n(N), N < 5, M is N + 1) then delete(n(N)) + insert(n(M)).
+} }
+"""
+
+
+def _run_with_counter(tmp_path: Path, knowledge: str, rule: str) -> subprocess.CompletedProcess:
+    (tmp_path / "atk.goal").write_text(
+        f"init module {{ knowledge {{ spin(N) :- N1 is N + 1, spin(N1). {knowledge} }} }}\n"
+        f"main module [exit=always] {{ program {{\n{rule}\nif true then print(after). }} }}\n")
+    (tmp_path / "counter.goal").write_text(COUNTER)
+    (tmp_path / "s.mas2g").write_text('agentfiles { "atk.goal". "counter.goal". }\n')
+    return subprocess.run([sys.executable, "-m", "goalagent", "run", str(tmp_path / "s.mas2g"),
+                           "--max-inferences", "200000", "--max-query-seconds", "1"],
+                          capture_output=True, text=True, timeout=60,
+                          stdin=subprocess.DEVNULL)
+
+
+@pytest.mark.parametrize("knowledge, rule", [
+    # a catch-all whose recovery runs the runaway again: each limit (and abort) was caught
+    ("st :- catch(spin(0), _, st).", "if bel(st) then print(never)."),
+    ("st :- catch_with_backtrace(sleep(100), _, st).", "if bel(st) then print(never)."),
+    # a runaway cleanup: SWI runs it with signals held back while the limit's exception
+    # unwinds the goal -- not even SIGTERM ended the process
+    ("", "if bel(setup_call_cleanup(true, spin(0), spin(0))) then print(never)."),
+    ("", "if bel(call_cleanup(spin(0), spin(0))) then print(never)."),
+    ("", "if bel(setup_call_catcher_cleanup(true, throw(x), _, spin(0))) then print(never)."),
+])
+def test_runaway_recovery_or_cleanup_ends_with_its_rule(tmp_path: Path, knowledge: str, rule: str):
+    result = _run_with_counter(tmp_path, knowledge, rule)
+    assert "Traceback" not in result.stderr
+    assert "atk.goal:3:1:" in result.stderr and "the rule is not applicable" in result.stderr
+    assert "after" in result.stdout
+    assert "counter: terminated after 5 cycles" in result.stderr
+
+
+def test_cleanup_still_runs_when_its_goal_ends_without_an_exception():
+    agent = _load("", "if bel(setup_call_cleanup(true, X = 1, assertz(done(X))), "
+                      "call_cleanup(true, assertz(done(c)))) then print(X).")
+    try:
+        agent.step()
+        assert agent.query("bel", "done(X)") == [{"X": 1}, {"X": Atom("c")}]
+    finally:
+        agent.close()
+
+
+def _load(knowledge: str = "", rules: str = "if true then print(ok).", *,
+          sandbox: bool = False, warnings: list[str] | None = None) -> Agent:
+    text = (f"init module {{ knowledge {{ {knowledge} }} }}\n"
+            f"main module [exit=always] {{ program {{\n{rules}\n}} }}\n")
+    return Agent(parse_agent(text, "attack.goal"), limits=Limits(sandbox=sandbox),
+                 output=io.StringIO(), warn=(warnings if warnings is not None else []).append)
+
+
+def _untouched() -> None:
+    engine = get_engine()
+    for module in RUNTIME_MODULES:
+        found = engine.call("current_predicate", Atom("owned"),
+                            Struct(":", (Atom(module), Atom("owned"))), module="system")
+        assert found is None, f"{module}:owned/0 was created"
+
+
+HIDDEN = "ga_kb:assertz(owned)"
+# Each ran a goal that confine.pl never saw (a module-qualified one, here) -- the sandbox
+# included for the first two.
+WRITTEN = [
+    f"if bel(put_attr(X, freeze, {HIDDEN}), X = 1) then print(x).",
+    f"if bel(print_message(error, format(\"~@\", [{HIDDEN}]))) then print(x).",
+    f"if bel(put_attrs(X, att(freeze, {HIDDEN}, [])), X = 1) then print(x).",
+    f"if bel(print_message_lines(user_error, '', ['~@'-[{HIDDEN}]])) then print(x).",
+    "if bel(write_term(call(x), [portray_goal(call_cleanup)])) then print(x).",
+    "if bel(format(\"~W\", [x, [portray_goal(call_cleanup)]])) then print(x).",
+    ":- use_module(library('../../../../../../tmp/evil')).",
+    ":- [library(lists), '/tmp/evil'].",
+    "if bel(prolog_listen(erase, spy)) then print(x).",
+    "if bel(on_signal(int, _, ignore)) then print(x).",
+    "if bel(format_predicate(w, spy(_, _))) then print(x).",
+    ":- at_halt(spy).",
+    f"if bel(open_string(\":- initialization({HIDDEN}).\", S), load_files(library(x), "
+    "[stream(S)])) then print(x).",
+]
+# Only known when they run: refused there (the rule is not applicable).
+BUILT = [
+    f"if bel(F = [0'~, 0'@], print_message_lines(user_error, '', [F-[{HIDDEN}]])) then print(x).",
+    "if bel(O = portray_goal(call_cleanup), write_term(x, [O])) then print(x).",
+]
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+@pytest.mark.parametrize("text", WRITTEN)
+def test_goals_hidden_from_the_check_are_refused_when_loading(text: str, sandbox: bool):
+    knowledge, rules = (text, "if true then print(x).") if text.startswith(":-") else ("", text)
+    with pytest.raises(AgentError, match="refused"):
+        _load("spy(_) :- true. spy(_, _) :- true. " + knowledge, rules,
+              sandbox=sandbox).close()
+    _untouched()
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+@pytest.mark.parametrize("rules", BUILT)
+def test_goals_hidden_from_the_check_are_refused_when_they_run(rules: str, sandbox: bool):
+    warnings: list[str] = []
+    try:
+        agent = _load("", rules, sandbox=sandbox, warnings=warnings)
+    except AgentError as error:  # the sandbox refuses some of them outright
+        assert sandbox and "refused" in str(error)
+    else:
+        try:
+            agent.step()
+        finally:
+            agent.close()
+        assert len(warnings) == 1 and "the rule is not applicable" in warnings[0], warnings
+    _untouched()
+
+
+def test_the_sandbox_loads_only_libraries_that_change_nothing_else():
+    # library(clpfd) loads library(apply_macros), whose goal expansion changes how every
+    # later file of the process compiles
+    with pytest.raises(AgentError, match="agents load only these libraries"):
+        _load(":- use_module(library(clpfd)).", sandbox=True).close()
+    _load(":- use_module(library(assoc)).", sandbox=True).close()
