@@ -48,6 +48,10 @@ def _run_with_counter(tmp_path: Path, knowledge: str, rule: str) -> subprocess.C
     ("", "if bel(setup_call_cleanup(true, spin(0), spin(0))) then print(never)."),
     ("", "if bel(call_cleanup(spin(0), spin(0))) then print(never)."),
     ("", "if bel(setup_call_catcher_cleanup(true, throw(x), _, spin(0))) then print(never)."),
+    # SWI runs every cleanup handler with signals held back, after an exit or failure too
+    ("", "if bel(setup_call_cleanup(true, true, (repeat, sleep(0.1), fail))) then print(never)."),
+    ("st :- catch(sleep(100), _, true), st.",
+     "if bel(setup_call_cleanup(true, fail, st)) then print(never)."),
 ])
 def test_runaway_recovery_or_cleanup_ends_with_its_rule(tmp_path: Path, knowledge: str, rule: str):
     result = _run_with_counter(tmp_path, knowledge, rule)
@@ -142,3 +146,35 @@ def test_the_sandbox_loads_only_libraries_that_change_nothing_else():
     with pytest.raises(AgentError, match="agents load only these libraries"):
         _load(":- use_module(library(clpfd)).", sandbox=True).close()
     _load(":- use_module(library(assoc)).", sandbox=True).close()
+
+
+@pytest.mark.parametrize("directive", [":- spin(0).", ":- initialization(spin(0))."])
+def test_a_runaway_directive_is_a_located_error_when_loading(directive: str):
+    text = (f"init module {{ knowledge {{ spin(N) :- N1 is N + 1, spin(N1). {directive} }} }}\n"
+            "main module { program { if true then print(x). } }\n")
+    with pytest.raises(AgentError, match=r"runaway.goal:1:\d+: knowledge clause .*more than "
+                                         r"200,000 inferences"):
+        Agent(parse_agent(text, "runaway.goal"), limits=Limits(max_inferences=200_000),
+              output=io.StringIO(), warn=lambda message: None)
+
+
+@pytest.mark.parametrize("thrown, says", [
+    ("format(atom(A), '~*c', [1000000, 0'a]), throw(A)", "... (1,000,0"),  # not 1 MB of a
+    ("X = [a|X], throw(X)", "an error whose term is cyclic"),  # walked for ever before
+])
+def test_an_error_carrying_a_huge_or_cyclic_term_is_a_short_warning(thrown: str, says: str):
+    warnings: list[str] = []
+    agent = _load("", f"if bel({thrown}) then print(x).", warnings=warnings)
+    try:
+        agent.step()
+    finally:
+        agent.close()
+    assert len(warnings) == 1 and says in warnings[0] and len(warnings[0]) < 1300, warnings
+
+
+def test_sending_a_cyclic_list_stops_that_agent_not_the_process(tmp_path: Path):
+    # converting it for Python never ended (a cyclic list has no end), past every limit
+    result = _run_with_counter(tmp_path, "", "if bel(X = [a|X]) then counter.send(X).")
+    assert "Traceback" not in result.stderr
+    assert "error: agent atk failed: cannot pass a cyclic term" in result.stderr
+    assert "counter: terminated after 5 cycles" in result.stderr

@@ -134,6 +134,7 @@ PL_get_name_arity = _declare("PL_get_name_arity_sz", c_int, term_t, POINTER(atom
 PL_get_arg = _declare("_PL_get_arg_sz", c_int, c_size_t, term_t, term_t)
 PL_get_list = _declare("PL_get_list", c_int, term_t, term_t, term_t)
 PL_compare = _declare("PL_compare", c_int, term_t, term_t)
+PL_is_acyclic = _declare("PL_is_acyclic", c_int, term_t)
 PL_put_variable = _declare("PL_put_variable", c_int, term_t)
 PL_put_atom = _declare("PL_put_atom", c_int, term_t, atom_t)
 PL_put_int64 = _declare("PL_put_int64", c_int, term_t, c_int64)

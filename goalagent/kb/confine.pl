@@ -433,6 +433,12 @@ prepare_directive(op(P, T, Names), _, op(P, T, Names)) :- !,
     unqualified(Names).
 prepare_directive(D, Ctx, D) :-
     library_load(D, Ctx), !.
+prepare_directive(initialization(G), Ctx, Prepared) :- !,   % run as the program is loaded,
+    prepare_directive(G, Ctx, Prepared).                     % as any directive
+prepare_directive(initialization(G, now), Ctx, Prepared) :- !,
+    prepare_directive(G, Ctx, Prepared).
+prepare_directive(initialization(G, When), _, _) :- !,
+    refuse("initialization(~q, ~q): an agent's program runs only as it is loaded (initialization/1)", [G, When]).
 prepare_directive(D, c(M, true, O), _) :-
     ( D = use_module(_) ; D = use_module(_, _) ; D = ensure_loaded(_) ), !,
     library_refused(D, c(M, true, O)).

@@ -118,18 +118,16 @@ load_sandbox :-
 
 %   stoppable(+Goal0, +Ctx, -Goal): agent code never holds back what stops it. Its
 %   catch/3 lets the runtime's exceptions pass (a limit, an abort: a catch-all whose
-%   recovery runs the runaway goal again would run for ever), and its cleanup handlers do
-%   not run while an exception unwinds the goal (SWI-Prolog runs them with signals and
-%   inference limits held back: a runaway one could not be stopped, not even by SIGTERM).
+%   recovery runs the runaway goal again would run for ever), and its cleanup handlers run
+%   as ordinary code (see cleanup_call/4).
 stoppable(catch(G, C, R), c(M, _, _), catch(G, E, ga_confine:recover(E, C, M:R))) :- !.
 stoppable(catch_with_backtrace(G, C, R), c(M, _, _),
           catch_with_backtrace(G, E, ga_confine:recover(E, C, M:R))) :- !.
 stoppable(setup_call_cleanup(S, G, C), c(M, _, _),
-          setup_call_catcher_cleanup(S, G, K, ga_confine:cleanup(K, M:C))) :- !.
+          ga_confine:cleanup_call(M:S, M:G, _, M:C)) :- !.
 stoppable(setup_call_catcher_cleanup(S, G, K, C), c(M, _, _),
-          setup_call_catcher_cleanup(S, G, K, ga_confine:cleanup(K, M:C))) :- !.
-stoppable(call_cleanup(G, C), c(M, _, _),
-          setup_call_catcher_cleanup(true, G, K, ga_confine:cleanup(K, M:C))) :- !.
+          ga_confine:cleanup_call(M:S, M:G, K, M:C)) :- !.
+stoppable(call_cleanup(G, C), c(M, _, _), ga_confine:cleanup_call(true, M:G, _, M:C)) :- !.
 stoppable(G, _, G).
 
 %!  recover(+Ball, ?Catcher, :Recovery) is nondet.
@@ -152,11 +150,24 @@ runtime_ball(Ball) :-
     ),
     !.
 
-%!  cleanup(+Catcher, :Cleanup) is det.
-%   An agent's cleanup handler, run unless an exception ends its goal (see stoppable/3).
-cleanup(Catcher, Cleanup) :-
-    (   nonvar(Catcher),
-        ( Catcher = exception(_) ; Catcher = external_exception(_) )
-    ->  true
-    ;   call(Cleanup)
+%!  cleanup_call(:Setup, :Goal, ?Catcher, :Cleanup) is semidet.
+%   An agent's setup_call_cleanup/3 (and setup_call_catcher_cleanup/4, call_cleanup/2):
+%   Goal's first solution only, and Cleanup run as ordinary code after it. SWI-Prolog runs
+%   cleanup handlers with signals held back, so neither the time limit nor an abort (nor
+%   SIGTERM) could stop a runaway one; a limit or an abort that ends Goal skips Cleanup.
+cleanup_call(Setup, Goal, Catcher, Cleanup) :-
+    once(Setup),
+    (   catch(Goal, Ball, true)
+    ->  (   var(Ball) -> Outcome = exit ; Outcome = exception(Ball) )
+    ;   Outcome = fail
+    ),
+    (   Outcome = exception(Stop), runtime_ball(Stop)
+    ->  throw(Stop)
+    ;   Catcher = Outcome
+    ->  ignore(Cleanup)
+    ;   true
+    ),
+    (   Outcome = exception(Error)
+    ->  throw(Error)
+    ;   Outcome == exit
     ).

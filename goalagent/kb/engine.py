@@ -32,6 +32,7 @@ from goalagent.kb.clib import (
     PL_erase,
     PL_exception,
     PL_get_int64,
+    PL_is_acyclic,
     PL_new_term_ref,
     PL_new_term_refs,
     PL_next_solution,
@@ -440,6 +441,8 @@ def define_foreign(engine: Engine, module: str, name: str,
         if stretch:
             engine.stretch_since = None  # in Python now: not the watchdog's to time
         try:
+            if not PL_is_acyclic(request):  # a cyclic list would be read for ever
+                raise KBError(_TOO_DEEP_FOR_PYTHON)
             answer = respond(engine._get(request, [], False))
             if answer is None:
                 return 1

@@ -194,20 +194,37 @@ writable(Term) :-
 %!  error_message(+Error, -Message) is det.
 %   A readable one-line message for Error, without agent-module qualifications.
 
-error_message(ga_error(Message), Message) :- !.
 error_message(E, Message) :-
+    error_message_(E, Message0),
+    shortened(Message0, Message).
+
+%   A message of at most 2,000 characters: an error can carry a huge term (an atom of
+%   100 MB made with one format/3 call), and a warning must not print it all.
+shortened(Message0, Message) :-
+    (   string_length(Message0, Length),
+        Length > 2000
+    ->  sub_string(Message0, 0, 1000, _, Start),
+        format(string(Message), "~s... (~D characters)", [Start, Length])
+    ;   Message = Message0
+    ).
+
+error_message_(ga_error(Message), Message) :- !.
+error_message_(E, Message) :-
+    \+ acyclic_term(E), !,
+    Message = "an error whose term is cyclic (it contains itself)".
+error_message_(E, Message) :-
     \+ writable(E), !,
     Message = "an error whose term is nested too deeply to show (more than 5,000 levels)".
-error_message(ga_limit(Limit), Message) :- !,
+error_message_(ga_limit(Limit), Message) :- !,
     ga_guard:limit_message(Limit, Message).
-error_message(ga_refused(Why), Message) :- !,
+error_message_(ga_refused(Why), Message) :- !,
     format(string(Message), "refused: ~w", [Why]).
-error_message(E, Message) :-
+error_message_(E, Message) :-
     E \= error(_, _),
     !,
     strip_agent_modules(E, E1),
     format(string(Message), "Unhandled exception: ~q", [E1]).
-error_message(E0, Message) :-
+error_message_(E0, Message) :-
     strip_agent_modules(E0, E1),
     drop_useless_context(E1, E),
     catch(( '$messages':translate_message(E, Lines, []),
@@ -216,7 +233,7 @@ error_message(E0, Message) :-
     Message0 \== "",
     !,
     Message = Message0.
-error_message(E, Message) :-
+error_message_(E, Message) :-
     format(string(Message), "~q", [E]).
 
 lines_string(Lines, String) :-

@@ -203,6 +203,7 @@ class MentalState:
         self._engine.call("new_agent", self._b, self._g)
         self._engine.call("set_limits", self._b, self.limits.max_inferences,
                           self.limits.max_beliefs, module="ga_guard")
+        self._watchdog.time_limit = self.limits.max_query_seconds  # its directives run
         result = self._call("load", self._b, self._g, items,
                             _TRUE if self.limits.sandbox else _FALSE, None)[4]
         if isinstance(result, Struct) and result.name == "error":

@@ -99,7 +99,12 @@ directive_(op(Priority, Type, Names), _, B, G) :- !,
            ( qualify_op_names(Names, M, Qualified),
              op(Priority, Type, Qualified) )).
 directive_(Directive, Kind, B, G) :-
-    once(B:Directive),
+    B:'$ga_limits'(MaxInferences, _),           % a directive that runs away (:- p, p :- p)
+    call_with_inference_limit(once(B:Directive), MaxInferences, Result),   % is the
+    (   Result == inference_limit_exceeded      % program's located error
+    ->  throw(ga_limit(inferences(MaxInferences)))
+    ;   true
+    ),
     (   Kind == k, load_directive(Directive)
     ->  once(G:Directive)
     ;   true
