@@ -17,6 +17,7 @@ from goalagent.kb.engine import get_engine
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct
 from goalagent.parser import parse_agent
+from goalagent.parser.errors import GoalSyntaxError
 
 RUNTIME_MODULES = ("ga_kb", "ga_rules", "ga_read", "ga_guard", "ga_confine", "user", "system")
 COUNTER = """
@@ -178,3 +179,15 @@ def test_sending_a_cyclic_list_stops_that_agent_not_the_process(tmp_path: Path):
     assert "Traceback" not in result.stderr
     assert "error: agent atk failed: cannot pass a cyclic term" in result.stderr
     assert "counter: terminated after 5 cycles" in result.stderr
+
+
+def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
+    # read until Python's recursion limit before: lark's 'maximum recursion depth exceeded'
+    (tmp_path / "b.mod2g").write_text('#import "c.mod2g".\nmodule m { program { if true then '
+                                      'print(x). } }\n')
+    (tmp_path / "c.mod2g").write_text('#import "b.mod2g".\nmodule n { program { if true then '
+                                      'print(x). } }\n')
+    text = '#import "b.mod2g".\nmain module { program { if true then print(x). } }\n'
+    with pytest.raises(GoalSyntaxError, match=r"c.mod2g:1:9: #import b.mod2g: the files import "
+                                              r"each other \(b.mod2g -> c.mod2g -> b.mod2g\)"):
+        parse_agent(text, str(tmp_path / "a.goal"))

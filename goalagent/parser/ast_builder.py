@@ -9,6 +9,7 @@ Prolog-text checks; `.goal` files ``#import`` Prolog files and GOAL 5 module fil
 
 from __future__ import annotations
 
+from contextvars import ContextVar
 from pathlib import Path
 
 from lark.exceptions import VisitError
@@ -24,6 +25,9 @@ from goalagent.parser.module_sections import ModuleParts
 from goalagent.parser.source import Source, read_program_file
 from goalagent.parser.test_sections import TestParts
 
+# The files whose #import is being read (the innermost last).
+_IMPORTING: ContextVar[tuple[Path, ...]] = ContextVar("importing", default=())
+
 
 class AstBuilder(GoalParts, ConditionParts, ModuleParts, MasParts, TestParts):
     """Turns the lark tree of one file into ``goalagent.ast`` objects, checking every Prolog
@@ -36,8 +40,20 @@ class AstBuilder(GoalParts, ConditionParts, ModuleParts, MasParts, TestParts):
         return clauses  # type: ignore[return-value]
 
     def _import_module_file(self, path: Path, pos: ast.Pos) -> list[ast.Module]:
-        """The modules of a GOAL 5 module file named by ``#import`` (single-file syntax)."""
-        (_, items), _ = build(read_program_file(path), str(path), "agent")  # type: ignore[misc]
+        """The modules of a GOAL 5 module file named by ``#import`` (single-file syntax); a
+        file that imports itself, directly or through others, is a located error (it was
+        read until Python's recursion limit)."""
+        chain = _IMPORTING.get() + (Path(self.source.file).resolve(),)
+        if path.resolve() in chain:
+            cycle = " -> ".join(p.name for p in chain[chain.index(path.resolve()):])
+            raise GoalSyntaxError.at(pos, f"#import {path.name}: the files import each other "
+                                     f"({cycle} -> {path.name})")
+        token = _IMPORTING.set(chain)
+        try:
+            (_, items), _ = build(read_program_file(path), str(path),  # type: ignore[misc]
+                                  "agent")
+        finally:
+            _IMPORTING.reset(token)
         modules = [item for item in items if isinstance(item, ast.Module)]
         if not modules:
             raise GoalSyntaxError.at(pos, f"#import {path.name}: the file has no module")
