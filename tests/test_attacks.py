@@ -104,6 +104,8 @@ WRITTEN = [
     "if bel(on_signal(int, _, ignore)) then print(x).",
     "if bel(format_predicate(w, spy(_, _))) then print(x).",
     ":- at_halt(spy).",
+    ":- expects_dialect(sicstus).",  # the process's dialect flag, global operators (#, mode)
+    "if bel(abolish('$ga_limits'/2)) then print(x).",  # the agent's limits, the runtime's
     f"if bel(open_string(\":- initialization({HIDDEN}).\", S), load_files(library(x), "
     "[stream(S)])) then print(x).",
 ]

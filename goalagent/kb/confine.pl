@@ -156,6 +156,9 @@ prepare_call(G, Ctx, Prepared) :-
     ;   predicate_property(system:G, transparent),
         sub_term(Q, G), nonvar(Q), Q = M:_, atom(M)
     ->  refuse("~q names the module ~q: an agent reaches its own mind only", [G, M])
+    ;   predicate_property(system:G, transparent),
+        sub_term(Q, G), nonvar(Q), ( Q = N/_ ; Q = N//_ ), atom(N), sub_atom(N, 0, _, _, $)
+    ->  refuse("~q names ~q, reserved for SWI-Prolog and the runtime", [G, Q])
     ;   Prepared = G,
         sandbox_allows(G, Ctx)
     ).

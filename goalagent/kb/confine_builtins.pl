@@ -59,6 +59,7 @@ process_wide(install_alarm/1).
 process_wide(install_alarm/2).
 process_wide(uninstall_alarm/1).
 process_wide(set_prolog_IO/3).
+process_wide(expects_dialect/1).       % the process's dialect flag and global operators
 
 %   Attribute hooks run in the module an attribute is named after: put_attr(X, freeze, G)
 %   would call any G, unchecked, when X is bound.

@@ -189,8 +189,7 @@ class MentalState:
         self._closed = False
         self._compiled: dict[str, CompiledCondition] = {}
         self._achieved: list[list[Term]] = []  # goals removed by updates, not yet reported
-        # Prolog's "recheck" flag (see recheck/1 in mentalstate_updates.pl) as last seen:
-        # goals may be achieved in a way updates did not check (percepts, messages, ...).
+        # Prolog's recheck flag as last seen (recheck/1): goals achieved unchecked (percepts, ...)
         self._recheck = True
         self._run_pred: int | None = None
         self._has_percepts = self._has_mail = False  # the percept base, received/2 not empty
