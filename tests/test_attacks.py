@@ -193,3 +193,15 @@ def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
     with pytest.raises(GoalSyntaxError, match=r"c.mod2g:1:9: #import b.mod2g: the files import "
                                               r"each other \(b.mod2g -> c.mod2g -> b.mod2g\)"):
         parse_agent(text, str(tmp_path / "a.goal"))
+
+
+@pytest.mark.parametrize("rule", [
+    "if bel(throw('$aborted')) then print(x).",         # was Ctrl-C for the whole run
+    "if bel(B = '$aborted', throw(B)) then print(x).",
+    "if bel(X = ga_limit(time(1)), throw(X)) then print(x).",
+])
+def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: str):
+    result = _run_with_counter(tmp_path, "", rule)
+    assert result.returncode in (0, 2), result.stderr  # 2: refused when loading
+    assert "this exception is the runtime's" in result.stderr
+    assert "interrupted" not in result.stderr

@@ -90,6 +90,13 @@ prepare(G0, c(M, Sb, _), G) :-                 % a lambda (library(yall)) applie
     compound_name_arguments(G0, >>, [Ps, B0|Extra]), !,   % bound later (by the call)
     prepare(B0, c(M, Sb, []), B),
     compound_name_arguments(G, >>, [Ps, B|Extra]).
+prepare(throw(Ball), _, Prepared) :- !,         % the runtime's exceptions are not the
+    (   runtime_ball(Ball)                      % agent's to throw: '$aborted' stopped the
+    ->  refuse_ball(Ball)                       % whole run as Ctrl-C does
+    ;   ground(Ball)
+    ->  Prepared = throw(Ball)
+    ;   Prepared = ga_confine:agent_throw(Ball)
+    ).
 prepare(apply(G0, Extra), Ctx, Prepared) :- !,  % apply/2: a goal with arguments added
     (   callable(G0), is_list(Extra)
     ->  extend(G0, Extra, G),

@@ -141,6 +141,18 @@ recover(Ball, Catcher, Recovery) :-
     ;   throw(Ball)
     ).
 
+%!  agent_throw(+Ball) is det.
+%   An agent's throw/1 of a ball only known at run time (see prepare/3).
+agent_throw(Ball) :-
+    (   runtime_ball(Ball)
+    ->  refuse_ball(Ball)
+    ;   throw(Ball)
+    ).
+
+refuse_ball(Ball) :-
+    refuse("throw(~q): this exception is the runtime's (a limit, an abort), not an agent's",
+           [Ball]).
+
 runtime_ball(Ball) :-
     nonvar(Ball),
     (   Ball == '$aborted'
