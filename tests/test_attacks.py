@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from goalagent.agent import Agent, AgentError
-from goalagent.kb.engine import get_engine
+from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct
 from goalagent.parser import parse_agent
@@ -205,3 +205,14 @@ def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: st
     assert result.returncode in (0, 2), result.stderr  # 2: refused when loading
     assert "this exception is the runtime's" in result.stderr
     assert "interrupted" not in result.stderr
+
+
+def test_a_query_whose_answer_is_a_cyclic_list_is_an_error():
+    # the API's and the inspector's queries: Python read the list for ever
+    agent = _load()
+    try:
+        with pytest.raises(KBError, match="an answer is a cyclic term"):
+            agent.query("bel", "X = [a|X]")
+        assert agent.query("bel", "X = [a]") == [{"X": [Atom("a")]}]
+    finally:
+        agent.close()

@@ -389,5 +389,7 @@ solutions(Goal, Template, Max, Count, Rows) :-
     ),
     (   memberchk(_-inference_limit_exceeded, Pairs)
     ->  Rows = ga_limit(inferences(Max))
-    ;   pairs_keys(Pairs, Rows)
+    ;   acyclic_term(Pairs)                 % Python would read a cyclic list for ever
+    ->  pairs_keys(Pairs, Rows)
+    ;   throw(ga_error("an answer is a cyclic term (it contains itself)"))
     ).
