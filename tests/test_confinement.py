@@ -254,3 +254,27 @@ def test_check_sandbox_reports_without_running(tmp_path: Path):
     assert lines[0].startswith(f"{program}:1:27: ") and "not allowed in the sandbox" in lines[0]
     assert lines[1] == f"{fine}: ok"
     assert not (tmp_path / "PWNED").exists()
+
+
+def test_only_a_sandboxed_agent_loads_library_sandbox() -> None:
+    """library(sandbox) loads library(apply_macros), whose goal expansion changes how every
+    file compiled afterwards runs (bench/cycles.py's floor among them): a process running
+    agents without the sandbox must not load it; the first sandboxed agent does."""
+    code = """
+from goalagent.agent import Agent
+from goalagent.kb.engine import get_engine
+from goalagent.kb.limits import Limits
+from goalagent.kb.terms import Atom
+def loaded(module):
+    return get_engine().call("current_module", Atom(module), module="system") is not None
+Agent.from_string("main module { program { if true then print(ok). } }", "plain.goal").step()
+print("macros", loaded("apply_macros"))
+Agent.from_string("main module { program { if true then print(ok). } }", "boxed.goal",
+                  limits=Limits(sandbox=True)).step()
+print("macros", loaded("apply_macros"))
+"""
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            timeout=120, check=False)
+    assert result.returncode == 0, result.stderr
+    answers = [line.split()[1] for line in result.stdout.splitlines() if line.startswith("macros")]
+    assert answers == ["False", "True"], result.stdout
