@@ -162,7 +162,8 @@ def test_a_runaway_directive_is_a_located_error_when_loading(directive: str):
 
 
 @pytest.mark.parametrize("thrown, says", [
-    ("format(atom(A), '~*c', [1000000, 0'a]), throw(A)", "... (1,000,0"),  # not 1 MB of a
+    ("length(L, 1000000), maplist(=(0'a), L), atom_codes(A, L), throw(A)",
+     "... (1,000,0"),  # not 1 MB of a
     ("X = [a|X], throw(X)", "an error whose term is cyclic"),  # walked for ever before
 ])
 def test_an_error_carrying_a_huge_or_cyclic_term_is_a_short_warning(thrown: str, says: str):
@@ -216,3 +217,21 @@ def test_a_query_whose_answer_is_a_cyclic_list_is_an_error():
         assert agent.query("bel", "X = [a]") == [{"X": [Atom("a")]}]
     finally:
         agent.close()
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
+    # format('~*c', [1000000000, 0'x]) wrote 1 GB to stdout, 30 s past a 3 s time limit:
+    # SWI-Prolog's writer does not look at signals
+    with pytest.raises(AgentError, match="repeats or pads 1,000,000,000 characters"):
+        _load("", "if bel(format('~*c', [1000000000, 0'x])) then print(x).",
+              sandbox=sandbox).close()
+    warnings: list[str] = []
+    agent = _load("", "if bel(N is 10 ** 9, format(atom(_), '~*c', [N, 0'x])) then print(x).\n"
+                      "if bel(format(atom(A), '~*c~w~t~8|~2f', [2, 0'x, y, 3.14159])) then "
+                      "print(A).", sandbox=sandbox, warnings=warnings)
+    try:
+        agent.step()
+    finally:
+        agent.close()
+    assert len(warnings) == 1 and "repeats or pads 1,000,000,000" in warnings[0], warnings

@@ -23,6 +23,7 @@
 :- use_module(library(aggregate)).          % goal arguments are found through the imports
 :- use_module(library(solution_sequences)).
 :- use_module(library(lists)).
+:- use_module(library(prolog_format), [format_spec/2]).
 
 :- set_prolog_flag(generate_debug_info, false).
 
@@ -147,6 +148,8 @@ prepare_call(G, Ctx, Prepared) :-
         \+ ground(G),
         \+ arg(3, Ctx, runtime)
     ->  checked(Ctx, G, Prepared)           % its text checked when it is printed
+    ;   format_sized(G, Ctx)
+    ->  checked(Ctx, G, Prepared)           % its counts checked when it runs
     ;   meta_specs(G, Specs)
     ->  G =.. [Name|Args0],
         (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)
@@ -184,12 +187,54 @@ format_goal(G) :-
     ->  refuse("format's ~~W with write options only known at run time", [])
     ;   hidden_call(G)
     ->  refuse("~q: its write options call a goal (portray_goal)", [G])
+    ;   format_counts(F, G, Counts),
+        max_format_count(Max),
+        member(N, Counts), integer(N), N > Max
+    ->  refuse("format ~q repeats or pads ~D characters, more than ~D (an output or memory bomb SWI-Prolog cannot interrupt)", [F, N, Max])
     ;   fail
     ).
 format_goal(G) :-
     printing_goal(G),
     hidden_call(G),
     refuse("~q would call a goal hidden in its text (~~@) or options (portray_goal)", [G]).
+
+%   format_counts(+Format, +G, -Counts): the repeat counts, columns and digits of Format's
+%   directives (~100c, ~*c with its argument, ~30|, ~2f); an argument not known yet is a
+%   variable. SWI-Prolog writes what they ask for in C without looking at signals: a
+%   count of 1,000,000,000 wrote 1 GB to the terminal, 30 s past the time limit.
+format_counts(Format, G, Counts) :-
+    catch(format_spec(Format, Spec), _, fail),
+    (   G = format(_) -> Args0 = [] ; G =.. [_|GArgs], last(GArgs, Args0) ),
+    (   is_list(Args0) -> Args = Args0 ; Args = [Args0] ),
+    spec_counts(Spec, Args, Counts).
+
+spec_counts([], _, []).
+spec_counts([escape(Num, _, Directive)|Spec], Args0, Counts) :- !,
+    (   Num = number(N)
+    ->  Counts = [N|Counts1], Args1 = Args0
+    ;   Num == star
+    ->  ( Args0 = [N|Args1] -> Counts = [N|Counts1] ; Counts = Counts1, Args1 = [] )
+    ;   Counts = Counts1, Args1 = Args0
+    ),
+    directive_arity(Directive, Arity),
+    (   length(Used, Arity), append(Used, Args2, Args1) -> true ; Args2 = [] ),
+    spec_counts(Spec, Args2, Counts1).
+spec_counts([_|Spec], Args, Counts) :-
+    spec_counts(Spec, Args, Counts).
+
+directive_arity(D, 0) :- memberchk(D, [t, '|', '+', n, '~']), !.
+directive_arity('W', 2) :- !.
+directive_arity(_, 1).
+
+max_format_count(100000).
+
+%   format_sized(+G, +Ctx): G is a format call whose counts are only known at run time.
+format_sized(G, Ctx) :-
+    \+ arg(3, Ctx, runtime),
+    ( G = format(F, _) ; G = format(_, F, _) ),
+    \+ ground(G),
+    format_counts(F, G, Counts),
+    member(N, Counts), var(N), !.
 
 %   hidden_call(@G): some argument of G is text holding ~@ (an atom, string or list of
 %   codes or characters) or a write option portray_goal(_).
