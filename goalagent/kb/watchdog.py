@@ -65,6 +65,9 @@ class Watchdog:
         self._stopping: int | None = None  # a signal asking to stop, not yet done
         self._aborted: int | None = None  # the stretch last aborted for it
         self._exit_code: Callable[[int], int] = lambda signum: 128 + signum
+        # Taken to read the signals' pipe and act on them, and by stop_handled(): a signal
+        # Python has already turned into the run's stop is never acted on again later.
+        self._lock = threading.Lock()
         # The running stretch's number, -1 when none runs (a signal that arrives after the
         # query ended, e.g. handled as the process exits, then does nothing).
         define_foreign(engine, "ga_guard", "$ga_stretch",
@@ -90,29 +93,41 @@ class Watchdog:
 
     def stop_handled(self) -> None:
         """Python has taken the stop a signal asked for: later queries (finishing the run)
-        are not aborted for it."""
-        self._stopping = None
+        are not aborted for it, nor for a signal of that stop the watchdog has not read
+        yet (its byte is in the pipe before Python's handler runs: it is read here)."""
+        with self._lock:
+            for signum in self._pending():
+                self._count(signum)
+            self._stopping = None
 
     # ------------------------------------------------------------------ the thread
 
     def _watch(self) -> None:
         while True:
             ready, _, _ = select.select([self._read], [], [], TICK)
-            if ready:
-                with contextlib.suppress(BlockingIOError):
-                    for byte in os.read(self._read, 64):
-                        if byte != WAKE:  # our own, sent to end a sleep
-                            self._signal(byte)
-            self._check_stop()
+            with self._lock:
+                if ready:
+                    for signum in self._pending():
+                        self._signal(signum)
+                self._check_stop()
             self._check_time()
 
-    def _signal(self, signum: int) -> None:
-        """A signal arrived: abort the running query (now, or as soon as Prolog runs again
-        if the main thread is in a callback, see :meth:`_check_stop`); a second one: exit
-        if the process is still here a second later."""
+    def _pending(self) -> list[int]:
+        """The signals written to the pipe and not read yet (without our own wake-ups)."""
+        with contextlib.suppress(BlockingIOError):
+            return [byte for byte in os.read(self._read, 64) if byte != WAKE]
+        return []
+
+    def _count(self, signum: int) -> None:
+        """Notes a signal; a second one ends the process if it is still here a second later."""
         self.signals.append(signum)
         if len(self.signals) >= 2:
             threading.Timer(HARD_EXIT_AFTER, self._hard_exit, (signum,)).start()
+
+    def _signal(self, signum: int) -> None:
+        """A signal arrived: abort the running query (now, or as soon as Prolog runs again
+        if the main thread is in a callback, see :meth:`_check_stop`)."""
+        self._count(signum)
         self._stopping = signum
         self._check_stop()
 
