@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from attack_agent import RUNTIME_MODULES, load_agent
 
 from goalagent.agent import Agent, AgentError
 from goalagent.kb.engine import KBError, get_engine
@@ -19,7 +20,6 @@ from goalagent.kb.terms import Atom, Struct
 from goalagent.parser import parse_agent
 from goalagent.parser.errors import GoalSyntaxError
 
-RUNTIME_MODULES = ("ga_kb", "ga_rules", "ga_read", "ga_guard", "ga_confine", "user", "system")
 COUNTER = """
 init module { beliefs { n(0). } goals { n(5). } }
 main module [exit=nogoals] { program {
@@ -63,21 +63,13 @@ def test_runaway_recovery_or_cleanup_ends_with_its_rule(tmp_path: Path, knowledg
 
 
 def test_cleanup_still_runs_when_its_goal_ends_without_an_exception():
-    agent = _load("", "if bel(setup_call_cleanup(true, X = 1, assertz(done(X))), "
+    agent = load_agent("", "if bel(setup_call_cleanup(true, X = 1, assertz(done(X))), "
                       "call_cleanup(true, assertz(done(c)))) then print(X).")
     try:
         agent.step()
         assert agent.query("bel", "done(X)") == [{"X": 1}, {"X": Atom("c")}]
     finally:
         agent.close()
-
-
-def _load(knowledge: str = "", rules: str = "if true then print(ok).", *,
-          sandbox: bool = False, warnings: list[str] | None = None) -> Agent:
-    text = (f"init module {{ knowledge {{ {knowledge} }} }}\n"
-            f"main module [exit=always] {{ program {{\n{rules}\n}} }}\n")
-    return Agent(parse_agent(text, "attack.goal"), limits=Limits(sandbox=sandbox),
-                 output=io.StringIO(), warn=(warnings if warnings is not None else []).append)
 
 
 def _untouched() -> None:
@@ -121,7 +113,7 @@ BUILT = [
 def test_goals_hidden_from_the_check_are_refused_when_loading(text: str, sandbox: bool):
     knowledge, rules = (text, "if true then print(x).") if text.startswith(":-") else ("", text)
     with pytest.raises(AgentError, match="refused"):
-        _load("spy(_) :- true. spy(_, _) :- true. " + knowledge, rules,
+        load_agent("spy(_) :- true. spy(_, _) :- true. " + knowledge, rules,
               sandbox=sandbox).close()
     _untouched()
 
@@ -131,7 +123,7 @@ def test_goals_hidden_from_the_check_are_refused_when_loading(text: str, sandbox
 def test_goals_hidden_from_the_check_are_refused_when_they_run(rules: str, sandbox: bool):
     warnings: list[str] = []
     try:
-        agent = _load("", rules, sandbox=sandbox, warnings=warnings)
+        agent = load_agent("", rules, sandbox=sandbox, warnings=warnings)
     except AgentError as error:  # the sandbox refuses some of them outright
         assert sandbox and "refused" in str(error)
     else:
@@ -147,8 +139,8 @@ def test_the_sandbox_loads_only_libraries_that_change_nothing_else():
     # library(clpfd) loads library(apply_macros), whose goal expansion changes how every
     # later file of the process compiles
     with pytest.raises(AgentError, match="agents load only these libraries"):
-        _load(":- use_module(library(clpfd)).", sandbox=True).close()
-    _load(":- use_module(library(assoc)).", sandbox=True).close()
+        load_agent(":- use_module(library(clpfd)).", sandbox=True).close()
+    load_agent(":- use_module(library(assoc)).", sandbox=True).close()
 
 
 @pytest.mark.parametrize("directive", [":- spin(0).", ":- initialization(spin(0))."])
@@ -168,7 +160,7 @@ def test_a_runaway_directive_is_a_located_error_when_loading(directive: str):
 ])
 def test_an_error_carrying_a_huge_or_cyclic_term_is_a_short_warning(thrown: str, says: str):
     warnings: list[str] = []
-    agent = _load("", f"if bel({thrown}) then print(x).", warnings=warnings)
+    agent = load_agent("", f"if bel({thrown}) then print(x).", warnings=warnings)
     try:
         agent.step()
     finally:
@@ -210,7 +202,7 @@ def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: st
 
 def test_a_query_whose_answer_is_a_cyclic_list_is_an_error():
     # the API's and the inspector's queries: Python read the list for ever
-    agent = _load()
+    agent = load_agent()
     try:
         with pytest.raises(KBError, match="an answer is a cyclic term"):
             agent.query("bel", "X = [a|X]")
@@ -224,10 +216,10 @@ def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
     # format('~*c', [1000000000, 0'x]) wrote 1 GB to stdout, 30 s past a 3 s time limit:
     # SWI-Prolog's writer does not look at signals
     with pytest.raises(AgentError, match="repeats or pads 1,000,000,000 characters"):
-        _load("", "if bel(format('~*c', [1000000000, 0'x])) then print(x).",
+        load_agent("", "if bel(format('~*c', [1000000000, 0'x])) then print(x).",
               sandbox=sandbox).close()
     warnings: list[str] = []
-    agent = _load("", "if bel(N is 10 ** 9, format(atom(_), '~*c', [N, 0'x])) then print(x).\n"
+    agent = load_agent("", "if bel(N is 10 ** 9, format(atom(_), '~*c', [N, 0'x])) then print(x).\n"
                       "if bel(format(atom(A), '~*c~w~t~8|~2f', [2, 0'x, y, 3.14159])) then "
                       "print(A).", sandbox=sandbox, warnings=warnings)
     try:

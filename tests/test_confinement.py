@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from attack_agent import RUNTIME_MODULES, load_agent
 
 from goalagent.agent import Agent, AgentError
 from goalagent.kb.engine import get_engine
@@ -19,16 +20,6 @@ from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
-
-RUNTIME_MODULES = ("ga_kb", "ga_rules", "ga_read", "ga_guard", "ga_confine", "user", "system")
-
-
-def _load(knowledge: str = "", rules: str = "if true then print(ok).", *,
-          sandbox: bool = False, warnings: list[str] | None = None) -> Agent:
-    text = (f"init module {{ knowledge {{ {knowledge} }} }}\n"
-            f"main module [exit=always] {{ program {{\n{rules}\n}} }}\n")
-    return Agent(parse_agent(text, "attack.goal"), limits=Limits(sandbox=sandbox),
-                 output=io.StringIO(), warn=(warnings if warnings is not None else []).append)
 
 
 def _untouched() -> None:
@@ -82,7 +73,7 @@ STATIC = [
 def test_reaching_other_modules_is_refused_when_loading(knowledge: str, rules: str, says: str,
                                                          sandbox: bool):
     with pytest.raises(AgentError) as caught:
-        _load(knowledge, rules or "if true then print(ok).", sandbox=sandbox).close()
+        load_agent(knowledge, rules or "if true then print(ok).", sandbox=sandbox).close()
     message = str(caught.value)
     assert re.match(r"attack\.goal:\d+:\d+: ", message), message
     assert says in message or (sandbox and "not allowed in the sandbox" in message), message
@@ -115,7 +106,7 @@ DYNAMIC = [
 @pytest.mark.parametrize("query", DYNAMIC)
 def test_goals_built_at_run_time_are_checked_when_they_run(query: str, sandbox: bool):
     warnings: list[str] = []
-    agent = _load(rules=f"if bel({query}) then print(never).\nif true then print(after).",
+    agent = load_agent(rules=f"if bel({query}) then print(never).\nif true then print(after).",
                   sandbox=sandbox, warnings=warnings)
     try:
         report = agent.step()
@@ -178,7 +169,7 @@ def test_the_sandbox_refuses_unsafe_calls_when_loading(knowledge: str, rules: st
                                                         tmp_path: Path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     with pytest.raises(AgentError) as caught:
-        _load(knowledge, rules or "if true then print(ok).", sandbox=True).close()
+        load_agent(knowledge, rules or "if true then print(ok).", sandbox=True).close()
     assert re.match(r"attack\.goal:\d+:\d+: ", str(caught.value))
     assert says in str(caught.value) and "refused" in str(caught.value)
     assert not (tmp_path / "PWNED").exists()
@@ -195,7 +186,7 @@ def test_the_sandbox_refuses_unsafe_goals_built_at_run_time(query: str, tmp_path
                                                              monkeypatch):
     monkeypatch.chdir(tmp_path)
     warnings: list[str] = []
-    agent = _load(rules=f"if bel({query}) then print(never).\nif true then print(after).",
+    agent = load_agent(rules=f"if bel({query}) then print(never).\nif true then print(after).",
                   sandbox=True, warnings=warnings)
     try:
         agent.step()
@@ -231,7 +222,7 @@ def test_the_sandbox_leaves_ordinary_prolog_alone():
 def test_goals_that_name_built_ins_are_data_never_run(tmp_path: Path,
                                                      monkeypatch: pytest.MonkeyPatch):
     monkeypatch.chdir(tmp_path)
-    agent = _load(rules="if true then adopt(shell('touch PWNED')).\nif true then print(x).")
+    agent = load_agent(rules="if true then adopt(shell('touch PWNED')).\nif true then print(x).")
     try:
         agent.step()
         goals = agent.goals()
