@@ -54,11 +54,7 @@ run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     ->  throw(ga_limit(inferences(MaxInferences)))
     ;   true
     ),
-    (   statistics(clauses, Clauses),       % the process's count: see belief_bound/2
-        Clauses =< MaxBeliefs
-    ->  true
-    ;   ga_guard:belief_bound(B, MaxBeliefs)
-    ),
+    ga_guard:belief_bound(B, MaxBeliefs),
     journal_actions(Journal, 0, Total),
     (   CountLast == true -> journal_actions(Last, 0, LastActions) ; LastActions = 0 ),
     (   nb_getval(B, true) -> Recheck = 1 ; Recheck = 0 ),

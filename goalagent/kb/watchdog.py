@@ -188,8 +188,8 @@ class Watchdog:
         if self._main is not None and signal.getsignal(WAKE) not in (signal.SIG_DFL,
                                                                       signal.SIG_IGN, None):
             # A blocking call (sleep/1, waiting for input) ends with EINTR and SWI then
-            # handles the signal sent above (SWI installs no signal handler of its own
-            # when embedded by pyswip: --nosignals).
+            # handles the signal sent above (SWI's thread-alert handler for this signal is
+            # replaced by ours, which only interrupts: see __init__ and clib.py).
             signal.pthread_kill(self._main, WAKE)
 
 
