@@ -159,7 +159,8 @@ def _language_run_options(
     inspect: Annotated[bool, typer.Option(
         help="Serve the mind inspector, a web page showing each agent live with pause, "
              "step, breakpoints and queries; the run starts paused.")] = False,
-    port: Annotated[int, typer.Option(help="The inspector's port (0: any free one).")] = 8765,
+    port: Annotated[int, typer.Option(min=0, max=65535,
+                                      help="The inspector's port (0: any free one).")] = 8765,
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",

@@ -128,11 +128,11 @@ class AtomicFile:
         if self._done:
             return
         self._done = True
+        Path(self._temporary).unlink(missing_ok=True)  # first: a signal may cut what follows
         try:
             self._stream.close()
         except OSError:
             pass  # a write that failed (disk full) fails again on close: nothing to keep
-        Path(self._temporary).unlink(missing_ok=True)
 
     def __enter__(self) -> AtomicFile:
         return self

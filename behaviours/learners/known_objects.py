@@ -13,7 +13,8 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator, Mapping
+import reprlib
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,6 +31,10 @@ from behaviours.learners.persist import StoreFileError, read_json, write_text_at
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
+MAX_NAME_CHARS = 200
+"""Longest object, part or action name read from a database."""
+_NUMBER_TYPES = frozenset({int, float})
+"""What JSON numbers are read as (``true`` is no number, though Python's bool is an int)."""
 
 
 class DatabaseError(ValueError):
@@ -77,15 +82,10 @@ class KnownObject:
 
     def to_record(self) -> dict:
         """A JSON-ready record."""
-        models = []
-        for (part, action), model in self.models.items():
-            models.append({
-                "part": part, "action": action,
-                "theta": model.theta_.tolist(), "displacement": model.displacement_.tolist(),
-                "effect": model.effect_.tolist(),
-                "g": [model.g_intercept_, model.g_slope_],
-                "h": [model.h_intercept_, model.h_slope_],
-            })
+        if isinstance(self.models, StoredModels):
+            models = [self.models.record(pair) for pair in self.models]
+        else:
+            models = [_model_record(pair, model) for pair, model in self.models.items()]
         functional = None if self.functional is None else {
             "part": self.functional.part, "action": self.functional.action,
             "theta": self.functional.theta}
@@ -103,35 +103,144 @@ class KnownObject:
 
     @classmethod
     def from_record(cls, record: dict) -> KnownObject:
-        """Rebuild from a record, refitting each model on its samples (KeyError/ValueError)."""
-        parts = {str(name): _descriptor(values, name) for name, values in record["parts"].items()}
-        models: dict[Pair, PartActionModel] = {}
-        for entry in record["models"]:
-            pair = (str(entry["part"]), str(entry["action"]))
-            models[pair] = PartActionModel().fit(entry["theta"], entry["displacement"],
-                                                 entry["effect"])
+        """Rebuild from a record (KeyError/TypeError/ValueError saying what is wrong). Every
+        value is checked now; the pair models are fitted on their samples when first read."""
+        parts = {_text(name, "a part name"): _descriptor(values, name)
+                 for name, values in record["parts"].items()}
         functional = record.get("functional")
+        source = record.get("source")
         return cls(
-            name=str(record["name"]),
+            name=_text(record["name"], "the name"),
             parts=parts,
-            above=frozenset((str(a), str(b)) for a, b in record["above"]),
-            bounds={str(a): check_bounds(b, f"bounds of {a!r}")
+            above=frozenset((_text(a, "a part name"), _text(b, "a part name"))
+                            for a, b in record["above"]),
+            bounds={_text(a, "an action name"): check_bounds(b, f"bounds of {a!r}")
                     for a, b in record["bounds"].items()},
-            models=models,
+            models=StoredModels(_model_entry(entry) for entry in record["models"]),
             functional=None if functional is None else FunctionalPair(
-                str(functional["part"]), str(functional["action"]), float(functional["theta"])),
-            n_actions=int(record.get("n_actions", 0)),
-            source=None if record.get("source") is None else str(record["source"]),
-            extra=dict(record.get("extra") or {}),
+                _text(functional["part"], "a part name"),
+                _text(functional["action"], "an action name"),
+                _numbers([functional["theta"]], "the functional theta")[0]),
+            n_actions=_count(record.get("n_actions", 0)),
+            source=None if source is None else _text(source, "the source"),
+            extra=_extra(record.get("extra")),
         )
+
+
+class StoredModels(Mapping[Pair, PartActionModel]):
+    """An object's pair models as read from a database: each entry's samples are checked
+    when the file is read and the model is fitted on them when first asked for, so loading
+    costs no fitting (a database of 150,000 models loads in seconds), and a rewrite (after
+    ``forget``) writes the entries of models nobody asked for back as they were read."""
+
+    def __init__(self, entries: Iterable[tuple[Pair, dict]]) -> None:
+        self._entries = dict(entries)
+        self._fitted: dict[Pair, PartActionModel] = {}
+
+    def __getitem__(self, pair: Pair) -> PartActionModel:
+        model = self._fitted.get(pair)
+        if model is None:
+            entry = self._entries[pair]
+            model = PartActionModel().fit(entry["theta"], entry["displacement"],
+                                          entry["effect"])
+            self._fitted[pair] = model
+        return model
+
+    def __iter__(self) -> Iterator[Pair]:
+        return iter(self._entries)
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    def record(self, pair: Pair) -> dict:
+        """The database entry of ``pair``'s model."""
+        entry = self._entries[pair]
+        if pair not in self._fitted and "g" in entry and "h" in entry:
+            return entry
+        return _model_record(pair, self[pair])
+
+
+def _model_record(pair: Pair, model: PartActionModel) -> dict:
+    """The database entry of a fitted pair model: its samples (the truth) and, for human
+    readers, the coefficients of ĝ and ĥ."""
+    return {"part": pair[0], "action": pair[1],
+            "theta": model.theta_.tolist(), "displacement": model.displacement_.tolist(),
+            "effect": model.effect_.tolist(),
+            "g": [model.g_intercept_, model.g_slope_], "h": [model.h_intercept_, model.h_slope_]}
+
+
+def _model_entry(entry: dict) -> tuple[Pair, dict]:
+    """A pair model's database entry, checked: one finite sample (θ, e_ψ, e_o) per index and
+    the coefficients of ĝ and ĥ, when written, as two finite numbers each."""
+    pair = (_text(entry["part"], "a part name"), _text(entry["action"], "an action name"))
+    theta, displacement, effect = entry["theta"], entry["displacement"], entry["effect"]
+    checked = {"part": pair[0], "action": pair[1], "theta": theta,
+               "displacement": displacement, "effect": effect}
+    for key in ("g", "h"):
+        if key in entry:
+            checked[key] = entry[key]
+    for key, values in checked.items():
+        if key not in ("part", "action") and not _finite_numbers(values):
+            raise ValueError(f"{key} of {pair} must be a non-empty list of finite numbers, "
+                             f"got {reprlib.repr(values)}")
+    if not len(theta) == len(displacement) == len(effect):
+        raise ValueError(f"the model of {pair} has not one theta, displacement and effect "
+                         "per sample")
+    if any(key in checked and len(checked[key]) != 2 for key in ("g", "h")):
+        raise ValueError(f"the model of {pair} needs g and h as [intercept, slope]")
+    return pair, checked
+
+
+def _text(value: object, what: str) -> str:
+    """``value`` if it is a non-empty string of at most MAX_NAME_CHARS, else a ValueError."""
+    if not isinstance(value, str) or not value or len(value) > MAX_NAME_CHARS:
+        raise ValueError(f"{what} must be a string of 1 to {MAX_NAME_CHARS} characters, got "
+                         f"{reprlib.repr(value)}")
+    return value
+
+
+def _finite_numbers(values: object) -> bool:
+    """Whether ``values`` is a non-empty list of finite JSON numbers. Checked in C where it
+    can be (``map(type, ...)``, ``math.fsum``: a sum is finite exactly when every term is,
+    and a 400-digit integer overflows it): a database holds hundreds of thousands of these
+    short lists, for which numpy costs more than the check."""
+    if type(values) is not list or not values:
+        return False
+    try:
+        return _NUMBER_TYPES.issuperset(map(type, values)) and math.isfinite(math.fsum(values))
+    except (OverflowError, ValueError):  # ValueError: inf and -inf in one list
+        return False
+
+
+def _numbers(values: object, what: str) -> list:
+    """``values`` if it is a non-empty list of finite numbers, else a ValueError naming
+    ``what``."""
+    if not _finite_numbers(values):
+        raise ValueError(f"{what} must be a non-empty list of finite numbers, got "
+                         f"{reprlib.repr(values)}")
+    return values  # type: ignore[return-value]
+
+
+def _count(value: object) -> int:
+    """A non-negative whole number (the actions an object was learned with)."""
+    if type(value) is not int or value < 0:
+        raise ValueError(f"n_actions must be a whole number of at least 0, got "
+                         f"{reprlib.repr(value)}")
+    return value
+
+
+def _extra(value: object) -> dict:
+    """The free-form facts of a record: a mapping (or nothing)."""
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise ValueError(f"extra must be a mapping, got {reprlib.repr(value)}")
+    return dict(value)
 
 
 def _descriptor(values: object, name: object) -> np.ndarray:
     """A part descriptor as a finite float vector, or a ValueError naming the part."""
-    array = np.asarray(values, dtype=float)
-    if array.ndim != 1 or array.size == 0 or not np.all(np.isfinite(array)):
-        raise ValueError(f"part {name!r} has a bad descriptor {values!r}")
-    return array
+    return np.asarray(_numbers(values, f"the descriptor of part {reprlib.repr(name)}"))
 
 
 class KnownObjectDatabase:
@@ -162,7 +271,7 @@ class KnownObjectDatabase:
         for index, record in enumerate(records):
             try:
                 known = KnownObject.from_record(record)
-            except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            except (KeyError, TypeError, ValueError, AttributeError, OverflowError) as exc:
                 raise DatabaseError(f"known-object database {where!r} has a bad record (object "
                                     f"{index}): {exc!r}") from None
             self._objects[known.name] = known

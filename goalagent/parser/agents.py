@@ -98,6 +98,9 @@ def load_agents(mas: ast.MasProgram) -> dict[str, ast.AgentProgram]:
                       if err.message == "no such file" else err.message)
             raise GoalSyntaxError.at(agentfile.pos, f"agent file {agentfile.path!r}: "
                                      f"{reason}") from None
+        if path.suffix != ".goal":  # parsing it would quote its text in the error
+            raise GoalSyntaxError.at(agentfile.pos, f"agent file {agentfile.path!r}: not a "
+                                     "GOAL agent file (its name ends in .goal)")
         programs[agentfile.name] = parse_agent(text, str(path))
     for definition in mas.definitions:
         programs[definition.name] = load_definition(definition, mas.file)

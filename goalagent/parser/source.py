@@ -21,8 +21,10 @@ from ondisk import read_bounded
 MAX_NESTING = 200
 """Deepest nesting of ``( [ {`` accepted in a program (SWI's reader and Python's term
 conversion recurse per level; real programs stay far below)."""
-MAX_PROGRAM_BYTES = 8 * 2**20
-"""Largest `.goal`, `.mas2g` or `#import`ed `.pl` file read."""
+MAX_PROGRAM_BYTES = 512 * 2**10
+"""Largest `.goal`, `.mas2g`, `.mod2g` or `#import`ed `.pl` file read: parsing costs about
+1 kB of memory and 20 µs per byte of program (a 2 MB file of facts took 41 s and 2.5 GB),
+the largest program shipped is 28 kB, and facts in bulk are read by ``--load-beliefs``."""
 MAX_FACT_FILE_BYTES = 64 * 2**20
 """Largest ``--load-beliefs`` file read (a million afford/6 facts take about 55 MB)."""
 _OPENING, _CLOSING = "([{", ")]}"

@@ -1,0 +1,56 @@
+"""The ``goalagent`` command's entry point: signals are handled from its first instant.
+
+Importing the command line (typer, rich, lark, pyswip starting SWI-Prolog) takes a second or
+more, and a command then reads its files and builds its system before ``goalagent run``
+installs the run's own handlers (goalagent/runner.py: the final save, exit 130/143/129).
+Until then, and in commands that have no handlers of their own, SIGINT, SIGTERM and SIGHUP
+end the process at once with one line saying so and the signal's exit code (128 + N): no
+silent death, no KeyboardInterrupt traceback. This module imports only the standard library,
+so the handlers are in place before anything slow is imported.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+from types import FrameType
+
+HANDLED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+def _stop(signum: int, frame: FrameType | None) -> None:
+    """Say which signal stopped the command and end the process with its code."""
+    for stream, text in ((sys.stdout, ""),
+                         (sys.stderr, f"goalagent: stopped by {signal.Signals(signum).name}\n")):
+        try:
+            stream.write(text)
+            stream.flush()
+        except (OSError, RuntimeError, ValueError):  # a closed terminal (SIGHUP), a write
+            pass  # interrupted in the middle (reentrant), a closed stream
+    os._exit(128 + signum)
+
+
+def _drop_output_that_cannot_be_written() -> None:
+    """Flush stdout and stderr; one that cannot be written (the terminal closed: SIGHUP, or
+    a closed pipe) is pointed at /dev/null, so that Python's own flush at exit does not
+    turn the command's exit code into 120."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, stream.fileno())
+            os.close(devnull)
+
+
+def main() -> None:
+    """Install the handlers, then run the command line."""
+    for signum in HANDLED:
+        signal.signal(signum, _stop)
+    try:
+        from goalagent.cli import main as command_line
+
+        command_line()
+    finally:
+        _drop_output_that_cannot_be_written()
