@@ -16,7 +16,7 @@ from typing import Annotated
 
 import typer
 
-from goalagent.console import err_console, printable, user_error
+from goalagent.console import err_console, user_error
 from robot.objects import objects_app
 from sim.headless import use_headless_rendering
 
@@ -44,8 +44,8 @@ def snapshot(
     except ValueError as err:
         raise user_error(str(err)) from None
     parts = ", ".join(sorted(observation.parts))
-    err_console.print(printable(f"{out}: can {can}, parts {parts}, opening "
-                                f"{observation.opening:.3f} m"), markup=False)
+    err_console.print(f"{out}: can {can}, parts {parts}, opening {observation.opening:.3f} m",
+                      markup=False)
 
 
 def reproduce(

@@ -5,7 +5,7 @@ descriptors, ``above`` relations, part models ĝ/ĥ and the functional pair) and
 transfer from. The commands read it (or remove one object) at ``--db`` (default: the garbage
 environment's default ``objects`` path). Everything printed is plain text: no Rich markup is
 read from names that come from files, and their control characters (ANSI escapes) are shown
-escaped (``goalagent.console.printable``).
+escaped (``goalagent.console.printable``, which ``LastingConsole`` applies to every string).
 """
 
 from __future__ import annotations
@@ -14,15 +14,14 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 from rich.table import Table
 
-from goalagent.console import err_console, printable, user_error
+from goalagent.console import LastingConsole, err_console, printable, user_error
 from robot.paths import default_objects_path
 
 DB_OPTION = Annotated[Path | None, typer.Option(
     "--db", help="The known-object database (default: the garbage environment's).")]
-out_console = Console(highlight=False, soft_wrap=True, emoji=False)
+out_console = LastingConsole(highlight=False, soft_wrap=True, emoji=False)
 
 
 def _open(db: Path | None):  # -> KnownObjectDatabase
@@ -49,7 +48,7 @@ def list_objects(db: DB_OPTION = None) -> None:
             known.name, ", ".join(known.parts), opens, str(known.n_actions), known.source or "-",
             str(known.extra.get("can_file", "-")))))
     if not len(database):
-        err_console.print(printable(f"no known objects in {database.path}"), markup=False)
+        err_console.print(f"no known objects in {database.path}", markup=False)
         return
     out_console.print(table, markup=False)
 
@@ -74,7 +73,7 @@ def show_object(name: Annotated[str, typer.Argument(help="The object's name.")],
     if known.functional is not None:
         f = known.functional
         lines.append(f"  functional: {f.action} on {f.part} with theta {f.theta:.4f}")
-    out_console.print(printable("\n".join(lines)), markup=False)
+    out_console.print("\n".join(lines), markup=False)
     table = Table("part", "action", "n", "g(theta) = b + c theta", "h(e) = d + e e_psi")
     for (part, action), model in known.models.items():
         table.add_row(printable(part), printable(action), str(model.n_samples_),
@@ -93,8 +92,10 @@ def forget_object(name: Annotated[str, typer.Argument(help="The object's name.")
         database.forget(name)
     except DatabaseError as err:
         raise user_error(str(err)) from None
-    err_console.print(printable(f"forgot {name}; {len(database)} known objects left in "
-                                f"{database.path}"), markup=False)
+    except OSError as err:  # the file cannot be replaced: it stays as it was
+        raise user_error(f"cannot rewrite {database.path}: {err.strerror or err}") from None
+    err_console.print(f"forgot {name}; {len(database)} known objects left in {database.path}",
+                      markup=False)
 
 
 def objects_app() -> typer.Typer:

@@ -105,10 +105,16 @@ class _Located:
 
     def __init__(self, text: str, source: str) -> None:
         self.source = source
-        loader = _BoundedLoader(text, source)
+        loader: _BoundedLoader | None = None
         try:
+            loader = _BoundedLoader(text, source)  # its reader refuses control characters
             self.root = loader.get_single_node()
             self.data = None if self.root is None else loader.construct_document(self.root)
+        except yaml.reader.ReaderError as exc:
+            before = text[:exc.position]
+            where = self._at(before.count("\n"), len(before) - before.rfind("\n") - 1)
+            raise CanFileError(f"{where}: not valid YAML: the character U+{exc.character:04X} "
+                               "is not allowed") from None
         except yaml.MarkedYAMLError as exc:
             mark = exc.problem_mark or exc.context_mark
             where = self._at(mark.line, mark.column) if mark else f"{source}:1:1"
@@ -117,7 +123,8 @@ class _Located:
         except yaml.YAMLError as exc:
             raise CanFileError(f"{source}:1:1: not valid YAML: {exc}") from None
         finally:
-            loader.dispose()
+            if loader is not None:
+                loader.dispose()
         if self.root is not None:
             self._check_duplicates(self.root)
 
@@ -182,10 +189,15 @@ def _schema_errors(doc: _Located) -> None:
             message = error.message.replace("is a required property", "is missing")
         else:
             name = ".".join(str(p) for p in path) or "the file"
-            message = f"{name}: {error.message}"
+            message = f"{name}: {_shortened(error.message)}"
         placed.append((doc.where(path, key), message))
     where, message = min(placed, key=lambda item: _position(item[0]))
     raise CanFileError(f"{where}: {message}")
+
+
+def _shortened(message: str, keep: int = 200) -> str:
+    """A schema message cut to ``keep`` characters (it quotes the value: a name may be 60 kB)."""
+    return message if len(message) <= keep else f"{message[:keep]}... ({len(message)} characters)"
 
 
 def _position(where: str) -> tuple[int, int]:
