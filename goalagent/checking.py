@@ -157,7 +157,9 @@ def _calls(term: Term) -> Iterator[tuple[str, int]]:
 
 def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool:
     """Checks one program file, telling ``report`` every warning and error line; True when
-    it has no error (``sandbox``: also load each agent as ``--sandbox`` would)."""
+    it has no error. Each agent is loaded as ``run`` would (``sandbox``: as ``--sandbox``
+    would) but runs none of its code (``Limits.runs_code``): its directives are checked,
+    not run, and its goals are not adopted."""
     try:
         if path.suffix == ".mas2g":
             for warning in check_environment(parse_mas_file(path)):
@@ -166,11 +168,16 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
             validate_program(program)
             for warning in program.warnings:
                 report(warning)
-            if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
-                for warning in _undefined_calls_of(program):
-                    report(warning)
-            if sandbox:  # loading under the sandbox runs no agent code but safe code
-                Agent(program, limits=Limits(sandbox=True), warn=lambda message: None).close()
+            if path.suffix == ".mod2g" and not sandbox:
+                continue  # a module alone lacks its agent's knowledge: no calls to look up
+            agent = Agent(program, output=io.StringIO(), warn=lambda message: None,
+                          limits=Limits(sandbox=sandbox, runs_code=False))
+            try:
+                if path.suffix != ".mod2g":
+                    for warning in undefined_calls(agent):
+                        report(warning)
+            finally:
+                agent.close()
     except (GoalSyntaxError, AgentError) as err:
         report(str(err))
         return False
@@ -223,12 +230,3 @@ def _goal5_module_in_context(path: Path, module: ast.AgentProgram,
             report(f"{path}: checked as part of {importer.name}, which imports it")
             return program
         raise alone from None
-
-
-def _undefined_calls_of(program: ast.AgentProgram) -> list[str]:
-    """Calls of predicates the agent defines nowhere (the agent is loaded, not run)."""
-    agent = Agent(program, output=io.StringIO(), warn=lambda message: None)
-    try:
-        return undefined_calls(agent)
-    finally:
-        agent.close()

@@ -93,8 +93,11 @@ class Agent:
             self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs,
                                   limits=limits)
             self.ms.declare_updates(update_formulas(program))
-            for goal in program.goals:
-                self.ms.adopt(goal)
+            if self.ms.limits.runs_code:  # (adopting asks whether a goal is believed: code)
+                for goal in program.goals:
+                    self.ms.adopt(goal)
+            else:
+                self.ms.declare_updates(program.goals)
             self._rules = RuleApplication(self)
             self._event = program.module("event")
             self._main = program.module("main")
