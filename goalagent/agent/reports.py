@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from goalagent import ast
 from goalagent.kb.interpreter import JournalEntry, RuleInfo, RunOutcome
-from goalagent.kb.mentalstate import instantiate
+from goalagent.kb.prolog_modules import instantiate
 from goalagent.kb.terms import Struct, Term, format_term
 from goalagent.parser import rename_variables
 

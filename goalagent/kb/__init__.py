@@ -5,7 +5,9 @@
   ``parse_term``, ``write``, the Python <-> Prolog term conversion (raw C interface) and
   foreign predicates (Prolog calling Python).
 - ``mentalstate.py`` + ``mentalstate*.pl``: ``MentalState``, one agent's knowledge, beliefs,
-  goal bases, percepts and mailbox in two private Prolog modules.
+  goal bases, percepts and mailbox in two private Prolog modules, joined from one part per
+  job: ``prolog_modules.py`` (the modules, loaded and freed), ``conditions.py``,
+  ``beliefbase.py``, ``goalbases.py``, ``percepts_and_mail.py``, ``identity.py``.
 - ``interpreter.py`` + ``rules.pl``: the one rule interpreter; ``CompiledProgram`` compiles
   a program's rules and runs module passes in one call, asking its ``Requests`` for what
   only Python does.
@@ -29,6 +31,7 @@ Typical use::
 Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).
 """
 
+from goalagent.kb.conditions import CompiledCondition
 from goalagent.kb.engine import (
     Engine,
     KBError,
@@ -36,7 +39,7 @@ from goalagent.kb.engine import (
     PrologSyntaxError,
     get_engine,
 )
-from goalagent.kb.mentalstate import CompiledCondition, MentalState
+from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [

@@ -20,9 +20,10 @@ from typing import Protocol
 
 from goalagent import ast
 from goalagent.events import EventKind, ProblemKind
+from goalagent.kb.conditions import CompiledCondition
 from goalagent.kb.engine import Engine, KBError, Kept, Record, define_foreign
 from goalagent.kb.limits import limit_text
-from goalagent.kb.mentalstate import CompiledCondition, MentalState
+from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
