@@ -2,8 +2,9 @@
 
 - ``engine.py``: the process's one SWI-Prolog (``get_engine()``): syntax checks with SWI's own
   reader (``check_clause``/``check_query`` -> variable names, ``PrologSyntaxError.offset``),
-  ``parse_term``, ``write``, the Python <-> Prolog term conversion (raw C interface) and
-  foreign predicates (Prolog calling Python).
+  ``parse_term``, ``write``; on ``calls.py`` (queries, errors, foreign predicates: Prolog
+  calling Python) and ``conversion.py`` (the Python <-> Prolog term conversion, raw C
+  interface).
 - ``mentalstate.py`` + ``mentalstate*.pl``: ``MentalState``, one agent's knowledge, beliefs,
   goal bases, percepts and mailbox in two private Prolog modules, joined from one part per
   job: ``prolog_modules.py`` (the modules, loaded and freed), ``conditions.py``,

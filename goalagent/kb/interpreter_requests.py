@@ -14,7 +14,8 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from goalagent.events import EventKind, ProblemKind
-from goalagent.kb.engine import Engine, KBError, define_foreign
+from goalagent.kb.calls import define_foreign
+from goalagent.kb.engine import Engine, KBError
 from goalagent.kb.limits import limit_text
 from goalagent.kb.rule_registry import RULES, RuleInfo
 from goalagent.kb.terms import Atom, Struct, Term, format_term
