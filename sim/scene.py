@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from ondisk import write_atomically
 from sim.mjcf import LIGHTING
 from sim.mjcf import box as _box
 from sim.mjcf import fmt as _v
@@ -427,7 +428,7 @@ def write_assets() -> list[Path]:
     paths = []
     for can in thesis_cans():
         path = asset_path(can)
-        path.write_text(build_mjcf(can))
+        write_atomically(path, build_mjcf(can))
         paths.append(path)
     return paths
 
