@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Protocol
 import cv2
 import numpy as np
 
-from sim.scene import MARKER_SIZE
+from sim.canspec import MARKER_SIZE
 
 if TYPE_CHECKING:
     from sim.world import GarbageWorld
