@@ -83,17 +83,16 @@ class PrologCalls(TermConversion):
         # (raising inside a callback would leave Prolog in between; see kb.watchdog).
         self.pending_stop: BaseException | None = None
 
-    def predicate(self, name: str, arity: int, module: str, *, cache: bool = True) -> int:
-        """A predicate handle for ``module:name/arity`` (cached unless the module is an
-        agent's: the caller keeps those, and they die with the module)."""
+    def predicate(self, name: str, arity: int, module: str) -> int:
+        """A predicate handle for ``module:name/arity`` (cached: the runtime's own modules
+        only, never an agent's, whose handles would die with it)."""
         key = (name, arity, module)
         handle = self._preds.get(key)
         if handle is None:
             if get_ident() != self._thread:  # SWI needs an engine in this thread
                 self._attach_thread()
             handle = PL_predicate(name.encode(), arity, module.encode())
-            if cache:
-                self._preds[key] = handle
+            self._preds[key] = handle
         return handle
 
     def forget_atom(self, name: str) -> None:

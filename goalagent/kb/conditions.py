@@ -36,12 +36,10 @@ _condition_names: dict[str, str] = {}
 class CompiledCondition:
     """A mental state condition compiled into one clause of an agent's belief module."""
 
-    __slots__ = ("_state", "_pred", "_name", "names", "_index", "text")
+    __slots__ = ("_state", "_name", "names", "_index", "text")
 
-    def __init__(self, state: Conditions, pred: int, name: str, names: tuple[str, ...],
-                 text: str) -> None:
+    def __init__(self, state: Conditions, name: str, names: tuple[str, ...], text: str) -> None:
         self._state = state
-        self._pred = pred
         self._name = name  # the clause's predicate name
         self.names = names  # named variables, in order of first appearance
         self._index = {name: i for i, name in enumerate(names)}
@@ -83,9 +81,7 @@ class Conditions(PrologModules):
         except PrologRuntimeError as error:
             raise _condition_error(self._engine, condition, error) from None
         assert isinstance(names, list)
-        names_tuple = tuple(str(item) for item in names)
-        pred = self._engine.predicate(name, len(names_tuple), str(self._b), cache=False)
-        compiled = CompiledCondition(self, pred, name, names_tuple, text)
+        compiled = CompiledCondition(self, name, tuple(str(item) for item in names), text)
         self._compiled[key] = compiled
         return compiled
 

@@ -131,7 +131,6 @@ class CompiledProgram:
     def __init__(self, state: MentalState, program: ast.AgentProgram) -> None:
         self._state = state
         self._engine: Engine = state.engine
-        self._program = program
         self._specs = {(spec.name, spec.arity) for spec in program.actionspecs}
         self._modules = {(m.name, m.arity): index for index, m in enumerate(program.modules)}
         self._directives = state.directives
