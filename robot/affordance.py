@@ -1,7 +1,8 @@
 """Affordance knowledge seen from Python: afford/6 rows, their history and its plot.
 
-The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in the language's library
-``goalagent/lib/affordance.pl`` and the agent program; this module only reads an agent's
+The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in the library
+``robot/affordance.pl`` (which agents ``#import``, see ``robot/extension.py``) and the agent
+program; this module only reads an agent's
 ``afford/6`` beliefs, keeps their history for a plot, and declares ``afford/6`` to
 ``--save-beliefs`` (``AFFORD``), which writes them as Prolog facts.
 """

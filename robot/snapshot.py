@@ -15,7 +15,7 @@ import numpy as np
 
 from behaviours.perception import Observation, dark_region, observe_image
 from ondisk import write_atomically
-from sim.scene import CanSpec
+from sim.canspec import CanSpec
 
 SCALE = 2
 """The annotated PNG is this many times the camera frame's size (nearest-neighbour)."""

@@ -51,7 +51,7 @@ def main() -> int:
         assert process.stderr is not None
         try:
             line = process.stderr.readline()
-            match = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            match = re.search(r"http://127\.0\.0\.1:\d+/\?token=[\w-]+", line)
             if match is None:
                 print(line + process.stderr.read(), file=sys.stderr)
                 return 1

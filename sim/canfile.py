@@ -24,7 +24,7 @@ import jsonschema
 import yaml
 
 from ondisk import read_bounded
-from sim.scene import MARKER_SIZE, CanSpec
+from sim.canspec import MARKER_SIZE, CanSpec
 
 CAN_DIR = Path(__file__).parent / "cans"
 SCHEMA_PATH = CAN_DIR / "can.schema.json"

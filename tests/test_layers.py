@@ -2,14 +2,16 @@
 
 ``lint-imports`` (pyproject.toml) checks the same contract in ``make test``; this check reads
 the sources itself with ``ast``, so imports inside functions and ``TYPE_CHECKING`` blocks count
-as much as those at the top of a module, and it runs with the suite.
+as much as those at the top of a module, and it runs with the suite. The same reading finds
+import cycles between files: every import that runs counts, inside functions too (an import
+under ``if TYPE_CHECKING:`` only names a type for annotations and never runs).
 """
 
 from __future__ import annotations
 
 import ast
 import sys
-from collections.abc import Iterator
+from collections.abc import Collection, Iterable, Iterator
 from pathlib import Path
 
 import pytest
@@ -35,21 +37,44 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def imported_modules(source: str, module: str, is_package: bool) -> Iterator[tuple[int, str]]:
-    """(line, absolute module name) of every import in ``source``, wherever it stands."""
+def imported_modules(source: str, module: str, is_package: bool, *, runtime_only: bool = False,
+                     submodules: Collection[str] = ()) -> Iterator[tuple[int, str]]:
+    """(line, absolute module name) of every import in ``source``, wherever it stands;
+    ``runtime_only``: not those in ``if TYPE_CHECKING:`` blocks (they never run); a name
+    ``from``-imported that is one of ``submodules`` counts as that module."""
     package = module if is_package else module.rpartition(".")[0]
-    for node in ast.walk(ast.parse(source)):
+    for node in _imports(ast.parse(source), runtime_only):
         if isinstance(node, ast.Import):
             for alias in node.names:
                 yield node.lineno, alias.name
-        elif isinstance(node, ast.ImportFrom):
+        else:
             if node.level:  # relative: resolve against this module's package
                 base = package.split(".")
                 base = base[: len(base) - node.level + 1]
                 target = ".".join(base + ([node.module] if node.module else []))
             else:
                 target = node.module or ""
-            yield node.lineno, target
+            for alias in node.names:
+                submodule = f"{target}.{alias.name}"
+                yield node.lineno, submodule if submodule in submodules else target
+
+
+def _imports(node: ast.AST, runtime_only: bool) -> Iterator[ast.Import | ast.ImportFrom]:
+    """The import statements in ``node`` (at any depth: in functions, classes, branches)."""
+    if isinstance(node, (ast.Import, ast.ImportFrom)):
+        yield node
+        return
+    children: Iterable[ast.AST] = ast.iter_child_nodes(node)
+    if runtime_only and isinstance(node, ast.If) and _is_type_checking(node.test):
+        children = node.orelse
+    for child in children:
+        yield from _imports(child, runtime_only)
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    """``TYPE_CHECKING`` or ``typing.TYPE_CHECKING``."""
+    return ((isinstance(test, ast.Name) and test.id == "TYPE_CHECKING")
+            or (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"))
 
 
 def broken_layers(source: str, module: str, is_package: bool = False) -> list[str]:
@@ -88,6 +113,30 @@ def package_graph() -> dict[str, set[str]]:
             if other in PACKAGES and other != own:
                 graph[own].add(other)
     return graph
+
+
+def file_graph(files: Iterable[tuple[str, str, bool]]) -> dict[str, set[str]]:
+    """Module -> the modules of the tree it imports when it runs (module ``files`` as
+    (name, source, is_package)), imports inside functions included; a package's
+    ``__init__`` is a module of its own."""
+    files = list(files)
+    modules = {module for module, _, _ in files}
+    graph: dict[str, set[str]] = {}
+    for module, source, is_package in files:
+        graph[module] = set()
+        for _, target in imported_modules(source, module, is_package, runtime_only=True,
+                                          submodules=modules):
+            while target not in modules and "." in target:
+                target = target.rpartition(".")[0]
+            if target in modules and target != module:
+                graph[module].add(target)
+    return graph
+
+
+def tree_files() -> Iterator[tuple[str, str, bool]]:
+    """The tree's modules as :func:`file_graph` reads them."""
+    for path, module in sources():
+        yield module, path.read_text(), path.name == "__init__.py"
 
 
 def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
@@ -160,3 +209,19 @@ def test_allowed_imports_pass_the_check():
 def test_a_cycle_is_found():
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+def test_no_import_cycle_between_files():
+    assert find_cycle(file_graph(tree_files())) is None
+
+
+def test_a_file_cycle_hidden_in_a_function_is_found_and_one_of_annotations_is_not():
+    hidden = [("sim.scene", "def load():\n    from sim.canfile import load_can\n", False),
+              ("sim.canfile", "from sim.scene import CanSpec\n", False)]
+    assert find_cycle(file_graph(hidden)) == ["sim.canfile", "sim.scene", "sim.canfile"]
+    annotations = [("a.cycle", "from a.rules import RuleApplication\n", False),
+                   ("a.rules", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+                               "    from a.cycle import Agent\n", False)]
+    assert find_cycle(file_graph(annotations)) is None
+    submodule = [("a", "from a import b\n", True), ("a.b", "import a\n", False)]
+    assert find_cycle(file_graph(submodule)) == ["a", "a.b", "a"]
