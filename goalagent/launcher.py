@@ -11,6 +11,7 @@ so the handlers are in place before anything slow is imported.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import sys
@@ -19,15 +20,18 @@ from types import FrameType
 HANDLED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
+_UNWRITABLE = (OSError, RuntimeError, ValueError)
+"""A terminal that is gone (SIGHUP), a write this signal interrupted (a reentrant call), a
+closed stream: nothing more can be said there."""
+
+
 def _stop(signum: int, frame: FrameType | None) -> None:
-    """Say which signal stopped the command and end the process with its code."""
-    for stream, text in ((sys.stdout, ""),
-                         (sys.stderr, f"goalagent: stopped by {signal.Signals(signum).name}\n")):
-        try:
-            stream.write(text)
-            stream.flush()
-        except (OSError, RuntimeError, ValueError):  # a closed terminal (SIGHUP), a write
-            pass  # interrupted in the middle (reentrant), a closed stream
+    """Flush what the command printed, say which signal stopped it, end with its code."""
+    with contextlib.suppress(*_UNWRITABLE):
+        sys.stdout.flush()
+    with contextlib.suppress(*_UNWRITABLE):
+        sys.stderr.write(f"goalagent: stopped by {signal.Signals(signum).name}\n")
+        sys.stderr.flush()
     os._exit(128 + signum)
 
 

@@ -4,8 +4,10 @@ A ``KnownObject`` keeps an object's parts (Table 5.1 descriptors), their ``above
 the action types' bounds, every pair model's samples (θ, e_ψ, e_o) and the functional pair
 that achieved the goal. ``KnownObjectDatabase`` persists them as one versioned JSON file,
 rewritten atomically (``persist.write_text_atomically``) on every change, so a crash never
-leaves half a database. Models are stored as their samples and refitted on
-load (the samples are the truth; the coefficients are written for human readers only).
+leaves half a database. Models are stored as their samples and refitted when first used
+after loading (the samples are the truth; the coefficients are written for human readers
+only); every value read is checked first, so a hostile file is a DatabaseError naming the
+record, never a crash.
 """
 
 from __future__ import annotations
