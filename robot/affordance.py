@@ -9,6 +9,7 @@ program; this module only reads an agent's
 
 from __future__ import annotations
 
+import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING, BinaryIO
 from goalagent.extensions import SavedPredicate
 from goalagent.kb.facts import FactWatch
 from goalagent.kb.terms import Atom, Term
+from ondisk import write_atomically
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -156,7 +158,10 @@ class ReliabilityHistory:
         axes.set_title(title)
         axes.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
         figure.tight_layout()
-        if isinstance(path, Path):
-            path.parent.mkdir(parents=True, exist_ok=True)
-        figure.savefig(path, dpi=110, format="png")
+        if isinstance(path, Path):  # a file is put in place whole, never half drawn
+            picture = io.BytesIO()
+            figure.savefig(picture, dpi=110, format="png")
+            write_atomically(path, picture.getvalue())
+        else:
+            figure.savefig(path, dpi=110, format="png")
         plt.close(figure)

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ondisk import write_atomically
 from sim.canfile import load_can, shipped_can_path
 from sim.canspec import MARKER_SIZE, TABLE_TOP, CanSpec
 from sim.mjcf import LIGHTING, box, fmt, look_at
@@ -345,7 +346,7 @@ def write_assets() -> list[Path]:
     paths = []
     for can in thesis_cans():
         path = asset_path(can)
-        path.write_text(build_mjcf(can))
+        write_atomically(path, build_mjcf(can))
         paths.append(path)
     return paths
 

@@ -72,7 +72,7 @@ def test_no_import_sets_an_environment_variable_and_the_garbage_environment_choo
             importlib.import_module(library)
         before = dict(os.environ)
         names = []
-        for package in ("goalagent", "sim", "behaviours", "robot"):
+        for package in ("goalagent", "sim", "behaviours", "robot", "ondisk"):
             names.append(package)
             module = importlib.import_module(package)
             for info in pkgutil.walk_packages(module.__path__, package + "."):

@@ -111,14 +111,14 @@ class Conditions(PrologModules):
         return [dict(zip(names, row, strict=True)) for row in rows]
 
     def query(self, op: str, text: str, bindings: Mapping[str, Term] | None = None, *,
-              limit: int | None = None) -> list[dict[str, Term]]:
-        """Answers of one literal ``op(text)``, op in bel/goal/a-goal/goal-a/percept/true."""
+              limit: int | None = None, trusted: bool = True) -> list[dict[str, Term]]:
+        """Answers of ``op(text)``, op bel/goal/a-goal/goal-a/percept/true (see compile)."""
         if op not in _WRAPPERS and op != "true":
             raise KBError(f"unknown mental literal `{op}`: use one of "
                           f"{', '.join([*_WRAPPERS, 'true'])}")
         query = ast.PrologText(text, _QUERY_POS) if op != "true" else None
         literal = ast.MentalLiteral(op, query, _QUERY_POS)  # type: ignore[arg-type]
-        return self.solutions(self.compile((literal,), trusted=True), bindings, limit=limit)
+        return self.solutions(self.compile((literal,), trusted=trusted), bindings, limit=limit)
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""

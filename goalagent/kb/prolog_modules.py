@@ -84,8 +84,8 @@ class PrologModules:
         self._engine.call("set_limits", self._b, self.limits.max_inferences,
                           self.limits.max_beliefs, module="ga_guard")
         self._watchdog.time_limit = self.limits.max_query_seconds  # its directives run
-        result = self._call("load", self._b, self._g, items,
-                            TRUE if self.limits.sandbox else FALSE, None)[4]
+        result = self._call("load", self._b, self._g, items, TRUE if self.limits.sandbox
+                            else FALSE, TRUE if self.limits.runs_code else FALSE, None)[5]
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             kind, text = clauses[int(index)]
