@@ -24,10 +24,12 @@ there a plain ``str`` is an identifier (atom), ``bool`` a truth value and a tupl
 ``to_python`` goes the other way for environment code: like ``to_term`` but truth values
 become ``bool``.
 
-A ``Percept`` or ``Action`` keeps the kb term it came from (``percept_from_term``,
-``Percept.of``) or stands for, so the term an environment built reaches the agent as it is
-(checked and made canonical in one pass) instead of being taken apart into
-parameters and built again; parameters are made only if something reads them.
+A ``Percept`` or ``Action`` is converted once, into what its reader takes: a percept an
+environment wrote as a term or shorthand (``percept_from_term``, ``Percept.of``) keeps the
+term, checked and made canonical in one pass, and reaches the agent as it is instead of
+being taken apart into parameters and built again; an agent's action (``action_from_term``)
+gets its parameters, which the environment reads. Either makes the other form only if
+something asks for it.
 """
 
 from __future__ import annotations
@@ -184,17 +186,20 @@ class _Named:
         return cls._of_term(name, _named_term(name, terms))
 
     @classmethod
-    def _from_term(cls: type[_N], term: Term, what: str) -> _N:
-        """One for an atom or compound term (``f()`` reads as the atom ``f``)."""
+    def _from_term(cls: type[_N], term: Term, what: str, *, parameters: bool) -> _N:
+        """One for an atom or compound term (``f()`` reads as the atom ``f``), keeping the
+        term, or (``parameters``: for a reader of parameters) its parameters."""
         if isinstance(term, Atom):
             return cls._of_term(str(term), term if type(term) is Atom else Atom(str(term)))
         if isinstance(term, Struct):
             if not term.args:
                 return cls._of_term(term.name, Atom(term.name))
-            try:
-                return cls._of_term(term.name, _canonical_term(term))
-            except _KeptAsParameters:
-                return cls(term.name, tuple(from_term(arg) for arg in term.args))
+            if not parameters:
+                try:
+                    return cls._of_term(term.name, _canonical_term(term))
+                except _KeptAsParameters:
+                    pass
+            return cls(term.name, tuple(from_term(arg) for arg in term.args))
         if isinstance(term, Var):
             raise TranslationException(
                 f"{what} is an unbound variable {term.name}; it must be ground")
@@ -392,8 +397,9 @@ def percept_to_term(percept: Percept) -> Term:
 
 
 def percept_from_term(term: Term) -> Percept:
-    """The percept for an atom or compound term (``f()`` reads as the atom ``f``)."""
-    return Percept._from_term(term, "a percept")
+    """The percept for an atom or compound term (``f()`` reads as the atom ``f``): it keeps
+    the term, which is what its reader, an agent, takes."""
+    return Percept._from_term(term, "a percept", parameters=False)
 
 
 def action_to_term(action: Action) -> Term:
@@ -402,5 +408,6 @@ def action_to_term(action: Action) -> Term:
 
 
 def action_from_term(term: Term) -> Action:
-    """The action for an atom or compound term as an agent's program sends it (ground)."""
-    return Action._from_term(term, "an action")
+    """The action for an atom or compound term as an agent's program sends it (ground): its
+    parameters, which is what its reader, an environment, takes."""
+    return Action._from_term(term, "an action", parameters=True)
