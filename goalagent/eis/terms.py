@@ -261,6 +261,20 @@ class Action(_Named):
     __slots__ = ()
 
 
+def _unbound(var: Var) -> TranslationException:
+    return TranslationException(
+        f"unbound variable {var.name} cannot be sent to or from an environment "
+        "(percepts and actions must be ground)"
+    )
+
+
+def _not_shorthand(value: object) -> TranslationException:
+    return TranslationException(
+        f"cannot turn {value!r} ({type(value).__name__}) into an EIS parameter; use str, int, "
+        "float, bool, list/tuple, a kb term or an EIS parameter"
+    )
+
+
 def to_term(param: Parameter) -> Term:
     """The kb term (and so Prolog term) for an EIS parameter."""
     if isinstance(param, Identifier):
@@ -291,10 +305,7 @@ def from_term(term: Term) -> Parameter:
     if isinstance(term, Struct):
         return Function(term.name, tuple(from_term(arg) for arg in term.args))
     if isinstance(term, Var):
-        raise TranslationException(
-            f"unbound variable {term.name} cannot be sent to or from an environment "
-            "(percepts and actions must be ground)"
-        )
+        raise _unbound(term)
     raise TranslationException(f"not a Prolog term: {term!r}")
 
 
@@ -312,10 +323,7 @@ def to_parameter(value: object) -> Parameter:
         return ParameterList(tuple(to_parameter(item) for item in value))
     if isinstance(value, (Struct, Var)):
         return from_term(value)
-    raise TranslationException(
-        f"cannot turn {value!r} ({type(value).__name__}) into an EIS parameter; use str, int, "
-        "float, bool, list/tuple, a kb term or an EIS parameter"
-    )
+    raise _not_shorthand(value)
 
 
 def to_python(param: Parameter) -> object:
@@ -348,10 +356,7 @@ def _shorthand_term(value: object) -> Term:
         return [_shorthand_term(item) for item in value]
     if isinstance(value, (Struct, Var)):
         return _canonical_term(value)
-    raise TranslationException(
-        f"cannot turn {value!r} ({type(value).__name__}) into an EIS parameter; use str, int, "
-        "float, bool, list/tuple, a kb term or an EIS parameter"
-    )
+    raise _not_shorthand(value)
 
 
 def _canonical_term(term: Term) -> Term:
@@ -379,10 +384,7 @@ def _canonical_term(term: Term) -> Term:
     if isinstance(term, Struct):
         return Struct(term.name, tuple(_canonical_term(arg) for arg in term.args))
     if isinstance(term, Var):
-        raise TranslationException(
-            f"unbound variable {term.name} cannot be sent to or from an environment "
-            "(percepts and actions must be ground)"
-        )
+        raise _unbound(term)
     raise TranslationException(f"not a Prolog term: {term!r}")
 
 
