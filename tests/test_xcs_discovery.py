@@ -19,7 +19,7 @@ from behaviours.learners.xcs_population import condition_masks, condition_text, 
 
 
 def settings(n_actions: int = 2, **changes) -> Settings:
-    return Settings.resolve(n_actions, {**DEFAULTS, **changes})
+    return Settings.resolve("XCS", {"n_actions": n_actions, **DEFAULTS, **changes})
 
 
 def state(text: str) -> int:

@@ -18,16 +18,7 @@ behind it: `xcs_population` (the classifiers as numpy arrays, vectorised matchin
 """
 
 from .xcs_agent import XCS
+from .xcs_classifier import XCSClassifier
 from .xcs_population import Classifier
 
-__all__ = ["XCS", "Classifier", "XCSClassifier"]  # noqa: F822 (XCSClassifier: __getattr__)
-
-
-def __getattr__(name: str) -> object:
-    """`XCSClassifier` on first use: importing scikit-learn costs a second or more, which an
-    agent that only uses `XCS` should not pay."""
-    if name == "XCSClassifier":
-        from .xcs_classifier import XCSClassifier
-
-        return XCSClassifier
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["XCS", "Classifier", "XCSClassifier"]

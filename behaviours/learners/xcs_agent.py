@@ -20,13 +20,16 @@ import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from os import PathLike
-from typing import NamedTuple
+from typing import ClassVar, NamedTuple
 
 import numpy as np
+from sklearn.base import BaseEstimator
+from sklearn.utils import Tags
 
 from . import xcs_persistence
+from .tags import with_domain
 from .xcs_discovery import action_set_subsumption, cover, delete_from_population, run_ga
-from .xcs_params import DEFAULTS, Settings, check_parameters, make_generator
+from .xcs_params import CONSTRAINTS, Settings, make_generator
 from .xcs_population import (
     ERROR,
     EXPERIENCE,
@@ -80,14 +83,25 @@ class _Step:
     reward: float = 0.0
 
 
-class XCS:
+class XCS(BaseEstimator):
     """Wilson's XCS over binary states and ``n_actions`` integer actions (see module doc).
 
     Parameters keep the names of Butz & Wilson (2001) and thesis Table 7.1; ``beta_p``,
-    ``beta_e``, ``beta_f`` (eq. 7.1, 7.4, 7.5) default to ``beta``. The state length is fixed
-    by the first state seen. Learned state: ``population_`` (the classifiers), ``time_`` (the
-    number of explore steps, the GA's clock), ``n_bits_``.
+    ``beta_e``, ``beta_f`` (eq. 7.1, 7.4, 7.5) default to ``beta``. They are stored as given
+    and checked (``_parameter_constraints``) once, at the learner's first use; `set_params`
+    on a started learner takes effect at its next step (``random_state`` only seeds a learner
+    that has not started). The state length is fixed by the first state seen. Learned state:
+    ``population_`` (the classifiers), ``time_`` (the number of explore steps, the GA's
+    clock), ``n_bits_``.
+
+    XCS learns from rewards, step by step (`act`, `reward`), not from (X, y): it has no `fit`,
+    so scikit-learn's estimator checks that need one do not apply; `XCSClassifier` is its
+    face for those.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = CONSTRAINTS
+    _settings: Settings | None = None
+    """The checked parameters; None until the first use (and after `set_params`)."""
 
     def __init__(self, n_actions: int, *, N: int = 400, beta: float = 0.2,
                  beta_p: float | None = None, beta_e: float | None = None,
@@ -109,27 +123,46 @@ class XCS:
         self.action_set_subsumption = action_set_subsumption
         self.consistent_actions = consistent_actions
         self.random_state = random_state
-        values = self.get_params()
-        check_parameters("XCS", n_actions, values)
-        self._settings = Settings.resolve(int(n_actions), values)
-        self._rng = make_generator(random_state)
-        settings = self._settings
+
+    def __sklearn_tags__(self) -> Tags:
+        return with_domain(super().__sklearn_tags__(), binary=True)
+
+    def set_params(self, **params: object) -> XCS:
+        """scikit-learn's `set_params`; the new values are checked at the next use."""
+        super().set_params(**params)
+        self.__dict__.pop("_settings", None)
+        return self
+
+    def _start(self) -> Settings:
+        """Check the parameters and derive the hot path's constants from them; on the first
+        use also create the learned state (an empty population, the clock, the generator)."""
+        self._validate_params()
+        settings = Settings.resolve(type(self).__name__, self.get_params(deep=False))
+        if self.__dict__.get("population_") is not None and np.any(
+                self.population_.action[:self.population_.size] >= settings.n_actions):
+            raise ValueError(f"{type(self).__name__}: n_actions cannot drop below the "
+                             f"actions of the learned population; clone a new learner")
         scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
         self._constants = _Constants(*(np.array(value) for value in (
             1.0, settings.beta, settings.epsilon_0, scale, scale * settings.epsilon_0,
             -settings.nu, 1.0 - settings.beta_f)))
-        self._all_actions = np.arange(int(n_actions))
-        self._action_values = [np.array(action) for action in range(int(n_actions))]  # 0-d
-        self.population_: Population | None = None
-        self.n_bits_: int | None = None
-        self.time_ = 0
-        self._pending: _Step | None = None
-        self._previous: _Step | None = None
-        self._states: dict[object, tuple[np.ndarray, int]] = {}
+        self._all_actions = np.arange(settings.n_actions)
+        self._action_values = [np.array(action) for action in range(settings.n_actions)]
+        if "time_" not in self.__dict__:
+            self._rng = make_generator(self.random_state)
+            self.population_: Population | None = None
+            self.n_bits_: int | None = None
+            self.time_ = 0
+            self._pending: _Step | None = None
+            self._previous: _Step | None = None
+            self._states: dict[object, tuple[np.ndarray, int]] = {}
+        self._settings = settings
+        return settings
 
-    def get_params(self, deep: bool = True) -> dict[str, object]:
-        """The constructor's parameters as given (scikit-learn's convention)."""
-        return {"n_actions": self.n_actions, **{name: getattr(self, name) for name in DEFAULTS}}
+    def _ready(self) -> Settings:
+        """The checked parameters, checking them first if this is the first use."""
+        settings = self._settings
+        return settings if settings is not None else self._start()
 
     # -- the agent-facing interface ------------------------------------------------------------
 
@@ -141,6 +174,7 @@ class XCS:
         while [A]-1 still matches); exploit: the best by eq. 3.9. ``allowed`` (action indices)
         restricts the choice, eq. 7.2's max and covering to those actions.
         """
+        self._ready()
         if explore is not True and explore is not False and not isinstance(explore, np.bool_):
             raise ValueError(f"explore must be True or False, got {explore!r}")
         permitted = self._all_actions if allowed is None else self._permitted(allowed)
@@ -173,6 +207,7 @@ class XCS:
 
     def reward(self, r: float, done: bool) -> None:
         """The reward of the action `act` just returned; ``done`` ends the trial."""
+        self._ready()
         if type(r) is not float and (not isinstance(r, numbers.Real) or isinstance(r, bool)):
             raise ValueError(f"r must be a finite number, got {r!r}")
         if not math.isfinite(r):
@@ -193,45 +228,51 @@ class XCS:
     def end_trial(self) -> None:
         """End a trial cut short (a step limit) without a terminal reward: the last action
         set stays unreinforced, as in Butz & Wilson, and the next `act` starts a new trial."""
+        self._ready()
         self._pending = None
         self._previous = None
 
     def prediction_array(self, state: object) -> np.ndarray:
         """Eq. 3.8 for every action on ``state``: NaN where no classifier advocates it.
         A query: nothing is covered or learned."""
+        self._ready()
         if self.population_ is None:
             self._encode(state, fix_length=False)
-            return np.full(int(self.n_actions), np.nan)
+            return np.full(self._settings.n_actions, np.nan)
         words, _ = self._encode(state)
         match = self.population_.match(words)
         return self._prediction_array(match, self.population_.action[match])
 
     def classifiers(self) -> list[Classifier]:
         """Every macro-classifier as a `Classifier` record."""
+        self._ready()
         return [] if self.population_ is None else self.population_.records()
 
     @property
     def macro_count(self) -> int:
         """Number of macro-classifiers (distinct condition-action pairs) in the population."""
+        self._ready()
         return 0 if self.population_ is None else self.population_.macro_count
 
     @property
     def micro_count(self) -> int:
         """Sum of numerosities (what N bounds)."""
+        self._ready()
         return 0 if self.population_ is None else self.population_.micro_count
 
     def set_classifiers(self, classifiers: Iterable[Classifier | tuple], *,
                         time: int | None = None) -> None:
         """Replace the population (e.g. a hand-built one); ``time`` sets the GA clock
         (default: the latest time stamp, or the current clock if later)."""
-        records = xcs_persistence.check_records(classifiers, int(self.n_actions), int(self.N))
+        settings = self._ready()
+        records = xcs_persistence.check_records(classifiers, settings.n_actions, settings.N)
         if time is not None and (isinstance(time, bool) or not isinstance(time, int | np.integer)
                                  or time < 0):
             raise ValueError(f"time must be an integer >= 0, got {time!r}")
         n_bits = len(records[0].condition) if records else self.n_bits_
         population = None
         if n_bits is not None:
-            population = Population(n_bits, int(self.N) + int(self.n_actions) + 2)
+            population = Population(n_bits, settings.N + settings.n_actions + 2)
             xcs_persistence.fill(population, records)
         self.population_, self.n_bits_ = population, n_bits
         self._states.clear()
@@ -241,6 +282,7 @@ class XCS:
 
     def save(self, path: str | PathLike[str]) -> None:
         """Write parameters, population, clock and random state to ``path`` atomically."""
+        self._ready()
         xcs_persistence.save(self, path)
 
     @classmethod
@@ -276,7 +318,8 @@ class XCS:
         bits = self._state_bits(state)
         if self.n_bits_ is None and fix_length:
             self.n_bits_ = bits.size
-            self.population_ = Population(bits.size, int(self.N) + int(self.n_actions) + 2)
+            settings = self._settings
+            self.population_ = Population(bits.size, settings.N + settings.n_actions + 2)
         if self.n_bits_ is not None and bits.size != self.n_bits_:
             raise ValueError(f"state must have {self.n_bits_} bits, got {bits.size}: "
                              f"{reprlib.repr(state)}")

@@ -123,13 +123,14 @@ def _restore(cls: type[XCS], params: dict, state: dict) -> XCS:
     if set(params) != expected:
         raise ValueError("params: expected exactly " + ", ".join(sorted(expected)))
     xcs = cls(**params)
+    settings = xcs._ready()
     classifiers = state.get("classifiers")
     if not isinstance(classifiers, list):
         raise ValueError("classifiers: expected a list")
     n_bits = state.get("n_bits")
     if n_bits is not None and (not _is_integer(n_bits) or n_bits < 1):
         raise ValueError(f"n_bits must be null or an integer >= 1, got {n_bits!r}")
-    records = check_records(classifiers, int(xcs.n_actions), int(xcs.N))
+    records = check_records(classifiers, settings.n_actions, settings.N)
     if records and len(records[0].condition) != n_bits:
         raise ValueError(f"n_bits is {n_bits!r} but conditions have {len(records[0].condition)}")
     time = state.get("time")
@@ -138,7 +139,7 @@ def _restore(cls: type[XCS], params: dict, state: dict) -> XCS:
     xcs.set_classifiers(records, time=time)
     if n_bits is not None and xcs.n_bits_ is None:
         xcs.n_bits_ = n_bits
-        xcs.population_ = Population(n_bits, int(xcs.N) + int(xcs.n_actions) + 2)
+        xcs.population_ = Population(n_bits, settings.N + settings.n_actions + 2)
     xcs._rng = _generator(state.get("random_generator"))
     return xcs
 
