@@ -14,11 +14,14 @@ import pytest
 from sklearn.utils import get_tags
 from sklearn.utils.estimator_checks import parametrize_with_checks
 
+from behaviours.learners.forward_model import ForwardModel
 from behaviours.learners.tags import DomainInputTags
 from behaviours.learners.xcs import XCS, XCSClassifier
 
 ESTIMATORS = [
     XCSClassifier(n_iter=2, binarize=0.0),  # binarize: the checks' features are real numbers
+    # action bounds that hold the checks' data (the last column is the action)
+    ForwardModel(action_bounds=((-1e3, 1e3),), learning_rate=0.01),
 ]
 EXPECTED_FAILURES: dict[str, dict[str, str]] = {}
 """Per estimator class, the checks expected to fail and why (none so far)."""
@@ -38,6 +41,8 @@ def test_domain_tags():
     assert not get_tags(XCSClassifier(binarize=0.5)).input_tags.binary
     assert isinstance(get_tags(XCS(2)).input_tags, DomainInputTags)
     assert get_tags(XCS(2)).input_tags.binary
+    model_tags = get_tags(ForwardModel())
+    assert model_tags.input_tags.bounded_actions and model_tags.target_tags.multi_output
 
 
 @pytest.mark.parametrize("estimator", [XCS(2)], ids=lambda e: type(e).__name__)

@@ -153,14 +153,17 @@ class ActiveExplorer(BaseEstimator):
             inputs = np.concatenate([state, action])[None, :]
             if k == 1:
                 model.initialize(state.size, state.size)
-            predicted = np.atleast_1d(model.predict(inputs)[0])  # 4.2
+            # the model's own steps on rows built here from checked values: scikit-learn's
+            # validation of every row would cost more than the learning itself
+            network_inputs = model._inputs(inputs)
+            predicted = model.network_.predict(network_inputs)[0]  # 4.2
             next_state = _state(world.step(action.copy()), "the world's next state")
             if next_state.shape != state.shape:
                 raise ValueError(f"the world's state changed shape from {state.shape} to "
                                  f"{next_state.shape}")
             effect = next_state - state  # 4.20
             reward = float(np.linalg.norm(effect - predicted))  # 4.3, 4.6
-            model.partial_fit(inputs, effect[None, :])  # 4.4
+            model._learn(network_inputs, effect[None, :])  # 4.4
             cacla.partial_fit(state[None, :], unit[None, :], [reward], next_state[None, :])
             delta = cacla.td_errors_[-1]
             stop = test.update(delta)  # (4.10)
