@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 from measured import goalagent_measured
 
+from behaviours.learners.effect_models import ModelStore, StoreError
 from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
 from behaviours.learners.persist import LearnerFileError, read_learner
-from behaviours.models import ModelStore, StoreError
 from goalagent.agent import Agent
 from goalagent.beliefs import load_beliefs, read_belief_file
 from goalagent.parser import GoalSyntaxError

@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from behaviours.learners.effect_models import LinearEffectModel, ModelStore, StoreError
 from behaviours.learning import learn
-from behaviours.models import LinearEffectModel, ModelStore, StoreError
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -100,7 +100,7 @@ def test_default_key_is_object_and_action(tmp_path: Path) -> None:
 CRASH_SCRIPT = textwrap.dedent(
     """
     import os, sys
-    from behaviours.models import LinearEffectModel, ModelStore
+    from behaviours.learners.effect_models import LinearEffectModel, ModelStore
     store = ModelStore(sys.argv[1])
     def crash(fd):
         os._exit(3)  # the process dies after writing the temporary file, before the rename
