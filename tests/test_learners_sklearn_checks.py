@@ -14,7 +14,9 @@ import pytest
 from sklearn.utils import get_tags
 from sklearn.utils.estimator_checks import parametrize_with_checks
 
+from behaviours.learners.cacla import CACLA
 from behaviours.learners.effect_models import LinearEffectModel
+from behaviours.learners.exploration import ActiveExplorer
 from behaviours.learners.forward_model import ForwardModel
 from behaviours.learners.tags import DomainInputTags
 from behaviours.learners.xcs import XCS, XCSClassifier
@@ -53,7 +55,8 @@ def test_domain_tags():
     assert model_tags.input_tags.bounded_actions and model_tags.target_tags.multi_output
 
 
-@pytest.mark.parametrize("estimator", [XCS(2)], ids=lambda e: type(e).__name__)
+@pytest.mark.parametrize("estimator", [XCS(2), CACLA(), ActiveExplorer()],
+                         ids=lambda e: type(e).__name__)
 def test_estimator_api_without_fit(estimator):
     from sklearn.utils import estimator_checks as checks
 
