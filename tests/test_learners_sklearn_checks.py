@@ -14,11 +14,15 @@ import pytest
 from sklearn.utils import get_tags
 from sklearn.utils.estimator_checks import parametrize_with_checks
 
+from behaviours.learners.baseline import PartBasedLearner
 from behaviours.learners.cacla import CACLA
 from behaviours.learners.effect_models import LinearEffectModel
 from behaviours.learners.exploration import ActiveExplorer
 from behaviours.learners.forward_model import ForwardModel
+from behaviours.learners.part_models import PartActionModel
+from behaviours.learners.similarity import PartSimilarity
 from behaviours.learners.tags import DomainInputTags
+from behaviours.learners.transfer import TransferLearner
 from behaviours.learners.xcs import XCS, XCSClassifier
 
 ESTIMATORS = [
@@ -26,6 +30,9 @@ ESTIMATORS = [
     # action bounds that hold the checks' data (the last column is the action)
     ForwardModel(action_bounds=((-1e3, 1e3),), learning_rate=0.01),
     LinearEffectModel(),
+    # unweighted, and no part novel: the checks' features are not Table 5.1's three, and
+    # their labels must all be classes
+    PartSimilarity(weights=None, max_distance=None),
 ]
 EXPECTED_FAILURES: dict[str, dict[str, str]] = {
     "LinearEffectModel": {
@@ -55,7 +62,8 @@ def test_domain_tags():
     assert model_tags.input_tags.bounded_actions and model_tags.target_tags.multi_output
 
 
-@pytest.mark.parametrize("estimator", [XCS(2), CACLA(), ActiveExplorer()],
+@pytest.mark.parametrize("estimator", [XCS(2), CACLA(), ActiveExplorer(), PartActionModel(),
+                                       PartBasedLearner(), TransferLearner()],
                          ids=lambda e: type(e).__name__)
 def test_estimator_api_without_fit(estimator):
     from sklearn.utils import estimator_checks as checks
