@@ -65,13 +65,19 @@ def test_save_and_load_round_trip_atomically(tmp_path: Path):
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "forward_model",
                  "params": {}, "state": {}}), "holds a 'forward_model'"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
-                 "params": {"undesired_effects": [0]}, "state": {}}), "corrupt: missing"),
+                 "params": {"undesired_effects": [0]}, "state": {}}),
+     "state: 'triples' is a required property"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
-                 "state": {"triples": [["1100", "010"]]}}), "corrupt: a triple must be"),
+                 "state": {"triples": [["1100", "010"]]}}),
+     r"state\.triples\[0\]: \['1100', '010'\] is too short"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
-                 "state": {"triples": [["11x0", "010", 0]]}}), "corrupt: an object must be"),
+                 "state": {"triples": [["11x0", "010", 0]]}}),
+     r"state\.triples\[0\]\.object: '11x0' does not match"),
+    (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
+                 "params": {"undesired_effects": [0.5]}, "state": {"triples": []}}),
+     r"params\.undesired_effects\[0\]: 0\.5 is not of type 'integer'"),
 ])
 def test_a_corrupt_file_is_a_clear_error(tmp_path: Path, content: str, message: str):
     path = tmp_path / "table.json"

@@ -191,7 +191,12 @@ def test_save_and_load_round_trip(tmp_path: Path) -> None:
          '"state": {}}', "holds a 'cacla'"),
         ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
          '"params": {"action_bounds": [[-0.01, 0.01]]}, "state": {"network": {"coefs": [[1]], '
-         '"intercepts": []}}}', "bad forward model"),
+         '"intercepts": []}}}', "state: 'n_features_in' is a required property"),
+        ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
+         '"params": {"action_bounds": [[-0.01, 0.01]], "n_hidden": 1, "learning_rate": 0.3, '
+         '"init_scale": 0.3, "random_state": null}, "state": {"network": {"coefs": [[[1]], '
+         '[[1]]], "intercepts": [[0], [0]]}, "n_features_in": 3, "n_outputs": 1, '
+         '"n_samples_seen": 0}}', "bad forward model"),
     ],
 )
 def test_corrupt_files_give_clear_errors(tmp_path: Path, text: str, message: str) -> None:

@@ -193,7 +193,9 @@ def test_reward_without_act_and_act_without_reward_are_value_errors():
     ([cl("01", 0), cl("011", 1)], r"classifiers\[1\]\.condition has 3"),
     ([cl("01", 0), cl("01", 0)], r"classifiers\[1\] repeats"),
     ([cl("01", 0, numerosity=600)], "exceeds N"),
-    ([("01", 0, 1.0)], r"classifiers\[0\] must have 9 fields"),
+    ([("01", 0, 1.0)], r"classifiers\[0\]: \['01', 0, 1.0\] is too short"),
+    ([["01", 0, 10.0, 0.0, 0.01, 0, 1, 1.0, 0, "extra"]], r"classifiers\[0\]: .* too long"),
+    ([cl("01", 0, time_stamp=1.5)], r"classifiers\[0\]\.time_stamp: 1.5 is not of type"),
     ("01", "classifiers must be a list"),
 ])
 def test_bad_hand_built_populations_are_value_errors(records, message):
@@ -269,17 +271,19 @@ def corrupt(document: dict, change) -> dict:
     (lambda d: d.update(format="something-else"), "not a goalagent learner file"),
     (lambda d: d.update(version=99), "has version 99"),
     (lambda d: d.update(kind="forward_model"), "holds a 'forward_model', not a 'xcs'"),
-    (lambda d: d["params"].pop("beta"), "params: expected exactly"),
+    (lambda d: d["params"].pop("beta"), "params: 'beta' is a required property"),
+    (lambda d: d["params"].update(colour=3), r"params: .*'colour' was unexpected"),
     (lambda d: d["params"].update(N=-1), "'N' parameter of XCS must be"),
     (lambda d: d["params"].update(n_actions="two"), "'n_actions' parameter of XCS must be"),
     (lambda d: d["state"]["classifiers"][0].__setitem__(0, "01?#01"),
      r"classifiers\[0\]\.condition"),
     (lambda d: d["state"]["classifiers"][0].__setitem__(4, -1.0), r"classifiers\[0\]\.fitness"),
     (lambda d: d["state"].update(classifiers={}), "classifiers"),
-    (lambda d: d["state"].update(time=-5), "time must be"),
+    (lambda d: d["state"].update(time=-5), "state.time: -5 is less than the minimum of 0"),
+    (lambda d: d["state"]["classifiers"][0].__setitem__(1, True), r"classifiers\[0\]\.action"),
     (lambda d: d["state"].update(n_bits=7), "n_bits is 7"),
     (lambda d: d["state"]["random_generator"].update(bit_generator="Nope"),
-     "unknown bit generator"),
+     "state.random_generator.bit_generator: 'Nope' is not one of"),
     (lambda d: d["state"]["random_generator"].update(state="x"), "random_generator"),
 ])
 def test_corrupt_or_foreign_files_are_value_errors_naming_the_file(tmp_path, change, message):

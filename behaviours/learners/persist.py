@@ -16,6 +16,8 @@ import stat
 import tempfile
 from pathlib import Path
 
+from behaviours.learners.schemas import SchemaError, check
+
 __all__ = [
     "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
     "json_params", "read_json", "read_learner", "write_learner", "write_text_atomically",
@@ -117,7 +119,9 @@ def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
 
 
 def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
-    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file."""
+    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file:
+    the format, version and kind identify the file, then the kind's JSON Schema
+    (``schemas/KIND.schema.json``) checks every field, naming the first bad one."""
     source = Path(path)
     try:
         data = read_json(source, "learner file")
@@ -131,10 +135,11 @@ def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
     if data.get("kind") != kind:
         raise LearnerFileError(f"learner file {str(source)!r} holds a {data.get('kind')!r}, "
                                f"not a {kind!r}")
-    params, state = data.get("params"), data.get("state")
-    if not isinstance(params, dict) or not isinstance(state, dict):
-        raise LearnerFileError(f"learner file {str(source)!r} lacks its params or state")
-    return params, state
+    try:
+        check(data, kind)
+    except SchemaError as error:
+        raise LearnerFileError(f"learner file {str(source)!r}: {error}") from None
+    return data["params"], data["state"]
 
 
 def json_params(estimator: object) -> dict:
