@@ -66,18 +66,18 @@ def test_save_and_load_round_trip_atomically(tmp_path: Path):
                  "params": {}, "state": {}}), "holds a 'forward_model'"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]}, "state": {}}),
-     "state: 'triples' is a required property"),
+     r"state: must contain \['triples'\] properties"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
                  "state": {"triples": [["1100", "010"]]}}),
-     r"state\.triples\[0\]: \['1100', '010'\] is too short"),
+     r"state\.triples\[0\]: must contain at least 3 items"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
                  "state": {"triples": [["11x0", "010", 0]]}}),
-     r"state\.triples\[0\]\.object: '11x0' does not match"),
+     r"state\.triples\[0\]\.object: must match pattern \^\[01\]\+\$, got '11x0'"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0.5]}, "state": {"triples": []}}),
-     r"params\.undesired_effects\[0\]: 0\.5 is not of type 'integer'"),
+     r"params\.undesired_effects\[0\]: must be integer, got 0\.5"),
 ])
 def test_a_corrupt_file_is_a_clear_error(tmp_path: Path, content: str, message: str):
     path = tmp_path / "table.json"

@@ -191,7 +191,7 @@ def test_save_and_load_round_trip(tmp_path: Path) -> None:
          '"state": {}}', "holds a 'cacla'"),
         ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
          '"params": {"action_bounds": [[-0.01, 0.01]]}, "state": {"network": {"coefs": [[1]], '
-         '"intercepts": []}}}', "state: 'n_features_in' is a required property"),
+         '"intercepts": []}}}', r"params: must contain \[.*'n_hidden'.*\] properties"),
         ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
          '"params": {"action_bounds": [[-0.01, 0.01]], "n_hidden": 1, "learning_rate": 0.3, '
          '"init_scale": 0.3, "random_state": null}, "state": {"network": {"coefs": [[[1]], '

@@ -25,6 +25,7 @@ from sklearn.linear_model import LinearRegression
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
+from behaviours.learners.schemas import check
 
 STORE_FORMAT = "goalagent-effect-models"
 STORE_VERSION = 1
@@ -158,9 +159,10 @@ class StoredModel:
 
     @classmethod
     def from_record(cls, record: dict) -> StoredModel:
-        """Rebuild from a record by refitting its samples (raises KeyError/ValueError if bad)."""
-        key = tuple(str(part) for part in record["key"])
-        model = LinearEffectModel(fit_intercept=bool(record["fit_intercept"]))
+        """Rebuild from a record that passed the schema by refitting its samples (ValueError
+        if they do not fit: two lengths, or bounds not lo < hi)."""
+        key = tuple(record["key"])
+        model = LinearEffectModel(fit_intercept=record["fit_intercept"])
         model.fit(record["theta"], record["effect"])
         return cls(key=key, bounds=check_bounds(record["bounds"]), model=model)
 
@@ -180,7 +182,8 @@ class ModelStore:
 
     def _load(self) -> None:
         """Read every model from the file (a regular file of bounded size, see
-        ``read_json``), or raise StoreError naming the file and, for a bad record, which."""
+        ``read_json``), each checked by ``schemas/effect_models.schema.json``, or raise
+        StoreError naming the file and, for a bad record, which and where."""
         try:
             data = read_json(self.path, "model store")
         except StoreFileError as exc:
@@ -197,12 +200,11 @@ class ModelStore:
             raise StoreError(f"model store {str(self.path)!r} has no list of models")
         for index, record in enumerate(records):
             try:
-                if not isinstance(record, dict) or not isinstance(record.get("key"), list):
-                    raise ValueError("not a record with a key list")
+                check(record, "effect_models", at=("models", index), definition="model")
                 stored = StoredModel.from_record(record)
             except (KeyError, TypeError, ValueError) as exc:
                 raise StoreError(f"model store {str(self.path)!r} has a bad record (model "
-                                 f"{index}): {exc!r}") from None
+                                 f"{index}): {exc}") from None
             self._models[stored.key] = stored
 
     def get(self, key: Sequence[str]) -> StoredModel | None:

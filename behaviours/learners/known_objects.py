@@ -27,6 +27,7 @@ from behaviours.learners.part_models import (
     check_bounds,
 )
 from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
+from behaviours.learners.schemas import SchemaError, check
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
@@ -144,7 +145,9 @@ class KnownObjectDatabase:
             self._load()
 
     def _load(self) -> None:
-        """Read every object from the file, or raise DatabaseError naming the file."""
+        """Read every object from the file, each checked by the ``object`` definition of
+        ``schemas/known_objects.schema.json``, or raise DatabaseError naming the file and
+        where in it."""
         where = str(self.path)
         try:
             data = read_json(self.path, "known-object database")
@@ -161,7 +164,11 @@ class KnownObjectDatabase:
             raise DatabaseError(f"known-object database {where!r} has no list of objects")
         for index, record in enumerate(records):
             try:
+                check(record, "known_objects", at=("objects", index), definition="object")
                 known = KnownObject.from_record(record)
+            except SchemaError as exc:
+                raise DatabaseError(f"known-object database {where!r} has a bad record: "
+                                    f"{exc}") from None
             except (KeyError, TypeError, ValueError, AttributeError) as exc:
                 raise DatabaseError(f"known-object database {where!r} has a bad record (object "
                                     f"{index}): {exc!r}") from None

@@ -41,7 +41,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
     The file is opened without blocking and checked on the open descriptor, so a device,
     FIFO or directory is refused before anything is read, and at most MAX_STORE_BYTES + 1
     bytes are read. Malformed JSON (also nesting too deep, or a number too long to convert)
-    is a StoreFileError at ``file:line:col``."""
+    is a StoreFileError at ``file:line:col``; ``NaN`` and ``Infinity`` are refused too."""
     where = str(path)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -59,7 +59,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
         if len(data) > MAX_STORE_BYTES:
             raise StoreFileError(f"cannot read {what} {where!r}: it grew past the "
                                  f"{MAX_STORE_BYTES} bytes accepted")
-        return json.loads(data.decode("utf-8"))
+        return json.loads(data.decode("utf-8"), parse_constant=_not_a_json_number)
     except json.JSONDecodeError as exc:
         raise StoreFileError(f"cannot read {what} {where}:{exc.lineno}:{exc.colno}: not JSON: "
                              f"{exc.msg}") from None
@@ -73,6 +73,11 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
             raise
         reason = getattr(exc, "strerror", None) or exc
         raise StoreFileError(f"cannot read {what} {where!r}: {reason}") from None
+
+
+def _not_a_json_number(name: str) -> object:
+    """``NaN``, ``Infinity`` and ``-Infinity``, which Python's json reads, are not JSON."""
+    raise ValueError(f"{name} is not a JSON number")
 
 
 class LearnerFileError(ValueError):

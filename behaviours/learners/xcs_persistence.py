@@ -11,6 +11,7 @@ within N, n_bits against the conditions) is checked here. Anything wrong is a Va
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
@@ -38,9 +39,14 @@ def check_records(classifiers: Iterable[Classifier | tuple], n_actions: int,
     seen: dict[tuple[str, int], int] = {}
     for index, raw in enumerate(classifiers):
         where = f"classifiers[{index}]"
-        fields = list(raw) if isinstance(raw, tuple | list) else raw
+        fields = [field.item() if isinstance(field, np.generic) else field
+                  for field in raw] if isinstance(raw, tuple | list) else raw
         check(fields, KIND, at=("classifiers", index), definition="classifier")
         record = Classifier(*fields)
+        for name in ("prediction", "error", "fitness", "action_set_size"):
+            if not math.isfinite(getattr(record, name)):  # (files hold no NaN: read_json)
+                raise ValueError(f"{where}.{name} must be a finite number, got "
+                                 f"{getattr(record, name)!r}")
         if record.action >= n_actions:
             raise ValueError(f"{where}.action must be an action index 0..{n_actions - 1}, "
                              f"got {record.action!r}")
