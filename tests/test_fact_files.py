@@ -126,7 +126,7 @@ def test_a_bad_model_record_is_named(tmp_path: Path):
             "effect": [0.0, 0.1], "fit_intercept": True}
     path.write_text(json.dumps({"format": "goalagent-effect-models", "version": 1,
                                 "models": [good, {**good, "theta": ["x", 1]}]}))
-    with pytest.raises(StoreError, match=r"bad record \(model 1\)"):
+    with pytest.raises(StoreError, match=r"models\[1\]\.theta\[0\]: must be number"):
         ModelStore(path)
 
 

@@ -149,12 +149,12 @@ def test_a_failed_write_cleans_up_and_keeps_the_old_file(tmp_path: Path) -> None
 @pytest.mark.parametrize(
     ("content", "message"),
     [
-        ("{not json", "cannot read model store"),
+        ("{not json", "cannot read effect-model store"),
         ('{"format": "other"}', "is not a goalagent effect-model store"),
         ('{"format": "goalagent-effect-models", "version": 9, "models": []}', "has version 9"),
         (
             '{"format": "goalagent-effect-models", "version": 1, "models": [{"key": ["a"]}]}',
-            "has a bad record",
+            r"effects.json': models\[0\]: must contain \['bounds', 'effect'",
         ),
     ],
 )

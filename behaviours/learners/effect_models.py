@@ -24,8 +24,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, _fit_context
 from sklearn.linear_model import LinearRegression
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
-from behaviours.learners.schemas import check
+from behaviours.learners.persist import check_store, read_store, write_text_atomically
 
 STORE_FORMAT = "goalagent-effect-models"
 STORE_VERSION = 1
@@ -182,29 +181,17 @@ class ModelStore:
 
     def _load(self) -> None:
         """Read every model from the file (a regular file of bounded size, see
-        ``read_json``), each checked by ``schemas/effect_models.schema.json``, or raise
-        StoreError naming the file and, for a bad record, which and where."""
-        try:
-            data = read_json(self.path, "model store")
-        except StoreFileError as exc:
-            raise StoreError(str(exc)) from None
-        if not isinstance(data, dict) or data.get("format") != STORE_FORMAT:
-            raise StoreError(f"{str(self.path)!r} is not a goalagent effect-model store")
-        if data.get("version") != STORE_VERSION:
-            raise StoreError(
-                f"model store {str(self.path)!r} has version {data.get('version')!r}, "
-                f"this goalagent reads version {STORE_VERSION}"
-            )
-        records = data.get("models")
-        if not isinstance(records, list):
-            raise StoreError(f"model store {str(self.path)!r} has no list of models")
-        for index, record in enumerate(records):
+        ``read_json``), checked by ``schemas/effect_models.schema.json``, or raise StoreError
+        naming the file and where in it."""
+        data = read_store(self.path, "effect-model store", STORE_FORMAT, STORE_VERSION,
+                          StoreError)
+        check_store(data, "effect_models", self.path, "effect-model store", StoreError)
+        for index, record in enumerate(data["models"]):
             try:
-                check(record, "effect_models", at=("models", index), definition="model")
                 stored = StoredModel.from_record(record)
-            except (KeyError, TypeError, ValueError) as exc:
-                raise StoreError(f"model store {str(self.path)!r} has a bad record (model "
-                                 f"{index}): {exc}") from None
+            except ValueError as exc:
+                raise StoreError(f"effect-model store {str(self.path)!r} has a bad record "
+                                 f"(model {index}): {exc}") from None
             self._models[stored.key] = stored
 
     def get(self, key: Sequence[str]) -> StoredModel | None:

@@ -20,7 +20,8 @@ from ondisk import write_atomically
 
 __all__ = [
     "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
-    "json_params", "read_json", "read_learner", "write_learner", "write_text_atomically",
+    "check_store", "json_params", "read_json", "read_learner", "read_store", "write_learner",
+    "write_text_atomically",
 ]
 
 FORMAT = "goalagent-learner"
@@ -96,27 +97,42 @@ def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
     return write_atomically(path, text)
 
 
+def read_store(path: str | os.PathLike[str], what: str, format_: str, version: int,
+               error: type[ValueError]) -> dict:
+    """The JSON object of a versioned store (``read_json``) whose ``format`` and ``version``
+    identify it as a ``what`` this goalagent reads, or ``error`` naming the file."""
+    where = str(path)
+    try:
+        data = read_json(path, what)
+    except StoreFileError as exc:
+        raise error(str(exc)) from None
+    if not isinstance(data, dict) or data.get("format") != format_:
+        raise error(f"{where!r} is not a goalagent {what}")
+    if data.get("version") != version:
+        raise error(f"{what} {where!r} has version {data.get('version')!r}; this goalagent "
+                    f"reads version {version}")
+    return data
+
+
+def check_store(data: dict, schema: str, path: str | os.PathLike[str], what: str,
+                error: type[ValueError]) -> None:
+    """``data`` checked against ``schemas/SCHEMA.schema.json``, or ``error`` naming the file
+    and the path of the first bad field."""
+    try:
+        check(data, schema)
+    except SchemaError as exc:
+        raise error(f"{what} {str(path)!r}: {exc}") from None
+
+
 def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
     """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file:
     the format, version and kind identify the file, then the kind's JSON Schema
     (``schemas/KIND.schema.json``) checks every field, naming the first bad one."""
-    source = Path(path)
-    try:
-        data = read_json(source, "learner file")
-    except StoreFileError as exc:
-        raise LearnerFileError(str(exc)) from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise LearnerFileError(f"{str(source)!r} is not a goalagent learner file")
-    if data.get("version") != VERSION:
-        raise LearnerFileError(f"learner file {str(source)!r} has version "
-                               f"{data.get('version')!r}; this goalagent reads version {VERSION}")
+    data = read_store(path, "learner file", FORMAT, VERSION, LearnerFileError)
     if data.get("kind") != kind:
-        raise LearnerFileError(f"learner file {str(source)!r} holds a {data.get('kind')!r}, "
+        raise LearnerFileError(f"learner file {str(path)!r} holds a {data.get('kind')!r}, "
                                f"not a {kind!r}")
-    try:
-        check(data, kind)
-    except SchemaError as error:
-        raise LearnerFileError(f"learner file {str(source)!r}: {error}") from None
+    check_store(data, kind, path, "learner file", LearnerFileError)
     return data["params"], data["state"]
 
 
