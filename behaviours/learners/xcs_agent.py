@@ -174,7 +174,8 @@ class XCS(BaseEstimator):
         while [A]-1 still matches); exploit: the best by eq. 3.9. ``allowed`` (action indices)
         restricts the choice, eq. 7.2's max and covering to those actions.
         """
-        self._ready()
+        if self._settings is None:  # (written out: a call costs ~1% of a trial)
+            self._start()
         if explore is not True and explore is not False and not isinstance(explore, np.bool_):
             raise ValueError(f"explore must be True or False, got {explore!r}")
         permitted = self._all_actions if allowed is None else self._permitted(allowed)
@@ -207,7 +208,8 @@ class XCS(BaseEstimator):
 
     def reward(self, r: float, done: bool) -> None:
         """The reward of the action `act` just returned; ``done`` ends the trial."""
-        self._ready()
+        if self._settings is None:
+            self._start()
         if type(r) is not float and (not isinstance(r, numbers.Real) or isinstance(r, bool)):
             raise ValueError(f"r must be a finite number, got {r!r}")
         if not math.isfinite(r):
