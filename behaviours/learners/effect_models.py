@@ -11,7 +11,6 @@ the process.
 from __future__ import annotations
 
 import json
-import math
 import os
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
@@ -25,6 +24,7 @@ from sklearn.linear_model import LinearRegression
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from behaviours.learners.persist import check_store, read_store, write_text_atomically
+from behaviours.learners.validation import check_bounds
 
 STORE_FORMAT = "goalagent-effect-models"
 STORE_VERSION = 1
@@ -120,17 +120,6 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
             raise ValueError(f"this LinearEffectModel has {self.n_features_in_} action "
                              f"parameters; Ĥ(θ)'s maximum and the store take one")
         return self.theta_[:, 0]
-
-
-def check_bounds(bounds: Sequence[float]) -> tuple[float, float]:
-    """``bounds`` as a (low, high) pair of finite floats with low < high, or a clear error."""
-    try:
-        low, high = (float(b) for b in bounds)
-    except (TypeError, ValueError):
-        raise ValueError(f"bounds must be a (low, high) pair of numbers, got {bounds!r}") from None
-    if not (math.isfinite(low) and math.isfinite(high) and low < high):
-        raise ValueError(f"bounds must be finite with low < high, got ({low}, {high})")
-    return low, high
 
 
 @dataclass(frozen=True)

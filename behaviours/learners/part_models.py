@@ -14,14 +14,16 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.linear_model import LinearRegression
 from sklearn.utils import check_consistent_length
+from sklearn.utils._param_validation import validate_params
 from sklearn.utils.validation import check_is_fitted
 
-from behaviours.learners.validation import as_rows
+from behaviours.learners.validation import POSITIVE, as_rows, check_bounds
 
 Pair = tuple[str, str]
 """(part, action type)."""
@@ -41,17 +43,6 @@ class DataTuple:
     theta: float
     part_effect: float  # e_ψ: the part's displacement (eq. 5.15)
     object_effect: float  # e_o = s'_o - s_o (eq. 5.3)
-
-
-def check_bounds(bounds: object, what: str = "bounds") -> Bounds:
-    """``bounds`` as finite floats (lo, hi) with lo < hi, or a ValueError naming ``what``."""
-    try:
-        low, high = (float(b) for b in bounds)  # type: ignore[union-attr]
-    except (TypeError, ValueError):
-        raise ValueError(f"{what} must be a (low, high) pair of numbers, got {bounds!r}") from None
-    if not (math.isfinite(low) and math.isfinite(high) and low < high):
-        raise ValueError(f"{what} must be finite with low < high, got ({low}, {high})")
-    return low, high
 
 
 def _column(values: object, name: str) -> np.ndarray:
@@ -196,6 +187,8 @@ class Selection:
         return self.part, self.action
 
 
+@validate_params({"model": [PartActionModel], "displacement": [Real], "bounds": "no_validation",
+                  "delta2": [POSITIVE]}, prefer_skip_nested_validation=True)
 def select_parameter(
     model: PartActionModel, displacement: float, bounds: Bounds, delta2: float
 ) -> float | None:
@@ -206,8 +199,6 @@ def select_parameter(
     The open lower end is approached to within a thousandth of the range.
     """
     low, high = check_bounds(bounds)
-    if not (isinstance(delta2, (int, float)) and delta2 > 0):
-        raise ValueError(f"delta2 must be a positive number, got {delta2!r}")
     b, c = model.g_intercept_, model.g_slope_
     floor = low + (high - low) * 1e-3
     if c == 0.0:

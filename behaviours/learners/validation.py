@@ -10,6 +10,7 @@ defined; ``POSITIVE_INT`` and ``POSITIVE`` are the constraints they share.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from numbers import Integral, Real
 
@@ -17,7 +18,7 @@ import numpy as np
 from sklearn.utils import check_array
 from sklearn.utils._param_validation import Interval
 
-__all__ = ["POSITIVE", "POSITIVE_INT", "RATE", "ActionBounds", "as_rows"]
+__all__ = ["POSITIVE", "POSITIVE_INT", "RATE", "ActionBounds", "as_rows", "check_bounds"]
 
 POSITIVE_INT = Interval(Integral, 1, None, closed="left")
 POSITIVE = Interval(Real, 0.0, None, closed="neither")
@@ -38,6 +39,18 @@ def as_rows(values: object, name: str, width: int | None = None) -> np.ndarray:
     if width is not None and array.shape[1] != width:
         raise ValueError(f"{name} must have {width} column(s), got {array.shape[1]}")
     return array
+
+
+def check_bounds(bounds: object, what: str = "bounds") -> tuple[float, float]:
+    """``bounds`` as finite floats (lo, hi) with lo < hi, or a ValueError naming ``what``:
+    one action parameter's range (the domain rule no scikit-learn constraint states)."""
+    try:
+        low, high = (float(b) for b in bounds)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be a (low, high) pair of numbers, got {bounds!r}") from None
+    if not (math.isfinite(low) and math.isfinite(high) and low < high):
+        raise ValueError(f"{what} must be finite with low < high, got ({low}, {high})")
+    return low, high
 
 
 class ActionBounds:
