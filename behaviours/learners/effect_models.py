@@ -72,7 +72,7 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
         residuals = self.effect_ - self._line(self.theta_)
         self.rss_ = float(residuals @ residuals)
         self.rss_history_.append(self.rss_)
-        self.n_samples_ = int(self.theta_.size)
+        self.n_samples_ = self.theta_.shape[0]
         return self
 
     def predict(self, X: object) -> np.ndarray:

@@ -23,7 +23,6 @@ import numbers
 import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
-from numbers import Integral
 from os import PathLike
 from typing import ClassVar, NamedTuple
 
@@ -275,7 +274,7 @@ class XCS(BaseEstimator):
         settings = self._ready()
         records = xcs_persistence.check_records(classifiers, settings.n_actions, settings.N)
         if time is not None:
-            check_scalar(time, "time", Integral, min_val=0)
+            check_scalar(time, "time", numbers.Integral, min_val=0)
         n_bits = len(records[0].condition) if records else self.n_bits_
         population = None
         if n_bits is not None:

@@ -14,15 +14,6 @@ from numbers import Integral, Real
 import numpy as np
 from sklearn.utils._param_validation import Interval
 
-DEFAULTS: dict[str, object] = {
-    "N": 400, "beta": 0.2, "beta_p": None, "beta_e": None, "beta_f": None, "gamma": 0.71,
-    "alpha": 0.1, "epsilon_0": 10.0, "nu": 5.0, "theta_ga": 25, "chi": 0.8, "mu": 0.04,
-    "theta_del": 20, "delta": 0.1, "theta_sub": 20, "p_hash": 0.33, "prediction_init": 10.0,
-    "error_init": 0.0, "fitness_init": 0.01, "ga_subsumption": True,
-    "action_set_subsumption": False, "consistent_actions": False, "random_state": None,
-}
-"""The learner's keyword parameters and their defaults (Wilson's multiplexer settings)."""
-
 _RATE = Interval(Real, 0.0, 1.0, closed="right")
 _PROBABILITY = Interval(Real, 0.0, 1.0, closed="both")
 _POSITIVE = Interval(Real, 0.0, None, closed="neither")
