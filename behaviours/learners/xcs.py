@@ -14,7 +14,9 @@ per classifier and are slow (bench/xcs.py measures all three against this one).
 
 The algorithm follows Butz & Wilson, "An algorithmic description of XCS" (2001); the modules
 behind it: `xcs_population` (the classifiers as numpy arrays, vectorised matching),
-`xcs_discovery` (covering, GA, subsumption, deletion), `xcs_params`, `xcs_persistence`.
+`xcs_discovery` (the match set and covering, GA, subsumption, deletion), `xcs_choice` (the
+action chosen), `xcs_update` (UPDATE SET, eq. 7.1-7.7), `xcs_inputs` (a step's arguments
+checked), `xcs_params` (the parameters' scikit-learn constraints), `xcs_persistence`.
 """
 
 from .xcs_agent import XCS

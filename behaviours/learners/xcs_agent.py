@@ -18,13 +18,12 @@ hand, because scikit-learn's validators cost a fifth of a multiplexer trial each
 
 from __future__ import annotations
 
-import math
 import numbers
 import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from os import PathLike
-from typing import ClassVar, NamedTuple
+from typing import ClassVar
 
 import numpy as np
 from sklearn.base import BaseEstimator
@@ -33,15 +32,14 @@ from sklearn.utils.validation import check_scalar
 
 from . import xcs_persistence
 from .tags import with_domain
-from .xcs_discovery import action_set_subsumption, cover, delete_from_population, run_ga
+from .xcs_choice import best_action, explore_action
+from .xcs_discovery import action_set_subsumption, match_set, run_ga
+from .xcs_inputs import check_reward, permitted_actions, state_bits
 from .xcs_params import CONSTRAINTS, Settings, make_generator
 from .xcs_population import (
-    ERROR,
-    EXPERIENCE,
     FITNESS,
     NUMEROSITY,
     PREDICTION,
-    SET_SIZE,
     TIME_STAMP,
     Classifier,
     Population,
@@ -49,29 +47,11 @@ from .xcs_population import (
     int_to_words,
     words_for,
 )
+from .xcs_update import UpdateConstants, update_set
 
-MAX_COVERING_ROUNDS = 1000
-"""Covering repeats while deletion keeps removing advocates it just made; with N >= the number
-of actions it ends after a few rounds, this bound only turns a pathology into an error."""
 STATE_CACHE_SIZE = 1 << 16
-_sum, _all = np.add.reduce, np.logical_and.reduce
-"""The ufunc reductions themselves: ndarray.sum/.all add a Python-level call per use."""
-
-
-class _Constants(NamedTuple):
-    """The update's constants as 0-d arrays: numpy converts a Python float on every array
-    operation, which costs as much as a small operation itself."""
-
-    one: np.ndarray
-    beta: np.ndarray
-    epsilon_0: np.ndarray
-    accuracy_scale: np.ndarray
-    """c = alpha ** (-1 / nu) / epsilon_0 of eq. 7.6 written as (error * c) ** -nu."""
-    accuracy_floor: np.ndarray
-    """c * epsilon_0: errors are clamped to it, so that an error of 0 raises no warning."""
-    minus_nu: np.ndarray
-    fitness_kept: np.ndarray
-    """1 - beta_f (eq. 7.5)."""
+_all = np.logical_and.reduce
+"""The ufunc reduction itself: ndarray.all adds a Python-level call per use."""
 
 
 @dataclass(slots=True)
@@ -147,10 +127,7 @@ class XCS(BaseEstimator):
                 self.population_.action[:self.population_.size] >= settings.n_actions):
             raise ValueError(f"{type(self).__name__}: n_actions cannot drop below the "
                              f"actions of the learned population; clone a new learner")
-        scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
-        self._constants = _Constants(*(np.array(value) for value in (
-            1.0, settings.beta, settings.epsilon_0, scale, scale * settings.epsilon_0,
-            -settings.nu, 1.0 - settings.beta_f)))
+        self._constants = UpdateConstants.of(settings)
         self._all_actions = np.arange(settings.n_actions)
         self._action_values = [np.array(action) for action in range(settings.n_actions)]
         if "time_" not in self.__dict__:
@@ -183,7 +160,8 @@ class XCS(BaseEstimator):
             self._start()
         if explore is not True and explore is not False and not isinstance(explore, np.bool_):
             raise ValueError(f"explore must be True or False, got {explore!r}")
-        permitted = self._all_actions if allowed is None else self._permitted(allowed)
+        permitted = (self._all_actions if allowed is None
+                     else permitted_actions(allowed, self._all_actions.size))
         words, number = self._encode(state)
         if self._pending is not None and self._pending.explore:
             raise ValueError("act: the previous explore action has not been rewarded; "
@@ -193,17 +171,22 @@ class XCS(BaseEstimator):
         previous = self._compact_keeping(previous if explore else None)
         if explore:
             self.time_ += 1
-        match, actions = self._match_set(words, number, permitted)
+        match, actions = match_set(self.population_, words, number, permitted,
+                                   permitted is self._all_actions, self._settings, self._rng,
+                                   self.time_)
         kills = self.population_.kills  # before [A]-1's GA can delete from [A]
         values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
         if not explore or previous is not None:  # (a single explore step needs none)
             prediction = self._prediction_array(match, actions)
             values = (prediction if allowed is None else prediction[permitted]).tolist()
         if explore:
-            action = self._explore_action(permitted, previous, words)
+            kept = previous if self._settings.consistent_actions else None
+            action = explore_action(permitted, self._rng, self.population_, words,
+                                    None if kept is None else kept.rows,
+                                    -1 if kept is None else kept.action)
             action_set = match[actions == self._action_values[action]]
         else:
-            action = self._best_action(values, permitted)
+            action = best_action(values, permitted, self._rng)
             action_set = match[:0]  # exploit steps learn nothing
         if previous is not None:
             self._reinforce(previous, previous.reward
@@ -215,12 +198,7 @@ class XCS(BaseEstimator):
         """The reward of the action `act` just returned; ``done`` ends the trial."""
         if self._settings is None:
             self._start()
-        if type(r) is not float and (not isinstance(r, numbers.Real) or isinstance(r, bool)):
-            raise ValueError(f"r must be a finite number, got {r!r}")
-        if not math.isfinite(r):
-            raise ValueError(f"r must be a finite number, got {r!r}")
-        if done is not True and done is not False and not isinstance(done, np.bool_):
-            raise ValueError(f"done must be True or False, got {done!r}")
+        check_reward(r, done)
         step, self._pending = self._pending, None
         if step is None:
             raise ValueError("reward: no action to reward; call act(state) first")
@@ -298,21 +276,6 @@ class XCS(BaseEstimator):
 
     # -- performance component -----------------------------------------------------------------
 
-    def _permitted(self, allowed: Iterable[int] | None) -> np.ndarray:
-        if allowed is None:
-            return self._all_actions
-        if isinstance(allowed, str | bytes) or not isinstance(allowed, Iterable):
-            raise ValueError(f"allowed must be a set of action indices, got {allowed!r}")
-        actions = list(allowed)
-        for action in actions:
-            if (isinstance(action, bool) or not isinstance(action, int | np.integer)
-                    or not 0 <= action < self._all_actions.size):
-                raise ValueError(f"allowed: {action!r} is not an action index "
-                                 f"0..{self._all_actions.size - 1}")
-        if not actions:
-            raise ValueError("allowed must hold at least one action")
-        return np.unique(np.array(actions, np.int64))
-
     def _encode(self, state: object, fix_length: bool = True) -> tuple[np.ndarray, int]:
         """Packed words and the integer (bit i = position i) of a state, checked against the
         state length."""
@@ -321,7 +284,7 @@ class XCS(BaseEstimator):
             encoded = self._states.get(key)
             if encoded is not None:
                 return encoded
-        bits = self._state_bits(state)
+        bits = state_bits(state)
         if self.n_bits_ is None and fix_length:
             self.n_bits_ = bits.size
             settings = self._settings
@@ -338,44 +301,6 @@ class XCS(BaseEstimator):
             self._states[key] = encoded
         return encoded
 
-    @staticmethod
-    def _state_bits(state: object) -> np.ndarray:
-        if isinstance(state, str):
-            bits = np.frombuffer(state.encode("utf-8"), np.uint8) - np.uint8(48)
-        else:
-            try:
-                array = np.asarray(state)
-            except (TypeError, ValueError):
-                array = np.asarray([None])
-            if array.ndim != 1 or array.dtype.kind not in "biuf":
-                raise ValueError(f"state must be a string or sequence of 0/1, got "
-                                 f"{reprlib.repr(state)}")
-            bits = array.astype(np.uint8) if np.isin(array, (0, 1)).all() else np.array([2])
-        if bits.size == 0 or bits.max() > 1:
-            raise ValueError(f"state must be a non-empty string or sequence of 0/1 bits, got "
-                             f"{reprlib.repr(state)}")
-        return bits
-
-    def _match_set(self, words: np.ndarray, state: int,
-                   permitted: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """[M] (rows) and their actions, after covering every permitted action that no
-        matching classifier advocates."""
-        population, settings = self.population_, self._settings
-        for _ in range(MAX_COVERING_ROUNDS):
-            match = population.match(words)
-            actions = population.action[match]
-            if (permitted is self._all_actions
-                    and len(set(actions.tolist())) == settings.n_actions):
-                return match, actions  # (the set: cheaper than a count on small sets)
-            advocates = np.bincount(actions, minlength=settings.n_actions)
-            missing = permitted[advocates[permitted] == 0]
-            if missing.size == 0:
-                return match, actions
-            for action in missing:
-                cover(population, state, int(action), settings, self._rng, self.time_)
-                delete_from_population(population, settings, self._rng)
-        raise RuntimeError("XCS: covering kept being undone by deletion; N is too small")
-
     def _prediction_array(self, match: np.ndarray, actions: np.ndarray) -> np.ndarray:
         """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates;
         fitness is always > 0, so a zero weight means no advocate)."""
@@ -387,31 +312,6 @@ class XCS(BaseEstimator):
         if _all(weights):
             return weighted / weights
         return np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
-
-    def _best_action(self, values: list[float], permitted: np.ndarray) -> int:
-        """Eq. 3.9 over the permitted actions (``values``: their predictions), ties broken at
-        random."""
-        best = max(values)
-        ties = [index for index, value in enumerate(values) if value == best]
-        index = ties[0] if len(ties) == 1 else ties[int(self._rng.random() * len(ties))]
-        return int(permitted[index])
-
-    def _explore_action(self, permitted: np.ndarray, previous: _Step | None,
-                        words: np.ndarray) -> int:
-        """A random permitted action (all are advocated after covering); with consistent
-        actions (App. A) the previous action is kept with probability equal to the share (by
-        numerosity) of [A]-1 that still matches: always when all of it matches, never when
-        none does."""
-        if (self._settings.consistent_actions and previous is not None
-                and previous.action in permitted):
-            population = self.population_
-            rows = previous.rows[population.alive(previous.rows)]
-            numerosity = population.numerosity[rows]
-            if rows.size:
-                share = numerosity[population.matches(rows, words)].sum() / numerosity.sum()
-                if share >= 1.0 or self._rng.random() < share:
-                    return previous.action
-        return int(permitted[int(self._rng.random() * permitted.size)])
 
     # -- reinforcement component ---------------------------------------------------------------
 
@@ -428,7 +328,7 @@ class XCS(BaseEstimator):
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
         set_size = float(sum(stats[NUMEROSITY].tolist()))  # whole numbers: exact in any order
-        self._update_set(stats, set_size, payoff)
+        update_set(stats, set_size, payoff, settings, self._constants)
         population.stats[:, rows] = stats
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
@@ -438,41 +338,6 @@ class XCS(BaseEstimator):
         if waited > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
-
-    def _update_set(self, stats: np.ndarray, set_size: float, payoff: float) -> None:
-        """On an action set's columns of `Population.stats`, in place: eq. 7.1 (prediction), 7.4
-        (error, against the updated prediction as in Butz & Wilson), the action-set size
-        estimate, then fitness by eq. 7.5-7.7. Prediction, error and set size average over a
-        classifier's first 1/beta updates (Wilson's MAM technique)."""
-        settings, constant = self._settings, self._constants
-        experience = stats[EXPERIENCE]
-        experience += constant.one
-        rate = constant.one / experience
-        numerosity = stats[NUMEROSITY]
-        prediction, error, estimate = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
-        if settings.beta_p == settings.beta_e == settings.beta:
-            np.maximum(rate, constant.beta, out=rate)
-            rate_p = rate_e = rate
-        else:
-            rate_p = np.maximum(rate, settings.beta_p)
-            rate_e = np.maximum(rate, settings.beta_e)
-            np.maximum(rate, settings.beta, out=rate)
-        prediction += rate_p * (payoff - prediction)
-        miss = np.abs(payoff - prediction)
-        miss -= error
-        error += rate_e * miss
-        estimate += rate * (set_size - estimate)
-        # eq. 7.6 as (error * c) ** -nu with c = alpha ** (-1 / nu) / epsilon_0, clamped so
-        # that an error of 0 raises no warning; below epsilon_0 the accuracy is 1
-        accuracy = error * constant.accuracy_scale
-        np.maximum(accuracy, constant.accuracy_floor, out=accuracy)
-        accuracy **= constant.minus_nu
-        accuracy[error < constant.epsilon_0] = constant.one
-        accuracy *= numerosity
-        accuracy *= settings.beta_f / _sum(accuracy)  # beta_f * kappa', eq. 7.7
-        fitness = stats[FITNESS]
-        fitness *= constant.fitness_kept
-        fitness += accuracy  # eq. 7.5
 
     def _compact_keeping(self, previous: _Step | None) -> _Step | None:
         """Drop dead slots once they are half the population; remap [A]-1 if one is held."""
