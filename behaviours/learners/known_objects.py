@@ -6,8 +6,9 @@ that achieved the goal. ``KnownObjectDatabase`` persists them as one versioned J
 rewritten atomically (``persist.write_text_atomically``) on every change, so a crash never
 leaves half a database. Models are stored as their samples and refitted when first used
 after loading (the samples are the truth; the coefficients are written for human readers
-only); every value read is checked first, so a hostile file is a DatabaseError naming the
-record, never a crash.
+only). A file is checked by its schema, then for what the schema cannot say (numbers that
+JSON reads as infinite or too large for a float, one sample per index, parts the models
+name), so a hostile file is a DatabaseError naming the record, never a crash.
 """
 
 from __future__ import annotations
@@ -29,12 +30,10 @@ from behaviours.learners.part_models import (
     PartActionModel,
     check_bounds,
 )
-from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
+from behaviours.learners.persist import check_store, read_store, write_text_atomically
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
-MAX_NAME_CHARS = 200
-"""Longest object, part or action name read from a database."""
 _NUMBER_TYPES = frozenset({int, float})
 """What JSON numbers are read as (``true`` is no number, though Python's bool is an int)."""
 
@@ -105,27 +104,21 @@ class KnownObject:
 
     @classmethod
     def from_record(cls, record: dict) -> KnownObject:
-        """Rebuild from a record (KeyError/TypeError/ValueError saying what is wrong). Every
-        value is checked now; the pair models are fitted on their samples when first read."""
-        parts = {_text(name, "a part name"): _descriptor(values, name)
-                 for name, values in record["parts"].items()}
+        """Rebuild from a record that passed the schema (ValueError saying what else is
+        wrong); the pair models are fitted on their samples when first asked for."""
         functional = record.get("functional")
-        source = record.get("source")
         return cls(
-            name=_text(record["name"], "the name"),
-            parts=parts,
-            above=frozenset((_text(a, "a part name"), _text(b, "a part name"))
-                            for a, b in record["above"]),
-            bounds={_text(a, "an action name"): check_bounds(b, f"bounds of {a!r}")
-                    for a, b in record["bounds"].items()},
+            name=record["name"],
+            parts={name: _descriptor(values, name) for name, values in record["parts"].items()},
+            above=frozenset((a, b) for a, b in record["above"]),
+            bounds={a: check_bounds(b, f"bounds of {a!r}") for a, b in record["bounds"].items()},
             models=StoredModels(_model_entry(entry) for entry in record["models"]),
             functional=None if functional is None else FunctionalPair(
-                _text(functional["part"], "a part name"),
-                _text(functional["action"], "an action name"),
+                functional["part"], functional["action"],
                 _numbers([functional["theta"]], "the functional theta")[0]),
-            n_actions=_count(record.get("n_actions", 0)),
-            source=None if source is None else _text(source, "the source"),
-            extra=_extra(record.get("extra")),
+            n_actions=record.get("n_actions", 0),
+            source=record.get("source"),
+            extra=dict(record.get("extra") or {}),
         )
 
 
@@ -172,40 +165,25 @@ def _model_record(pair: Pair, model: PartActionModel) -> dict:
 
 
 def _model_entry(entry: dict) -> tuple[Pair, dict]:
-    """A pair model's database entry, checked: one finite sample (θ, e_ψ, e_o) per index and
-    the coefficients of ĝ and ĥ, when written, as two finite numbers each."""
-    pair = (_text(entry["part"], "a part name"), _text(entry["action"], "an action name"))
-    theta, displacement, effect = entry["theta"], entry["displacement"], entry["effect"]
-    checked = {"part": pair[0], "action": pair[1], "theta": theta,
-               "displacement": displacement, "effect": effect}
-    for key in ("g", "h"):
-        if key in entry:
-            checked[key] = entry[key]
-    for key, values in checked.items():
-        if key not in ("part", "action") and not _finite_numbers(values):
-            raise ValueError(f"{key} of {pair} must be a non-empty list of finite numbers, "
-                             f"got {reprlib.repr(values)}")
-    if not len(theta) == len(displacement) == len(effect):
+    """A pair model's entry (its structure checked by the schema), checked for finite
+    numbers and one sample (θ, e_ψ, e_o) per index."""
+    pair = (entry["part"], entry["action"])
+    for key in ("theta", "displacement", "effect", "g", "h"):
+        if key in entry and not _finite_numbers(entry[key]):
+            raise ValueError(f"{key} of {pair} must hold finite numbers only, got "
+                             f"{reprlib.repr(entry[key])}")
+    if not len(entry["theta"]) == len(entry["displacement"]) == len(entry["effect"]):
         raise ValueError(f"the model of {pair} has not one theta, displacement and effect "
                          "per sample")
-    if any(key in checked and len(checked[key]) != 2 for key in ("g", "h")):
-        raise ValueError(f"the model of {pair} needs g and h as [intercept, slope]")
-    return pair, checked
-
-
-def _text(value: object, what: str) -> str:
-    """``value`` if it is a non-empty string of at most MAX_NAME_CHARS, else a ValueError."""
-    if not isinstance(value, str) or not value or len(value) > MAX_NAME_CHARS:
-        raise ValueError(f"{what} must be a string of 1 to {MAX_NAME_CHARS} characters, got "
-                         f"{reprlib.repr(value)}")
-    return value
+    return pair, entry
 
 
 def _finite_numbers(values: object) -> bool:
-    """Whether ``values`` is a non-empty list of finite JSON numbers. Checked in C where it
-    can be (``map(type, ...)``, ``math.fsum``: a sum is finite exactly when every term is,
-    and a 400-digit integer overflows it): a database holds hundreds of thousands of these
-    short lists, for which numpy costs more than the check."""
+    """Whether ``values`` is a non-empty list of finite JSON numbers. JSON reads ``1e400``
+    as infinity and ``10**400`` as an integer no float holds; the schema passes both.
+    Checked in C where it can be (``map(type, ...)``, ``math.fsum``: a sum is finite exactly
+    when every term is, and a 400-digit integer overflows it): a database holds hundreds of
+    thousands of these short lists, for which numpy costs more than the check."""
     if type(values) is not list or not values:
         return False
     try:
@@ -223,23 +201,6 @@ def _numbers(values: object, what: str) -> list:
     return values  # type: ignore[return-value]
 
 
-def _count(value: object) -> int:
-    """A non-negative whole number (the actions an object was learned with)."""
-    if type(value) is not int or value < 0:
-        raise ValueError(f"n_actions must be a whole number of at least 0, got "
-                         f"{reprlib.repr(value)}")
-    return value
-
-
-def _extra(value: object) -> dict:
-    """The free-form facts of a record: a mapping (or nothing)."""
-    if value is None:
-        return {}
-    if not isinstance(value, dict):
-        raise ValueError(f"extra must be a mapping, got {reprlib.repr(value)}")
-    return dict(value)
-
-
 def _descriptor(values: object, name: object) -> np.ndarray:
     """A part descriptor as a finite float vector, or a ValueError naming the part."""
     return np.asarray(_numbers(values, f"the descriptor of part {reprlib.repr(name)}"))
@@ -255,26 +216,17 @@ class KnownObjectDatabase:
             self._load()
 
     def _load(self) -> None:
-        """Read every object from the file, or raise DatabaseError naming the file."""
-        where = str(self.path)
-        try:
-            data = read_json(self.path, "known-object database")
-        except StoreFileError as exc:
-            raise DatabaseError(str(exc)) from None
-        if not isinstance(data, dict) or data.get("format") != DATABASE_FORMAT:
-            raise DatabaseError(f"{where!r} is not a goalagent known-object database")
-        if data.get("version") != DATABASE_VERSION:
-            raise DatabaseError(f"known-object database {where!r} has version "
-                                f"{data.get('version')!r}; this goalagent reads version "
-                                f"{DATABASE_VERSION}")
-        records = data.get("objects")
-        if not isinstance(records, list):
-            raise DatabaseError(f"known-object database {where!r} has no list of objects")
-        for index, record in enumerate(records):
+        """Read every object from the file, checked by
+        ``schemas/known_objects.schema.json``, or raise DatabaseError naming the file and
+        where in it."""
+        what = "known-object database"
+        data = read_store(self.path, what, DATABASE_FORMAT, DATABASE_VERSION, DatabaseError)
+        check_store(data, "known_objects", self.path, what, DatabaseError)
+        for index, record in enumerate(data["objects"]):
             try:
                 known = KnownObject.from_record(record)
             except (KeyError, TypeError, ValueError, AttributeError, OverflowError) as exc:
-                raise DatabaseError(f"known-object database {where!r} has a bad record (object "
+                raise DatabaseError(f"{what} {str(self.path)!r} has a bad record (object "
                                     f"{index}): {exc!r}") from None
             self._objects[known.name] = known
 
