@@ -65,8 +65,7 @@ class RayBackend:
     def run(self, tasks: Sequence[Task], report: Report, finished: Done) -> None:
         ray = self.ray
         try:
-            ray.init(address=self.address, logging_level=logging.ERROR, log_to_driver=False,
-                     runtime_env={"env_vars": {"MUJOCO_GL": os.environ.get("MUJOCO_GL", "egl")}})
+            ray.init(address=self.address, logging_level=logging.ERROR, log_to_driver=False)
         except (ConnectionError, RuntimeError, ValueError) as error:
             raise ClusterError(f"--ray {self.address}: cannot join the cluster: "
                                f"{str(error).splitlines()[0]}") from None
@@ -110,9 +109,12 @@ class RayBackend:
 
 
 def run_on_worker(study_name: str, config: dict, seed: int) -> dict:
-    """One task on a Ray worker: the study by name, the config from its JSON."""
+    """One task on a Ray worker: the study by name, the config from its JSON. (MUJOCO_GL is
+    set here rather than in a runtime environment, which would keep Ray from using the
+    workers it started in advance.)"""
     from robot.reproduce.framework.registry import find
 
+    os.environ.setdefault("MUJOCO_GL", "egl")
     study = find(study_name)
     done = execute(Task(study, study.config.model_validate(config), seed), lambda f: None)
     return {"result": done.result.model_dump(mode="json"), "seconds": done.seconds,
