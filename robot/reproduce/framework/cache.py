@@ -11,7 +11,7 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
-from robot.reproduce.framework.files import write_atomically
+from ondisk import write_atomically
 from robot.reproduce.framework.provenance import Provenance
 from robot.reproduce.framework.tasks import SCHEMA_VERSION, Finished, Task
 

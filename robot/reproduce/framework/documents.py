@@ -12,7 +12,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
-from robot.reproduce.framework.files import write_atomically
+from ondisk import write_atomically
 from robot.reproduce.framework.provenance import Provenance
 from robot.reproduce.framework.statistics import Summary
 from robot.reproduce.framework.study import SeedResult, Study

@@ -15,11 +15,11 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
+from ondisk import write_atomically
 from robot.reproduce.framework import documents
 from robot.reproduce.framework.backends import Backend
 from robot.reproduce.framework.cache import Cache, CorruptEntry
 from robot.reproduce.framework.documents import DocumentError, ReproductionDocument, SeedRecord
-from robot.reproduce.framework.files import write_atomically
 from robot.reproduce.framework.pages import reproduction_page
 from robot.reproduce.framework.plots import render_figure
 from robot.reproduce.framework.provenance import Provenance

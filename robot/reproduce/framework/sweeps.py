@@ -13,11 +13,11 @@ from pathlib import Path
 from pydantic import ValidationError
 from rich.console import Console
 
+from ondisk import write_atomically
 from robot.reproduce.framework import documents
 from robot.reproduce.framework.backends import Backend
 from robot.reproduce.framework.cache import Cache
 from robot.reproduce.framework.documents import DocumentError, SweepCell, SweepDocument
-from robot.reproduce.framework.files import write_atomically
 from robot.reproduce.framework.pages import cell_label, sweep_page
 from robot.reproduce.framework.plots import SweepLine, render_sweep
 from robot.reproduce.framework.provenance import Provenance
