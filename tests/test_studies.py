@@ -253,3 +253,4 @@ def test_ch5_baseline_lists_every_pair_model(tmp_path):
     assert len(o1.models) == 12 and all(m.n >= 3 for m in o1.models)
     assert metrics["truth.o1.n_without"].reference == 36
     assert "| o1 | lid | **extend_arm** |" in page
+

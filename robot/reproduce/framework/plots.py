@@ -75,11 +75,11 @@ def curve_band(runs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return mean, interval.low, interval.high
 
 
-def _canvas(panels: int):
+def _canvas(panels: int, width: float = 5.2):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure as Canvas
 
-    canvas = Canvas(figsize=(5.2 * panels, 3.8), layout="constrained")
+    canvas = Canvas(figsize=(width * panels, 3.8), layout="constrained")
     FigureCanvasAgg(canvas)
     return canvas, canvas.subplots(1, panels, squeeze=False)[0]
 
@@ -131,14 +131,17 @@ class SweepLine:
 
 def render_sweep(title: str, parameter: str, values: Sequence[object], ylabel: str,
                  lines: Sequence[SweepLine], reference: float | None) -> bytes:
-    """A metric against the swept parameter: each seed as a dot, the mean as a line with its
-    95% CI as error bars; a categorical axis when the values are not all numbers."""
-    canvas, (ax,) = _canvas(1)
+    """A metric against the swept parameter: each seed as a dot beside its value, the mean as
+    a line with its 95% CI as error bars; a categorical axis when the values are not all
+    numbers."""
+    import textwrap
+
+    canvas, (ax,) = _canvas(1, width=6.8)
     numeric = all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)
     x = np.array([float(v) for v in values]) if numeric else np.arange(len(values), dtype=float)
-    offsets = np.linspace(-0.08, 0.08, len(lines)) if len(lines) > 1 else np.zeros(1)
     span = (x.max() - x.min()) if numeric and len(x) > 1 else 1.0
-    for line, offset in zip(lines, offsets, strict=True):
+    offsets = np.linspace(-0.03, 0.03, len(lines)) if len(lines) > 1 else np.zeros(1)
+    for number, (line, offset) in enumerate(zip(lines, offsets, strict=True)):
         shifted = x + offset * span
         mean = np.array([np.nan if m is None else m for m in line.means])
         low = np.array([np.nan if i is None else i[0] for i in line.intervals])
@@ -146,9 +149,10 @@ def render_sweep(title: str, parameter: str, values: Sequence[object], ylabel: s
         drawn = ax.errorbar(shifted, mean, yerr=[mean - low, high - mean], marker="o",
                             capsize=4, label=f"{line.label}: mean, 95% CI")
         colour = drawn.lines[0].get_color()
-        for position, seeds in zip(shifted, line.points, strict=True):
-            ax.scatter(np.full(len(seeds), position), seeds, s=12, alpha=0.45, color=colour,
-                       linewidths=0)
+        for index, (position, seeds) in enumerate(zip(shifted, line.points, strict=True)):
+            spread = np.linspace(0.015, 0.035, len(seeds)) * span if len(seeds) else []
+            ax.scatter(position + spread, seeds, s=16, alpha=0.6, color=colour,
+                       linewidths=0, label="each seed" if number == index == 0 else None)
     if reference is not None:
         ax.axhline(reference, linewidth=1.2, label="thesis / literature",
                    **REFERENCE_STYLES[0])
@@ -158,5 +162,5 @@ def render_sweep(title: str, parameter: str, values: Sequence[object], ylabel: s
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
     ax.legend(fontsize="small")
-    canvas.suptitle(title)
+    canvas.suptitle(textwrap.fill(title, 70), fontsize="medium")
     return _png(canvas)

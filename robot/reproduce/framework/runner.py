@@ -21,7 +21,7 @@ from robot.reproduce.framework.backends import Backend
 from robot.reproduce.framework.cache import Cache, CorruptEntry
 from robot.reproduce.framework.documents import DocumentError, ReproductionDocument, SeedRecord
 from robot.reproduce.framework.pages import reproduction_page
-from robot.reproduce.framework.plots import render_figure
+from robot.reproduce.framework.plots import Figure, render_figure
 from robot.reproduce.framework.provenance import Provenance
 from robot.reproduce.framework.settings import format_value
 from robot.reproduce.framework.statistics import summarize
@@ -161,15 +161,26 @@ def write_reproduction(study: Study, built: ReproductionDocument, out: Path) -> 
     config = study.config.model_validate(built.config)
     results = built.results(study)
     out.mkdir(parents=True, exist_ok=True)
-    files = []
-    for figure in study.figures(config, results):
-        path = out / f"{study.name}-{figure.stem}.png"
-        files.append(write_atomically(path, render_figure(figure, len(results))))
-    page = reproduction_page(study, built, [path.name for path in files],
-                             study.listings(config, results))
-    files.append(write_atomically(out / f"{study.name}.md", page.encode()))
+    files = [write_atomically(out / figure_file(study, figure),
+                              render_figure(figure, len(results)))
+             for figure in study.figures(config, results)]
+    files.append(write_atomically(out / f"{study.name}.md", page(study, built).encode()))
     files.append(documents.write(built, out / f"{study.name}.json"))
     return files
+
+
+def figure_file(study: Study, figure: Figure) -> str:
+    """``NAME-STEM.png``."""
+    return f"{study.name}-{figure.stem}.png"
+
+
+def page(study: Study, built: ReproductionDocument) -> str:
+    """NAME.md of the document, as the study's current code writes it."""
+    config = study.config.model_validate(built.config)
+    results = built.results(study)
+    return reproduction_page(study, built, [figure_file(study, figure) for figure
+                                            in study.figures(config, results)],
+                             study.listings(config, results))
 
 
 def load(study: Study, path: Path) -> ReproductionDocument:

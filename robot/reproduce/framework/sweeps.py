@@ -137,8 +137,7 @@ def _plot(study: Study, document: SweepDocument, key: str) -> bytes:
             intervals.append(row.ci)
         lines.append(SweepLine(cell_label(fixed) or key, points, means, intervals))
     row = next(row for row in document.cells[0].summary.metrics if row.key == key)
-    return render_sweep(f"{study.name}: {row.label}", first, values, row.label, lines,
-                        row.reference)
+    return render_sweep(f"{study.name}: {row.label}", first, values, key, lines, row.reference)
 
 
 def replot(study: Study, out: Path) -> list[SweepOutcome]:
