@@ -201,7 +201,9 @@ def _backend(ray: str | None, jobs: int | None):
         if jobs is not None:
             raise user_error("--jobs is for local processes; with --ray the cluster's CPUs "
                              "decide")
-        return RayBackend(ray)
+        backend = RayBackend(ray)
+        backend.connect()  # a cluster that cannot be joined is said before anything runs
+        return backend
     count = jobs if jobs is not None else os.cpu_count() or 1
     if count < 1:
         raise user_error(f"--jobs must be at least 1, got {count}")

@@ -9,11 +9,14 @@ records the node's), nothing else.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import re
 import socket
-from collections.abc import Sequence
+import sys
+import tempfile
+from collections.abc import Iterator, Sequence
 
 from robot.reproduce.framework.backends import RETRIES, Done, Report
 from robot.reproduce.framework.provenance import Provenance
@@ -54,6 +57,24 @@ def _import_ray():
     return ray
 
 
+@contextlib.contextmanager
+def _quiet_stderr() -> Iterator[None]:
+    """File descriptor 2 into a scratch file while Ray joins a cluster: its C++ client logs
+    each failed attempt (a wrong token, a cluster going down) before its own logging is set
+    up; the user gets one line from us instead."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    try:
+        with tempfile.TemporaryFile() as scratch:
+            os.dup2(scratch.fileno(), 2)
+            try:
+                yield
+            finally:
+                os.dup2(saved, 2)
+    finally:
+        os.close(saved)
+
+
 class RayBackend:
     """Tasks on the Ray cluster at ``address`` (``auto``: the one started on this machine)."""
 
@@ -62,13 +83,21 @@ class RayBackend:
         self.address = address
         self.ray = _import_ray()
 
-    def run(self, tasks: Sequence[Task], report: Report, finished: Done) -> None:
-        ray = self.ray
+    def connect(self) -> None:
+        """Join the cluster (ClusterError when it cannot be joined); ``run`` leaves it."""
+        if self.ray.is_initialized():
+            return
         try:
-            ray.init(address=self.address, logging_level=logging.ERROR, log_to_driver=False)
+            with _quiet_stderr():
+                self.ray.init(address=self.address, logging_level=logging.ERROR,
+                              log_to_driver=False)
         except (ConnectionError, RuntimeError, ValueError) as error:
             raise ClusterError(f"--ray {self.address}: cannot join the cluster: "
                                f"{str(error).splitlines()[0]}") from None
+
+    def run(self, tasks: Sequence[Task], report: Report, finished: Done) -> None:
+        ray = self.ray
+        self.connect()
         try:
             remote = ray.remote(num_cpus=1, max_retries=RETRIES, retry_exceptions=False)(
                 run_on_worker)

@@ -91,7 +91,7 @@ def run_tasks(tasks: Sequence[Task], backend: Backend, cache: Cache | None,
     if console is not None and cache is not None and found:
         console.print(f"{len(found)} of {len(tasks)} seeds from the cache {cache.folder}",
                       markup=False)
-    with _bar(console, len(tasks), len(found), tasks[0].study.name) as show:
+    with _Bar(console, len(tasks), len(found), tasks[0].study.name) as show:
         def finished(position: int, done: Finished) -> None:
             found[missing[position]] = done
             if cache is not None:
@@ -105,7 +105,7 @@ def run_tasks(tasks: Sequence[Task], backend: Backend, cache: Cache | None,
     return [found[index] for index in range(len(tasks))], tally
 
 
-class _bar:
+class _Bar:
     """A progress bar over the tasks (seeds done, fractions included); nothing without a
     console."""
 
