@@ -100,6 +100,7 @@ def test_list_and_params_describe_the_studies():
     (["reproduce", "xcs-mux", "--seeds", "0"], "--seeds must be at least 1"),
     (["reproduce", "xcs-mux", "--seed-offset", "-1"], "--seed-offset must be at least 0"),
     (["reproduce", "xcs-mux", "--jobs", "0"], "--jobs must be at least 1"),
+    (["reproduce", "xcs-mux", "--out", "a-file"], "--out a-file exists and is not a folder"),
     (["reproduce", "xcs-mux", "--scale", "1.5"], "scale: Input should be less than or equal"),
     (["reproduce", "xcs-mux", "--set", "Nn=4"], "has no parameter 'Nn'; did you mean 'N'?"),
     (["reproduce", "xcs-mux", "--set", "N=many"], "N=many: N: Input should be a valid integer"),
@@ -121,6 +122,7 @@ def test_list_and_params_describe_the_studies():
 def test_bad_input_is_one_line_and_exit_2(args, message, tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # nothing may land in ~/.cache
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "a-file").write_text("")
     result = goalagent(*args)
     assert result.exit_code == 2, result.stderr
     assert message in result.stderr and result.stderr.count("error:") == 1

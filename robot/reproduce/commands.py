@@ -92,8 +92,9 @@ def reproduce(
             return
         settings = [*(set_ or []), *([f"scale={scale}"] if scale is not None else [])]
         config = _config(study, quick, settings)
-        backend = _backend(ray, jobs)
         seed_list = _seeds(study, seeds, seed_offset, quick)
+        _check_out(out)
+        backend = _backend(ray, jobs)
         outcome = _interruptible(lambda: runner.reproduce(
             study, config, seed_list, backend, out, cache=_cache(cache),
             console=err_console, fresh=fresh))
@@ -134,8 +135,9 @@ def sweep(
             return
         config = _config(study, quick, set_ or [])
         parsed = parse_grid(study, config, grid or [])
-        backend = _backend(ray, jobs)
         seed_list = _seeds(study, seeds, seed_offset, quick)
+        _check_out(out)
+        backend = _backend(ray, jobs)
         outcome = _interruptible(lambda: sweeps.sweep(
             study, config, parsed, seed_list, backend, out, cache=_cache(cache),
             console=err_console, fresh=fresh))
@@ -191,6 +193,11 @@ def _seeds(study, seeds: int | None, offset: int, quick: bool) -> list[int]:
     if offset < 0:
         raise user_error(f"--seed-offset must be at least 0, got {offset}")
     return list(range(offset, offset + count))
+
+
+def _check_out(out: Path) -> None:
+    if out.exists() and not out.is_dir():
+        raise user_error(f"--out {out} exists and is not a folder")
 
 
 def _backend(ray: str | None, jobs: int | None):
