@@ -1,9 +1,11 @@
 """The research workbench's framework, which knows no particular study: what a study declares
-(``study``), finding it by name (``registry``), ``--set`` and ``--grid`` (``settings``), running
-its (config, seed) tasks on this machine (``backends``) or a Ray cluster (``cluster``) with a
-cache of finished ones (``cache``), the statistics (``statistics``), the versioned JSON
-(``documents``), the pages and plots (``pages``, ``plots``) and sweeps (``sweeps``). The
-``goalagent reproduce`` / ``sweep`` commands are ``robot/reproduce/commands.py``.
+(``study``), finding it by name (``registry``), ``--set`` and ``--grid`` (``settings``), its
+(config, seed) tasks (``tasks``) run on this machine (``backends``) or a Ray cluster
+(``cluster``; ``local_cluster`` starts one here) with a cache of finished ones (``cache``),
+the statistics (``statistics``), the versioned JSON with its provenance (``documents``,
+``provenance``), the pages and plots (``pages``, ``plots``), reproductions and sweeps
+(``runner``, ``sweeps``). The ``goalagent reproduce`` / ``sweep`` commands are
+``robot/reproduce/commands.py``.
 
 A study imports what it declares from here."""
 
