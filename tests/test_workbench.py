@@ -372,3 +372,17 @@ def test_a_sweep_runs_one_cell_per_combination_with_statistics_and_plots(tmp_pat
     again = sweep(TOY, ToyConfig(log=str(log)), grid, [0, 1, 2], LocalBackend(1), tmp_path,
                   cache=Cache(tmp_path / "cache"))
     assert (again.tally.computed, again.tally.cached) == (0, 18)  # resumed: nothing run
+
+
+def test_a_verdict_says_when_no_outcome_could_have_reached_alpha():
+    from robot.reproduce.framework.statistics import reading
+
+    seeds = [ToyResult(value=39.0, curve=[], reached=None)] * 5
+    (same,) = summarize(toy_metrics(ToyConfig()), [Claim("36", "value", 36.0, "same")],
+                        seeds).comparisons
+    assert same.verdict == "not contradicted" and same.smallest_p == 2 / 32
+    assert ("with these 5 seeds no outcome could reach α: the smallest possible p is 0.062"
+            in reading(same))
+    (up,) = summarize(toy_metrics(ToyConfig()), [Claim("up", "value", 36.0)], seeds).comparisons
+    assert up.verdict == "supported" and up.smallest_p == 1 / 32
+    assert "no outcome could reach" not in reading(up)

@@ -72,6 +72,9 @@ class Comparison(Frozen):
     ci: tuple[float, float] | None
     """95% bootstrap CI of the mean difference."""
     p_value: float | None
+    smallest_p: float | None = None
+    """The smallest p-value the test could give with these seeds (1/2^k one-sided, 2/2^k
+    two-sided, k the seeds whose difference is not 0): above α, no outcome could reach it."""
     effect_size: float | None
     """Matched-pairs rank-biserial correlation r."""
     verdict: str
@@ -145,7 +148,7 @@ def test(claim: Claim, values: dict[str, list[float | None]]) -> Comparison:
         return Comparison(claim=claim.text, metric=claim.metric, versus=claim.versus,
                           direction=claim.direction, n=0, test="not tested: no seed has both "
                           "values", mean_difference=None, ci=None, p_value=None,
-                          effect_size=None, verdict="not tested")
+                          smallest_p=None, effect_size=None, verdict="not tested")
     p_value = sign_flip_p(differences, claim.direction, name)
     opposite = {"greater": "less", "less": "greater", "same": "same"}[claim.direction]
     p_opposite = sign_flip_p(differences, opposite, name)
@@ -160,6 +163,7 @@ def test(claim: Claim, values: dict[str, list[float | None]]) -> Comparison:
                       direction=claim.direction, n=n, test=test_text,
                       mean_difference=float(np.mean(differences)),
                       ci=mean_interval(differences, name), p_value=p_value,
+                      smallest_p=smallest_p(differences, claim.direction),
                       effect_size=rank_biserial(differences),
                       verdict=verdict(claim.direction, p_value, p_opposite))
 
@@ -178,6 +182,13 @@ def sign_flip_p(differences: np.ndarray, direction: str, name: str) -> float:
                               vectorized=True, n_resamples=PERMUTATIONS,
                               alternative=alternative, rng=np.random.default_rng(_seed(name)))
     return float(min(1.0, result.pvalue))
+
+
+def smallest_p(differences: np.ndarray, direction: str) -> float:
+    """The least p-value the sign-flip test can give: only the observed signs (and their
+    mirror image, two-sided) as extreme; a difference of 0 flips to itself."""
+    varying = int(np.count_nonzero(differences))
+    return min(1.0, (2 if direction == "same" else 1) / 2 ** varying)
 
 
 def _mean(sample: np.ndarray, axis: int) -> np.ndarray:
@@ -228,6 +239,9 @@ def reading(comparison: Comparison) -> str:
         "not contradicted": f"**not contradicted** at α = {ALPHA:g}: no significant "
                             "difference (which does not show equality)",
     }[comparison.verdict]
+    if comparison.smallest_p is not None and comparison.smallest_p > ALPHA:
+        measured += (f"; with these {comparison.n} seeds no outcome could reach α: the "
+                     f"smallest possible p is {p_text(comparison.smallest_p)}")
     return f"{words} ({measured})."
 
 
