@@ -33,6 +33,7 @@ from robot.reproduce.framework.settings import SettingError, apply, parse_grid
 from robot.reproduce.framework.statistics import (
     mean_interval,
     rank_biserial,
+    reading,
     sign_flip_p,
     summarize,
 )
@@ -204,6 +205,9 @@ def test_each_claim_gets_a_verdict(values, claim, verdict, p):
     assert (comparison.verdict, comparison.n) == (verdict, len(values))
     assert comparison.p_value == pytest.approx(p)
     assert "exact over all" in comparison.test
+    if verdict == "contradicted" and claim.direction != "same":
+        assert comparison.p_opposite == pytest.approx(1 / 32)
+        assert "(the opposite one-sided test: p = 0.031)" in reading(comparison)
 
 
 def test_a_claim_on_values_no_seed_has_is_not_tested():
@@ -375,8 +379,6 @@ def test_a_sweep_runs_one_cell_per_combination_with_statistics_and_plots(tmp_pat
 
 
 def test_a_verdict_says_when_no_outcome_could_have_reached_alpha():
-    from robot.reproduce.framework.statistics import reading
-
     seeds = [ToyResult(value=39.0, curve=[], reached=None)] * 5
     (same,) = summarize(toy_metrics(ToyConfig()), [Claim("36", "value", 36.0, "same")],
                         seeds).comparisons

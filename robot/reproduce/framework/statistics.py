@@ -72,6 +72,9 @@ class Comparison(Frozen):
     ci: tuple[float, float] | None
     """95% bootstrap CI of the mean difference."""
     p_value: float | None
+    p_opposite: float | None = None
+    """The p-value of the opposite one-sided test (a directed claim is contradicted when it
+    is at most α)."""
     smallest_p: float | None = None
     """The smallest p-value the test could give with these seeds (1/2^k one-sided, 2/2^k
     two-sided, k the seeds whose difference is not 0): above α, no outcome could reach it."""
@@ -163,6 +166,7 @@ def test(claim: Claim, values: dict[str, list[float | None]]) -> Comparison:
                       direction=claim.direction, n=n, test=test_text,
                       mean_difference=float(np.mean(differences)),
                       ci=mean_interval(differences, name), p_value=p_value,
+                      p_opposite=None if claim.direction == "same" else p_opposite,
                       smallest_p=smallest_p(differences, claim.direction),
                       effect_size=rank_biserial(differences),
                       verdict=verdict(claim.direction, p_value, p_opposite))
@@ -235,7 +239,8 @@ def reading(comparison: Comparison) -> str:
                          "significant",
         "contradicted": f"**contradicted** at α = {ALPHA:g}" + (
             ": the seeds differ" if comparison.direction == "same"
-            else ": the difference goes significantly the other way"),
+            else ": the difference goes significantly the other way (the opposite one-sided "
+                 f"test: p = {p_text(comparison.p_opposite or 0.0)})"),
         "not contradicted": f"**not contradicted** at α = {ALPHA:g}: no significant "
                             "difference (which does not show equality)",
     }[comparison.verdict]
