@@ -287,8 +287,8 @@ def test_goal5_module_file_is_still_checked_with_the_single_file_syntax(
 
 
 @pytest.mark.parametrize("text, where, message", [
-    ("main module { program { if (A).bel(x(A)) then print(a). } }", (1, 28),
-     r"selectors on mental literals \(\(A\).bel\(..\)\) are not supported"),
+    ("main module { program { if allother.bel(x(a)) then print(a). } }", (1, 28),
+     r"the selector allother.bel\(..\) \(a quantified mental model\) is not supported"),
     ("main module { program { if true then starttimer(t, 10, 100). } }", (1, 38),
      "starttimer is a built-in action of GOAL 7 that goalagent does not support"),
     ("use facts as knowledge.\nmodule m { if true then print(a). }", (1, 1),

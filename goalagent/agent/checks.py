@@ -54,14 +54,22 @@ def validate_program(program: ast.AgentProgram) -> None:
 
 
 def _check_ground_goals(program: ast.AgentProgram) -> None:
-    """Goals in a ``goals`` section must be ground: located here, not when adopted."""
-    for goal in program.goals:
-        names = list(dict.fromkeys(variable_occurrences(goal.text)))
+    """Goals in a ``goals`` section must be ground, but for a user module's parameters
+    (bound when the module is entered): located here, not when adopted."""
+    sections = [(goal, ()) for goal in program.goals]
+    sections += [(goal, module.params) for module in program.modules if module.kind == "user"
+                 for goal in module.goals]
+    for goal, params in sections:
+        bound = {var for param in params for var in variable_occurrences(param.text)}
+        names = [name for name in dict.fromkeys(variable_occurrences(goal.text))
+                 if name not in bound]
         if names:
+            where = ("a goals section holds ground goals" if not params else
+                     "only the module's parameters may occur in its goals")
             raise GoalSyntaxError.at(
                 goal.pos, f"goal {goal.text.strip()} is not ground (variable(s) "
-                f"{', '.join(names)}): a goals section holds ground goals; adopt a goal with "
-                "variables from a rule whose condition binds them")
+                f"{', '.join(names)}): {where}; adopt a goal with variables from a rule "
+                "whose condition binds them")
 
 
 def _check_condition(condition: ast.Condition) -> None:
@@ -77,6 +85,7 @@ def _check_condition(condition: ast.Condition) -> None:
 def update_formulas(program: ast.AgentProgram) -> list[ast.PrologText]:
     """Every formula the agent may insert or delete (so its predicates are dynamic)."""
     formulas = list(program.goals) + [spec.post for spec in program.actionspecs]
+    formulas += [goal for module in program.modules for goal in module.goals]
     for module in program.modules:
         for rule in ast.iter_rules(module.rules):
             for action in rule.actions:

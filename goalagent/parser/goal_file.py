@@ -56,6 +56,8 @@ def _program_from_items(name: str | None, items: list, file: str,
                     modules.append(module)
             elif item.kind == "program":
                 top_program = item
+            elif item.kind == "perceptrules":
+                builder.percept_rules.extend(item.items)
             else:
                 top[item.kind].extend(item.items)
     if top_program is not None:
@@ -64,7 +66,20 @@ def _program_from_items(name: str | None, items: list, file: str,
                                      "a program section outside modules and a main module")
         modules.append(ast.Module("main", "main", top_program.pos, rules=top_program.items,
                                   order=top_program.options.get("order")))
+    modules.extend(builder.nested_modules)
+    if builder.percept_rules:
+        modules = _with_percept_rules(modules, tuple(builder.percept_rules))
     return finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+
+
+def _with_percept_rules(modules: list[ast.Module],
+                        rules: tuple[ast.Rule, ...]) -> list[ast.Module]:
+    """GOAL 3's percept rules run first in the event module (one is made if needed)."""
+    for index, module in enumerate(modules):
+        if module.kind == "event":
+            modules[index] = replace(module, rules=rules + module.rules)
+            return modules
+    return [*modules, ast.Module("event", "event", rules[0].pos, rules=rules)]
 
 
 def finish_program(name: str, file: str, modules: list[ast.Module], macros: list[ast.Macro],
@@ -72,9 +87,11 @@ def finish_program(name: str, file: str, modules: list[ast.Module], macros: list
     """The agent program of ``modules`` (whatever format they were read from) with what is
     global to the agent gathered from them and ``top`` (knowledge, beliefs, goals and
     actionspecs written outside modules), ``@env`` overrides marked and singleton variables
-    warned about."""
+    warned about. A user module's goals stay its own: adopted when it is entered, its
+    parameters instantiating them (GOAL's semantics)."""
     everything = [top, *({"knowledge": list(m.knowledge), "beliefs": list(m.beliefs),
-                          "goals": list(m.goals), "actionspecs": list(m.actionspecs)}
+                          "goals": list(m.goals) if m.kind != "user" else [],
+                          "actionspecs": list(m.actionspecs)}
                          for m in modules)]
     gathered = {key: tuple(x for part in everything for x in part[key]) for key in top}
     overriding = {(spec.name, spec.arity) for spec in gathered["actionspecs"]

@@ -127,10 +127,12 @@ class TestParts(BuilderBase):
         return tuple(c for c in children if isinstance(c, ast.TestStep))
 
     def mastest_agent(self, meta, children):
-        name = children[0]
-        steps = tuple(step for block in children[1:] if isinstance(block, tuple)
+        """``a, b { before { .. } test { .. } after { .. } }``: the blocks (any names) in
+        order, for each agent named."""
+        names = [c for c in children if isinstance(c, Token)]
+        steps = tuple(step for block in children if isinstance(block, tuple)
                       for step in block)
-        return ast.AgentTest(str(name), self._token_pos(name), steps)
+        return [ast.AgentTest(str(name), self._token_pos(name), steps) for name in names]
 
     def mastest_file(self, meta, children):
         mas, mas_pos, timeout = None, self.source.pos(0), None
@@ -149,4 +151,4 @@ class TestParts(BuilderBase):
             raise GoalSyntaxError.at(self._pos(meta), "masTest names no system: add "
                                      'mas = "file.mas2g".')
         return ("test", mas, mas_pos, timeout, (),
-                tuple(c for c in children if isinstance(c, ast.AgentTest)))
+                tuple(test for c in children if isinstance(c, list) for test in c))
