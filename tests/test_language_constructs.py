@@ -12,7 +12,16 @@ import textwrap
 import pytest
 
 from goalagent.agent import Agent
-from goalagent.parser import GoalSyntaxError, parse_agent, parse_test
+from goalagent.kb.engine import get_engine
+from goalagent.parser import (
+    GoalSyntaxError,
+    load_agents,
+    parse_agent,
+    parse_agent_file,
+    parse_mas,
+    parse_mas_file,
+    parse_test,
+)
 
 
 def run_agent(text: str, cycles: int = 5) -> tuple[list[str], Agent]:
@@ -163,3 +172,47 @@ def test_an_identifier_may_start_with_a_keyword(tmp_path) -> None:
     program = parse_agent("main module { program { if bel(notice, ifx, do_it) then "
                           "print(x). } }", "k.goal")
     assert program.module("main").rules[0].condition[0].query.text == "notice, ifx, do_it"
+
+
+def test_backslashes_in_mas2g_strings_are_verbatim_as_goal_reads_them() -> None:
+    mas = parse_mas(textwrap.dedent(r"""
+        environment {
+            env = "C:\Users\me\x.jar".
+            init = [path = "C:\Starcraft\units", quote = "a\"b"].
+        }
+        agentfiles { "a.goal". }
+        launchpolicy { launch a. }
+    """), "w.mas2g")
+    values = {key: get_engine().parse_term(value.text) for key, value in mas.env_init}
+    assert mas.environment == "C:/Users/me/x.jar"
+    assert values == {"path": "C:\\Starcraft\\units", "quote": 'a"b'}
+
+
+def test_a_wildcard_in_use_names_every_matching_file(tmp_path) -> None:
+    (tmp_path / "util").mkdir()
+    (tmp_path / "util" / "a.pl").write_text("a(1).")
+    (tmp_path / "util" / "b.pl").write_text("b(2).")
+    (tmp_path / "main.mod2g").write_text(
+        "use 'util/*.pl' as knowledge.\n"
+        "module main { if bel(a(X), b(Y)) then print(X-Y). }")
+    (tmp_path / "s.mas2g").write_text(
+        'define ag as agent { use main as main module. }\nlaunchpolicy { launch ag. }')
+    program = load_agents(parse_mas_file(tmp_path / "s.mas2g"))["ag"]
+    assert [k.text for k in program.knowledge] == ["a(1)", "b(2)"]
+    (tmp_path / "main.mod2g").write_text("use 'none/*.pl' as knowledge.\n"
+                                         "module main { if true then print(x). }")
+    with pytest.raises(GoalSyntaxError, match=r"main.mod2g:1:1: use none/\*.pl: no file "
+                       "matches"):
+        load_agents(parse_mas_file(tmp_path / "s.mas2g"))
+
+
+def test_latin1_text_and_swi7_infix_bar_in_arguments(tmp_path) -> None:
+    path = tmp_path / "l.goal"
+    path.write_bytes(b"% r\xe9sum\xe9\nmain module [exit=always] {\n"
+                     b"  program { if bel(X = 1) then print(\"a:\"|X). }\n}\n")
+    agent = Agent(parse_agent_file(path), output=io.StringIO(), warn=lambda message: None)
+    try:
+        agent.run(max_cycles=1)
+        assert agent.output.getvalue() == '"a:"|1\n'
+    finally:
+        agent.close()

@@ -7,6 +7,7 @@ newest dialect's ``define a { use m for decisions. replace p/1. }``."""
 from __future__ import annotations
 
 import itertools
+import re
 from pathlib import Path
 
 from lark import Token, v_args
@@ -25,6 +26,20 @@ _PURPOSES = {"decisions": "main", "updates": "event"}
 _PERCEPT_RULES = ("add", "replace", "update")
 
 
+_QUOTED = re.compile(r'"((?:\\.|""|[^"\\])*)"')
+
+
+def verbatim_strings(text: str) -> str:
+    """Init values as GOAL reads them: a backslash in a double-quoted string is itself
+    (``"C:\\Starcraft"`` is a Windows path, not an escape), but before a quote."""
+
+    def double(match: re.Match[str]) -> str:
+        body = re.sub(r'\\(?!")', r"\\\\", match.group(1))
+        return f'"{body}"'
+
+    return _QUOTED.sub(double, text)
+
+
 def reference_path(text: str) -> str:
     """A file reference as written in a program, with Windows separators made portable."""
     return text.replace("\\", "/")
@@ -40,7 +55,9 @@ class MasParts(BuilderBase):
 
     # --- GOAL 4/5 ----------------------------------------------------------------------
     def env_item(self, meta, children):
-        return (str(children[0]), self.check(children[1]), self._token_pos(children[0]))
+        value = children[1]
+        value = ast.PrologText(verbatim_strings(value.text), value.pos)
+        return (str(children[0]), self.check(value), self._token_pos(children[0]))
 
     def env_string(self, meta, children):
         """``env = "x.jar".`` (the file as written: GOAL reads no escapes in it, so
@@ -49,7 +66,8 @@ class MasParts(BuilderBase):
         key, value = children[0], children[1]
         if str(key) == "env":
             return self.env_file(meta, [value])
-        return (str(key), self.check(ast.PrologText(str(value), self._token_pos(value))),
+        return (str(key), self.check(ast.PrologText(verbatim_strings(str(value)),
+                                                    self._token_pos(value))),
                 self._token_pos(key))
 
     def env_file(self, meta, children):
@@ -66,7 +84,8 @@ class MasParts(BuilderBase):
                                      f"unknown environment entry {key}[...]; expected init[...]")
         start, end = children[1].start_pos, children[-2].end_pos
         text, offset = self.source.fragment(start, end)
-        return ("init", self.check(ast.PrologText(text, self.source.pos(offset))),
+        return ("init", self.check(ast.PrologText(verbatim_strings(text),
+                                                  self.source.pos(offset))),
                 self._token_pos(key))
 
     def environment(self, meta, children):
