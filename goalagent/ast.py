@@ -301,6 +301,7 @@ class MasProgram:
     pos: Pos
     definitions: tuple[AgentDefinition, ...] = ()
     env_pos: Pos | None = None
+    warnings: tuple[str, ...] = field(default=(), compare=False)  # GOAL's MAS warnings
 
     def agent_names(self) -> list[str]:
         """The names launch rules may refer to: agent files' and agent definitions'."""

@@ -78,6 +78,10 @@ def check_environment(mas: ast.MasProgram) -> list[str]:
         environment = load_environment(mas.environment)
     except EnvironmentInterfaceException as err:
         if mas.environment.lower().endswith(".jar"):
+            if not (Path(mas.file).parent / mas.environment).is_file():
+                raise GoalSyntaxError.at(pos, f"environment '{mas.environment}': no such "
+                                         "file next to the system, and not one goalagent "
+                                         "ships") from None
             return [f"{pos}: warning: environment '{mas.environment}' is a GOAL environment "
                     "goalagent does not ship: the system checks, but cannot run here"]
         hint = did_you_mean(mas.environment, known_environments())
@@ -160,7 +164,8 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
     it has no error (``sandbox``: also load each agent as ``--sandbox`` would)."""
     try:
         if path.suffix == ".mas2g":
-            for warning in check_environment(parse_mas_file(path)):
+            mas = parse_mas_file(path)
+            for warning in (*mas.warnings, *check_environment(mas)):
                 report(warning)
         for program in programs_to_check(path, report):
             validate_program(program)

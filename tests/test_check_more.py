@@ -49,16 +49,28 @@ def test_unknown_environment_and_init_parameter_in_a_mas2g(tmp_path: Path) -> No
 def test_a_goal_environment_jar_goalagent_lacks_is_a_warning(tmp_path: Path) -> None:
     """eishub Starcraft's SimpleAgentTerran.mas2g: use "../../connector.jar" as environment.
     The system is not wrong; it only cannot run here."""
-    agent = tmp_path / "a.goal"
+    home = tmp_path / "agents" / "terran"
+    home.mkdir(parents=True)
+    (tmp_path / "connector.jar").write_bytes(b"PK")
+    agent = home / "a.goal"
     agent.write_text("main module { program { if true then print(x). } }\n")
-    system = tmp_path / "s.mas2g"
+    system = home / "s.mas2g"
     system.write_text('environment {\n  env = "../../connector.jar".\n}\n'
-                      'agentfiles { "a.goal". }\nlaunchpolicy { launch a : a. }\n')
+                      'agentfiles { "a.goal". }\n'
+                      'launchpolicy { when entity@env do launch a : a. }\n')
     result = goalagent("check", str(system))
     assert result.returncode == 0, result.stderr
     assert (f"{system}:2:9: warning: environment '../../connector.jar' is a GOAL environment "
             "goalagent does not ship") in result.stderr
     assert f"{system}: ok" in result.stderr
+    result = goalagent("run", str(system))  # still an error for run
+    assert result.returncode == 2
+    assert f"{system}:2:9: unknown environment '../../connector.jar'" in result.stderr
+    (tmp_path / "connector.jar").unlink()  # GOAL's ENVIRONMENT_COULDNOT_FIND: an error
+    result = goalagent("check", str(system))
+    assert result.returncode == 2
+    assert (f"{system}:2:9: environment '../../connector.jar': no such file next to the "
+            "system") in result.stderr
 
 
 def test_calls_of_predicates_defined_nowhere_are_warnings_with_suggestions(tmp_path: Path):

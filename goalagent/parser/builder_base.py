@@ -47,8 +47,13 @@ class BuilderBase(Transformer_NonRecursive):
         self.source = source
         self.engine = get_engine()
         self.split_facts = True  # `a, b.` in a Prolog file is two facts (not for goal files)
+        self.warnings: list[str] = []  # what GOAL warns about but accepts, as located lines
 
     # --- helpers ------------------------------------------------------------------------
+    def warn(self, pos: ast.Pos, message: str) -> None:
+        """A located warning (the file is still accepted)."""
+        self.warnings.append(f"{pos}: warning: {message}")
+
     def _pos(self, meta) -> ast.Pos:
         """The position where a tree node starts."""
         return self.source.pos(meta.start_pos)

@@ -21,6 +21,7 @@ LIMIT_OPTIONS = ("sandbox", "max_inferences", "max_query_seconds", "max_beliefs"
 MAX_NUMBER = 100_000
 """The largest ``number`` (agents launched from one file) or ``max`` a .mas2g may ask for."""
 
+_LANGUAGES = ("swiprolog", "swi-prolog", "prolog")
 _AGENT_ROLES = ("init", "main", "event", "shutdown")
 _PURPOSES = {"decisions": "main", "updates": "event"}
 _PERCEPT_RULES = ("add", "replace", "update")
@@ -94,7 +95,18 @@ class MasParts(BuilderBase):
     def agentfile(self, meta, children):
         path = reference_path(str(children[0])[1:-1])
         options = next((c for c in children[1:] if isinstance(c, list)), [])
-        values = {str(k): (str(v), k) for k, v in options}
+        values: dict[str, tuple[str, Token]] = {}
+        for key, value in options:
+            if str(key) in values:
+                self.warn(self._token_pos(key), f"agent file option {key} is given twice; "
+                          "the first is used")
+                continue
+            values[str(key)] = (str(value), key)
+        language = values.pop("language", None)
+        if language is not None and language[0].lower() not in _LANGUAGES:
+            raise GoalSyntaxError.at(self._token_pos(language[1]), f"language = {language[0]}:"
+                                     " goalagent's knowledge representation is SWI-Prolog "
+                                     "(language = swiprolog)")
         unknown = [key for key in values if key not in ("name", "number", *LIMIT_OPTIONS)]
         if unknown:
             raise GoalSyntaxError.at(self._token_pos(values[unknown[0]][1]),
@@ -246,8 +258,14 @@ class MasParts(BuilderBase):
         """One launch rule per instruction; those of one ``when`` share a group."""
         entity: dict[str, str] = {}
         limit = None
+        seen: set[str] = set()
         for key_token, value_token in condition:
             key = str(key_token)
+            if key in seen:
+                self.warn(self._token_pos(key_token), f"entity condition {key} is given "
+                          "twice; the first is used")
+                continue
+            seen.add(key)
             if key in ("type", "name"):
                 entity[key] = self._plain(value_token)
             elif key == "max":
@@ -264,6 +282,10 @@ class MasParts(BuilderBase):
                 raise GoalSyntaxError.at(self._token_pos(values[unknown[0]][1]),
                                          f"unknown launch option {unknown[0]!r} "
                                          "(name, number, max)")
+            if str(name_token) == "*" and not on_entity:
+                self.warn(pos, "launch * takes the name of an entity: it belongs in a "
+                          "conditional rule (when ... do launch *); this one launches nothing")
+                continue
             agentfile = str(file_token) if file_token is not None else str(name_token)
             agent_name = values.get("name", (str(name_token), None))[0]
             number = self._whole_number_option(values, "number") or 1
