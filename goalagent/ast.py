@@ -189,6 +189,7 @@ class Module:
     goals: tuple[PrologText, ...] = ()
     actionspecs: tuple[ActionSpec, ...] = ()
     declared: str | None = None
+    has_program: bool = True  # False: written without a program section
 
     @property
     def arity(self) -> int:

@@ -15,6 +15,8 @@ from pathlib import Path
 
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
+from goalagent.agent.checks import program_errors
+from goalagent.agent.validator import structure_warnings
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.eis.registry import known_environments, load_environment
 from goalagent.kb.engine import KBError, get_engine
@@ -25,11 +27,15 @@ from goalagent.parser import (
     load_agents,
     load_module_as_agent,
     parse_action_file,
+    parse_agent,
     parse_agent_file,
+    parse_mas,
     parse_mas_file,
     parse_prolog_file,
     parse_test_file,
 )
+from goalagent.parser.recovery import later_errors
+from goalagent.parser.source import read_program_file
 
 SYSTEM_SUFFIXES = (".goal", ".mas2g", ".test2g")
 # Control constructs whose arguments are goals (argument positions), and meta-calls.
@@ -159,27 +165,57 @@ def _calls(term: Term) -> Iterator[tuple[str, int]]:
         yield from _calls(args[index])
 
 
+MAX_REPORTED = 20
+"""Errors ``check`` prints per file; the rest are counted ("and N more")."""
+
+
 def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool:
-    """Checks one program file, telling ``report`` every warning and error line; True when
-    it has no error (``sandbox``: also load each agent as ``--sandbox`` would)."""
+    """Checks one program file, telling ``report`` every warning and every error line (up to
+    ``MAX_REPORTED``, then how many more); True when it has no error (``sandbox``: also load
+    each agent as ``--sandbox`` would)."""
     try:
         if path.suffix == ".mas2g":
             mas = parse_mas_file(path)
             for warning in (*mas.warnings, *check_environment(mas)):
                 report(warning)
+        errors: list[GoalSyntaxError] = []
         for program in programs_to_check(path, report):
-            validate_program(program)
-            for warning in program.warnings:
+            errors += program_errors(program)
+            for warning in (*program.warnings, *structure_warnings(program)):
                 report(warning)
+            if errors:
+                continue
             if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
                 for warning in _undefined_calls_of(program):
                     report(warning)
             if sandbox:  # loading under the sandbox runs no agent code but safe code
                 Agent(program, limits=Limits(sandbox=True), warn=lambda message: None).close()
-    except (GoalSyntaxError, AgentError) as err:
-        report(str(err))
-        return False
-    return True
+    except GoalSyntaxError as err:
+        errors = [err, *_later_syntax_errors(path, err)]
+    except AgentError as err:
+        errors = [err]  # type: ignore[list-item]
+    for error in errors[:MAX_REPORTED]:
+        report(str(error))
+    if len(errors) > MAX_REPORTED:
+        report(f"{path}: and {len(errors) - MAX_REPORTED} more errors")
+    return not errors
+
+
+def _later_syntax_errors(path: Path, first: GoalSyntaxError) -> list[GoalSyntaxError]:
+    """The syntax errors of a .goal or .mas2g file after its first (none for other files,
+    or when the first is in a file it uses)."""
+    def parse(text: str, file: str) -> object:
+        if path.suffix == ".mas2g":
+            return parse_mas(text, file)
+        return program_errors(parse_agent(text, file))
+
+    if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g") or first.file != str(path):
+        return []
+    try:
+        text = read_program_file(path)
+    except GoalSyntaxError:
+        return []
+    return later_errors(text, str(path), first, parse)
 
 
 def programs_to_check(path: Path, report: Callable[[str], None] = lambda line: None

@@ -123,3 +123,31 @@ def test_a_directory_checks_every_agent_and_system_under_it(tmp_path: Path) -> N
     assert shipped.returncode == 0, shipped.stderr
     assert "defined nowhere" not in shipped.stderr
     assert shipped.stderr.count(": ok") >= 20
+
+
+def test_a_file_with_three_errors_gets_three_located_lines(tmp_path: Path) -> None:
+    program = tmp_path / "three.goal"
+    program.write_text("init module {\n"
+                       "    beliefs { a(1). b(2 }\n"
+                       "}\n"
+                       "main module [exit=sometimes] {\n"
+                       "    program {\n"
+                       "        if bel(a(X)) then print(X).\n"
+                       "        if true then frobnicate(3).\n"
+                       "    }\n"
+                       "}\n")
+    result = goalagent("check", str(program))
+    assert result.returncode == 2
+    assert [line.split(": ")[0] for line in result.stderr.splitlines()] == [
+        f"{program}:2:25", f"{program}:4:19", f"{program}:7:22"]
+
+
+def test_more_than_twenty_errors_are_counted_not_printed(tmp_path: Path) -> None:
+    program = tmp_path / "many.goal"
+    rules = "".join(f"        if true then nothing{n}.\n" for n in range(25))
+    program.write_text(f"main module {{\n    program {{\n{rules}    }}\n}}\n")
+    result = goalagent("check", str(program))
+    lines = result.stderr.splitlines()
+    assert result.returncode == 2
+    assert len(lines) == 21 and lines[-1] == f"{program}: and 5 more errors"
+    assert lines[0].startswith(f"{program}:3:22: unknown action nothing0/0")

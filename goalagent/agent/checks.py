@@ -4,8 +4,10 @@ rule performs is built in (with its arity), declared in an actionspec, or a modu
 from __future__ import annotations
 
 import difflib
+from collections.abc import Iterator
 
 from goalagent import ast
+from goalagent.agent.validator import structure_errors
 from goalagent.parser import GoalSyntaxError, variable_occurrences
 
 # Built-in actions and their number of arguments (None: one formula, commas allowed).
@@ -15,14 +17,35 @@ _UPDATES = frozenset({"insert", "delete", "adopt", "drop"})
 
 
 def validate_program(program: ast.AgentProgram) -> None:
-    """Every action in a rule must be built in, specified or a user module (with its arity);
-    raises ``GoalSyntaxError`` at the first one that is not."""
+    """What an agent cannot run without (checked when it is loaded): ground goals, and
+    every action built in (with its arity), specified or a user module; raises
+    ``GoalSyntaxError`` at the first problem."""
     _check_ground_goals(program)
+    for error in _action_errors(program):
+        raise error
+
+
+def program_errors(program: ast.AgentProgram) -> list[GoalSyntaxError]:
+    """Everything GOAL's validator finds wrong in a program (``goalagent check``), in
+    source order: what :func:`validate_program` checks and the rules of ``validator``."""
+    errors: list[GoalSyntaxError] = []
+    try:
+        _check_ground_goals(program)
+    except GoalSyntaxError as err:
+        errors.append(err)
+    errors.extend(_action_errors(program))
+    errors.extend(structure_errors(program))
+    return sorted(errors, key=lambda err: (err.file, err.line, err.col))
+
+
+def _action_errors(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
+    """Every action in a rule must be built in, specified or a user module (with its arity);
+    an error for each one that is not."""
     specs = {(spec.name, spec.arity) for spec in program.actionspecs}
     modules = {(m.name, m.arity) for m in program.modules}
     for module in program.modules:
         for rule in ast.iter_rules(module.rules):
-            _check_condition(rule.condition)
+            yield from _condition_errors(rule.condition)
             for action in rule.actions:
                 if isinstance(action, ast.SendAction):
                     continue
@@ -32,20 +55,21 @@ def validate_program(program: ast.AgentProgram) -> None:
                     if (expected is None and action.arity == 0) or (
                         expected is not None and action.arity != expected
                     ):
-                        raise GoalSyntaxError.at(
+                        yield GoalSyntaxError.at(
                             action.pos, f"{action.name} takes "
                             f"{'an argument' if expected is None else expected} argument(s), "
                             f"not {action.arity}")
                 elif key not in specs and key not in modules:
                     if action.name in ast.UNSUPPORTED_ACTIONS:
-                        raise GoalSyntaxError.at(action.pos, f"{action.name} is a built-in "
+                        yield GoalSyntaxError.at(action.pos, f"{action.name} is a built-in "
                                                  "action of GOAL 7 that goalagent does not "
                                                  "support yet")
+                        continue
                     known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
                     names = sorted({n for n, _ in (*specs, *modules)} | ast.BUILTIN_ACTIONS)
                     close = difflib.get_close_matches(action.name, names, n=1)
                     hint = f"did you mean {close[0]}? " if close else ""
-                    raise GoalSyntaxError.at(
+                    yield GoalSyntaxError.at(
                         action.pos,
                         f"unknown action {action.name}/{action.arity}: not built in, not in an "
                         f"actionspec and not a module ({hint}known: "
@@ -72,13 +96,13 @@ def _check_ground_goals(program: ast.AgentProgram) -> None:
                 "whose condition binds them")
 
 
-def _check_condition(condition: ast.Condition) -> None:
+def _condition_errors(condition: ast.Condition) -> Iterator[GoalSyntaxError]:
     """``done(Action)`` belongs to tests, not to a rule's condition."""
     for literal in condition:
         if isinstance(literal, ast.NotLiteral):
-            _check_condition(literal.condition)
+            yield from _condition_errors(literal.condition)
         elif literal.op == "done":
-            raise GoalSyntaxError.at(literal.pos, "done(...) is a test condition (.test2g); "
+            yield GoalSyntaxError.at(literal.pos, "done(...) is a test condition (.test2g); "
                                      "a rule's condition cannot use it")
 
 

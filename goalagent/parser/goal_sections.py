@@ -252,6 +252,7 @@ class GoalParts(BuilderBase):
             exit=opts.get("exit"), focus=opts.get("focus"), order=order, rules=rules,
             knowledge=tuple(fields["knowledge"]), beliefs=tuple(fields["beliefs"]),
             goals=tuple(fields["goals"]), actionspecs=tuple(fields["actionspecs"]),
+            has_program=seen_program,
         )
 
     # --- GOAL 3 -------------------------------------------------------------------------
