@@ -173,12 +173,17 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
     """Checks one program file, telling ``report`` every warning and every error line (up to
     ``MAX_REPORTED``, then how many more); True when it has no error (``sandbox``: also load
     each agent as ``--sandbox`` would)."""
+    errors: list[GoalSyntaxError] = []
     try:
         if path.suffix == ".mas2g":
             mas = parse_mas_file(path)
-            for warning in (*mas.warnings, *check_environment(mas)):
+            for warning in mas.warnings:
                 report(warning)
-        errors: list[GoalSyntaxError] = []
+            try:
+                for warning in check_environment(mas):
+                    report(warning)
+            except GoalSyntaxError as err:
+                errors.append(err)
         for program in programs_to_check(path, report):
             errors += program_errors(program)
             for warning in (*program.warnings, *structure_warnings(program)):
@@ -191,9 +196,9 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
             if sandbox:  # loading under the sandbox runs no agent code but safe code
                 Agent(program, limits=Limits(sandbox=True), warn=lambda message: None).close()
     except GoalSyntaxError as err:
-        errors = [err, *_later_syntax_errors(path, err)]
+        errors += [err, *_later_syntax_errors(path, err)]
     except AgentError as err:
-        errors = [err]  # type: ignore[list-item]
+        errors += [err]  # type: ignore[list-item]
     for error in errors[:MAX_REPORTED]:
         report(str(error))
     if len(errors) > MAX_REPORTED:

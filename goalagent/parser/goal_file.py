@@ -69,7 +69,10 @@ def _program_from_items(name: str | None, items: list, file: str,
     modules.extend(builder.nested_modules)
     if builder.percept_rules:
         modules = _with_percept_rules(modules, tuple(builder.percept_rules))
-    return finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+    program = finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+    if builder.warnings:
+        program = replace(program, warnings=(*builder.warnings, *program.warnings))
+    return program
 
 
 def _with_percept_rules(modules: list[ast.Module],

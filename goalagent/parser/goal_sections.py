@@ -87,10 +87,13 @@ class GoalParts(BuilderBase):
         return self._pre_or_post_text(children)
 
     def _pre_or_post_text(self, children) -> ast.PrologText:
-        """The checked text of ``pre { .. }`` / ``post { .. }``; ``true`` when empty."""
+        """The checked text of ``pre { .. }`` / ``post { .. }``; ``true`` when empty (GOAL
+        warns: an empty precondition or postcondition is more likely forgotten than meant)."""
         if len(children) > 1:
             return self.check(children[1])
-        return ast.PrologText("true", self._token_pos(children[0]), ())
+        pos = self._token_pos(children[0])
+        self.warn(pos, f"empty {children[0]} {{ }}: read as true")
+        return ast.PrologText("true", pos, ())
 
     def actionspec(self, meta, children):
         name = children[0]
