@@ -326,7 +326,8 @@ class TestCondition:
     C``, ``always C``, ``never C``, ``atend C`` (the last state) or ``C leadsto D`` (after
     a state where C holds, D holds in that one or a later one). ``text`` as written."""
 
-    kind: TypingLiteral["eventually", "always", "never", "atend", "leadsto"]
+    kind: TypingLiteral["eventually", "always", "never", "atend", "leadsto", "atstart",
+                        "watch"]
     condition: Condition
     pos: Pos
     text: str
@@ -359,6 +360,7 @@ class TestStep:
     condition: Condition | None = None
     conditions: tuple[TestCondition, ...] = ()
     message: str | None = None
+    actions: tuple[Action, ...] = ()  # do a + b: every action of the step
 
 
 @dataclass(frozen=True)

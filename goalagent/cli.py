@@ -36,7 +36,7 @@ from goalagent.extensions import (
     installed_extensions,
 )
 from goalagent.kb.engine import KBError
-from goalagent.kb.limits import Limits
+from goalagent.kb.limits import Limits, default_module_depth
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
 from goalagent.parser import (
@@ -149,6 +149,9 @@ def _language_run_options(
     sandbox: Annotated[bool, typer.Option(
         help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
     ] = False,
+    max_module_depth: Annotated[int, typer.Option(
+        help="How deep module calls may nest before the agent is stopped (default: as deep "
+             "as the C stack safely allows).")] = default_module_depth(),
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -201,7 +204,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise user_error("--max-cycles must be 0 or more")
     try:
         limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"])
+                        values["max_beliefs"], values["sandbox"], values["max_module_depth"])
     except ValueError as err:
         raise user_error(f"--{str(err).replace('_', '-')}") from None
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],

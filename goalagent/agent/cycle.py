@@ -169,6 +169,22 @@ class Agent:
         self.last_report = self.report
         return self.report
 
+    def perform(self, actions: tuple[ast.Action, ...], pos: ast.Pos) -> CycleReport:
+        """A test's ``do a + b`` of actions or modules other than main: percepts and messages
+        are read, the actions done once (as the rule ``if true then a + b``), the goals
+        achieved dropped; it counts as a cycle."""
+        if self.terminated:
+            raise AgentError(f"agent {self.name} has terminated")
+        self.cycle += 1
+        self.report = CycleReport(self.cycle)
+        if self.io is not None or self.postman is not None:
+            self._perceive()
+        rule = ast.Rule("if", (ast.MentalLiteral("true", None, pos),), pos, actions=actions)
+        self._rules.run_once(ast.Module("do", "user", pos, rules=(rule,), order="linear"))
+        self._blind_commitment()
+        self.last_report = self.report
+        return self.report
+
     def run(self, max_cycles: int | None = None) -> RunResult:
         """Cycle until the agent terminates or ``max_cycles`` cycles have run."""
         while not self.terminated and (max_cycles is None or self.cycle < max_cycles):

@@ -249,6 +249,12 @@ class CompiledProgram:
         forget = lambda _: _compiled_programs.pop(key, None)  # noqa: E731 - when it dies
         _compiled_programs[key] = (weakref.ref(program, forget), self._directives, self._codes)
 
+    def add_module(self, module: ast.Module) -> None:
+        """Compiles a module made outside the program (a test step's actions, run as a
+        rule ``if true then A``): its rules may call the program's actions and modules."""
+        if id(module) not in self._codes:
+            self._codes[id(module)] = self._compile_module(module)
+
     def code(self, module: ast.Module) -> ModuleCode:
         """The compiled pass of one of the program's modules."""
         return self._codes[id(module)]

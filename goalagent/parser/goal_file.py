@@ -9,6 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from goalagent import ast
+from goalagent.kb.engine import get_engine
 from goalagent.parser.ast_builder import AstBuilder, build
 from goalagent.parser.builder_base import ParsedSection
 from goalagent.parser.conditions import condition_texts
@@ -101,6 +102,9 @@ def finish_program(name: str, file: str, modules: list[ast.Module], macros: list
                   if spec.name in ast.BUILTIN_ACTIONS}
     if overriding:
         modules = [replace(m, rules=_mark_overrides(m.rules, overriding)) for m in modules]
+    selecting = {(m.name, m.arity) for m in modules if m.kind == "user" and m.focus == "select"}
+    if selecting:
+        modules = [replace(m, rules=_in_one_goal(m.rules, selecting)) for m in modules]
     program = ast.AgentProgram(
         name=name,
         file=file,
@@ -127,6 +131,33 @@ def _mark_overrides(rules: tuple[ast.Rule, ...],
         inner = _mark_overrides(rule.rules, overriding) if rule.rules else rule.rules
         marked.append(replace(rule, actions=actions, rules=inner))
     return tuple(marked)
+
+
+def _in_one_goal(rules: tuple[ast.Rule, ...],
+                 selecting: set[tuple[str, int]]) -> tuple[ast.Rule, ...]:
+    """A rule that enters a ``focus=select`` module selects one goal: its goal literals
+    (goal, a-goal, goal-a) must hold in that one goal together, as in GOAL (its runtime
+    test testselect.goal). The rule's condition gets the literal ``goal((φ1, ..., φn))``
+    after its last goal literal."""
+    result = []
+    for rule in rules:
+        inner = _in_one_goal(rule.rules, selecting) if rule.rules else rule.rules
+        enters = any(isinstance(a, ast.ActionCall) and (a.name, a.arity) in selecting
+                     for a in rule.actions)
+        positions = [i for i, literal in enumerate(rule.condition)
+                     if isinstance(literal, ast.MentalLiteral)
+                     and literal.op in ("goal", "a-goal", "goal-a")]
+        condition = rule.condition
+        if enters and len(positions) > 1:
+            last = rule.condition[positions[-1]]
+            texts = ", ".join(f"({rule.condition[i].query.text}\n)"  # type: ignore[union-attr]
+                              for i in positions)
+            text = f"({texts})"
+            joint = ast.MentalLiteral("goal", ast.PrologText(
+                text, last.pos, tuple(get_engine().check_query(text))), last.pos)
+            condition = (*condition[:positions[-1] + 1], joint, *condition[positions[-1] + 1:])
+        result.append(replace(rule, condition=condition, rules=inner))
+    return tuple(result)
 
 
 def _rule_texts(rule: ast.Rule) -> Iterator[ast.PrologText]:

@@ -36,6 +36,12 @@ class TestParts(BuilderBase):
     def atend(self, meta, children):
         return self._condition("atend", meta, children)
 
+    def atstart(self, meta, children):
+        return self._condition("atstart", meta, children)
+
+    def watch(self, meta, children):
+        return self._condition("watch", meta, children)
+
     def leadsto(self, meta, children):
         return self._condition("leadsto", meta, children)
 
@@ -60,24 +66,23 @@ class TestParts(BuilderBase):
 
     # --- steps -------------------------------------------------------------------------
     def do_target(self, meta, children):
-        child = children[0]
-        if isinstance(child, Token):  # a module written with a capital: do MapAgent
-            return (str(child), None)
-        if len(child) != 1:
-            raise GoalSyntaxError.at(self._pos(meta), "a test does one action or module "
-                                     "at a time: write one do step per action")
-        action = child[0]
-        return (getattr(action, "name", ""), action)
+        """``do a``, ``do a + b`` (GOAL 5: several actions in one step): the first one's
+        name, and the actions."""
+        actions = tuple(children[0])
+        return (getattr(actions[0], "name", ""), actions)
 
     def _until(self, children) -> ast.Condition | None:
         for index, child in enumerate(children):
             if isinstance(child, Token) and child.type == "UNTIL":
                 return children[index + 1]
+            if isinstance(child, Token) and child.type == "WHILE":  # while C: until not C
+                return (ast.NotLiteral(children[index + 1], self._token_pos(child)),)
         return None
 
     def do_step(self, meta, children):
-        target, action = children[1]
-        return ast.TestStep("do", self._pos(meta), target, action, self._until(children))
+        target, actions = children[1]
+        return ast.TestStep("do", self._pos(meta), target, actions[0], self._until(children),
+                            actions=actions)
 
     def assert_step(self, meta, children):
         message = next((str(c)[1:-1] for c in children[2:]
@@ -86,11 +91,11 @@ class TestParts(BuilderBase):
 
     def evaluate_step(self, meta, children):
         conditions = tuple(c for c in children if isinstance(c, ast.TestCondition))
-        target, action = next(c for c in children if isinstance(c, tuple) and len(c) == 2
-                              and not isinstance(c[0], ast.TestCondition)
-                              and isinstance(c[0], str))
-        return ast.TestStep("evaluate", self._pos(meta), target, action,
-                            self._until(children), conditions=conditions)
+        target, actions = next(c for c in children if isinstance(c, tuple) and len(c) == 2
+                               and not isinstance(c[0], ast.TestCondition)
+                               and isinstance(c[0], str))
+        return ast.TestStep("evaluate", self._pos(meta), target, actions[0],
+                            self._until(children), conditions=conditions, actions=actions)
 
     def agent_steps(self, meta, children):
         name = children[0]
