@@ -86,12 +86,12 @@ class Macro:
     pos: Pos
 
 
+# GOAL 7's timer and channel actions (goalagent.agent.timers)
+GOAL7_ACTIONS = frozenset({"starttimer", "canceltimer", "subscribe", "unsubscribe"})
 BUILTIN_ACTIONS = frozenset(
     {"insert", "delete", "adopt", "drop", "print", "log", "exit-module", "send", "sendonce",
      "sleep"}
-)
-# GOAL 7's built-in actions goalagent does not have (a program using one is told so).
-UNSUPPORTED_ACTIONS = frozenset({"starttimer", "canceltimer", "subscribe", "unsubscribe"})
+) | GOAL7_ACTIONS
 
 Mood = TypingLiteral[":", "!", "?"]
 

@@ -150,3 +150,46 @@ def test_goal5_mastest_does_modules_and_several_actions_and_watches(tmp_path: Pa
     assert report.passed, report.text()
     text = report.text()
     assert "do start" in text and "do mark" in text and "held in" in text
+
+
+def test_goal7_timers_raise_goals_timer_percepts(tmp_path: Path) -> None:
+    # GOAL 7's RunState.startTimer: timer(Name, Elapsed) every interval for the duration,
+    # the last with Elapsed = Duration; canceltimer of a finished timer is a warning
+    path = tmp_path / "timer.goal"
+    path.write_text(textwrap.dedent("""
+        init module { goals { finished. } }
+        main module [exit=nogoals] {
+            program [order=linearall] {
+                if bel(not(started)) then insert(started) + starttimer(tick, 20, 50).
+                forall bel(percept(timer(N, E))) do print(fired(N, E)).
+                if bel(percept(timer(tick, 50))) then canceltimer(tick) + insert(finished).
+            }
+        }
+    """))
+    result = goalagent("run", str(path), "--max-cycles", "200000")
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["fired(tick,20)", "fired(tick,40)", "fired(tick,50)"]
+    assert "timer 'tick' was not running or already cancelled." in result.stderr
+
+
+def test_goal7_channels_reach_their_subscribers(tmp_path: Path) -> None:
+    (tmp_path / "listener.goal").write_text(textwrap.dedent("""
+        main module [exit=never] {
+            program [order=linearall] {
+                if bel(not(joined)) then insert(joined) + subscribe(news).
+                forall bel(received(S, M)) do print(heard(S, M)) + delete(received(S, M)).
+            }
+        }
+    """))
+    (tmp_path / "speaker.goal").write_text(textwrap.dedent("""
+        main module [exit=never] {
+            program { if bel(not(said)) then insert(said) + news.send(hello). }
+        }
+    """))
+    (tmp_path / "s.mas2g").write_text(
+        'agentfiles { "listener.goal". "speaker.goal". }\n'
+        "launchpolicy { launch ann : listener. launch bob : listener. "
+        "launch sam : speaker. }\n")
+    result = goalagent("run", str(tmp_path / "s.mas2g"), "--max-cycles", "3")
+    assert result.returncode == 0, result.stderr
+    assert sorted(result.stdout.split()) == ["heard(sam,hello)", "heard(sam,hello)"]

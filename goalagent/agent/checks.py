@@ -12,7 +12,8 @@ from goalagent.parser import GoalSyntaxError, variable_occurrences
 
 # Built-in actions and their number of arguments (None: one formula, commas allowed).
 _BUILTIN_ARITY = {"insert": None, "delete": None, "adopt": None, "drop": None, "print": 1,
-                  "log": 1, "exit-module": 0, "sleep": 1}
+                  "log": 1, "exit-module": 0, "sleep": 1, "starttimer": 3,
+                  "canceltimer": None, "subscribe": None, "unsubscribe": None}
 _UPDATES = frozenset({"insert", "delete", "adopt", "drop"})
 
 
@@ -60,11 +61,6 @@ def _action_errors(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
                             f"{'an argument' if expected is None else expected} argument(s), "
                             f"not {action.arity}")
                 elif key not in specs and key not in modules:
-                    if action.name in ast.UNSUPPORTED_ACTIONS:
-                        yield GoalSyntaxError.at(action.pos, f"{action.name} is a built-in "
-                                                 "action of GOAL 7 that goalagent does not "
-                                                 "support yet")
-                        continue
                     known = sorted(f"{n}/{a}" for n, a in (*specs, *modules))
                     names = sorted({n for n, _ in (*specs, *modules)} | ast.BUILTIN_ACTIONS)
                     close = difflib.get_close_matches(action.name, names, n=1)

@@ -10,7 +10,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 from goalagent import ast
-from goalagent.agent import actions, messages, modules
+from goalagent.agent import actions, messages, modules, timers
 from goalagent.agent.errors import AgentError
 from goalagent.agent.events import interpreter_event
 from goalagent.agent.problems import warning_text
@@ -142,6 +142,9 @@ class RuleApplication:
         agent = self._agent
         return modules.call_module(agent, self, firing, index, agent.program.modules[module],
                                    args, entries, position)
+
+    def goal7(self, name: str, args: list[Term]) -> None:
+        timers.perform(self._agent, name, args)
 
     def problem(self, problem: Problem) -> None:
         self._agent.warn(warning_text(problem, self._agent.program))

@@ -145,6 +145,9 @@ class Requests(Protocol):
         not match. ``entries`` firings and ``position`` actions precede this call in the
         running call's journal."""
 
+    def goal7(self, name: str, args: list[Term]) -> None:
+        """GOAL 7's starttimer, canceltimer, subscribe or unsubscribe with ``args``."""
+
     def problem(self, problem: Problem) -> None:
         """A warning."""
 
@@ -347,6 +350,9 @@ class CompiledProgram:
         if action.builtin:
             if action.name == "exit-module":
                 return "exit_module"
+            if action.name in ast.GOAL7_ACTIONS:
+                args = ", ".join(f"({arg.text}\n)" for arg in action.args)
+                return f"goal7({action.name}, [{args}])"
             return f"{action.name}(({action.args[0].text}\n))"
         head = format_term(Atom(action.name))
         if action.args:
@@ -435,6 +441,9 @@ class _Answerer:
             sent = requests.send(_firing(firing), int(index), once == "true",  # type: ignore
                                  _MOOD_SIGNS[str(mood)], receiver, content)
             return _TRUE if sent else _FALSE
+        if name == "goal7":
+            requests.goal7(str(args[0]), list(args[1]))  # type: ignore[arg-type]
+            return None
         if name == "call":
             firing, index, module, call_args, entries, position = args
             called = requests.call_module(_firing(firing), int(index), int(module),  # type: ignore
