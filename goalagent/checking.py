@@ -18,6 +18,7 @@ from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.agent.checks import program_errors
 from goalagent.agent.validator import structure_warnings
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.interface import Environment
 from goalagent.eis.registry import known_environments, load_environment
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.limits import Limits
@@ -92,16 +93,23 @@ def check_environment(mas: ast.MasProgram) -> list[str]:
                     "goalagent does not ship: the system checks, but cannot run here"]
         hint = did_you_mean(mas.environment, known_environments())
         raise GoalSyntaxError.at(pos, f"{err}{hint}") from None
-    parameters = getattr(environment, "parameters", None)
-    if parameters is None:
-        return []
     for key, value in mas.env_init:
-        if key not in parameters:
-            known = sorted(parameters)
-            raise GoalSyntaxError.at(
-                value.pos, f"environment '{mas.environment}' has no init parameter {key!r}"
-                f"{did_you_mean(key, known)}; its parameters: {', '.join(known) or 'none'}")
+        problem = unknown_parameter(environment, mas.environment, key)
+        if problem is not None:
+            raise GoalSyntaxError.at(value.pos, problem)
     return []
+
+
+def unknown_parameter(environment: type[Environment], name: str, key: str) -> str | None:
+    """What is wrong with init parameter ``key`` of ``environment`` (registered as
+    ``name``), with the closest known name; None when it takes it (or declares nothing)."""
+    parameters = environment.init_parameters()
+    if parameters is None or environment.init_key(key) in parameters:
+        return None
+    known = sorted(parameters)
+    return (f"environment '{name}' has no init parameter {key!r}"
+            f"{did_you_mean(environment.init_key(key), known)}; its parameters: "
+            f"{', '.join(known) or 'none'}")
 
 
 def undefined_calls(agent: Agent) -> list[str]:

@@ -9,6 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -151,3 +153,37 @@ def test_more_than_twenty_errors_are_counted_not_printed(tmp_path: Path) -> None
     assert result.returncode == 2
     assert len(lines) == 21 and lines[-1] == f"{program}: and 5 more errors"
     assert lines[0].startswith(f"{program}:3:22: unknown action nothing0/0")
+
+
+@pytest.mark.parametrize("env, key, suggestion", [
+    ("hanoi", "disks", "discs"), ("elevator", "flors", "floors"), ("bw4t", "mapp", "map"),
+    ("towerworld", "sed", "seed"), ("blocksworld", "robot", "robots"), ("printer", "x", None),
+    ("navigation", "seeed", "seed"),  # a robot environment, through the extension seam
+])
+def test_every_shipped_environments_init_parameters_are_checked(
+        tmp_path: Path, env: str, key: str, suggestion: str | None) -> None:
+    (tmp_path / "a.goal").write_text("main module { program { if true then print(x). } }\n")
+    system = tmp_path / "s.mas2g"
+    system.write_text(f'environment {{ env = "{env}". init = [{key} = 1]. }}\n'
+                      'agentfiles { "a.goal". }\n'
+                      "launchpolicy { when entity@env do launch a. }\n")
+    result = goalagent("check", str(system))
+    assert result.returncode == 2
+    line = result.stderr.strip()
+    assert line.startswith(f"{system}:1:") and (
+        f"environment '{env}' has no init parameter '{key}'") in line
+    assert (f"(did you mean {suggestion}?)" in line) if suggestion else "did you mean" not in line
+
+
+def test_env_options_get_did_you_mean_without_a_place_in_the_agent_file(tmp_path: Path):
+    agent = tmp_path / "a.goal"
+    agent.write_text("main module [exit=always] { program { if true then print(x). } }\n")
+    result = goalagent("run", str(agent), "--env", "hanio")
+    assert result.returncode == 2
+    assert result.stderr.startswith("error: --env hanio: unknown environment 'hanio'")
+    assert "(did you mean hanoi?)" in result.stderr and str(agent) not in result.stderr
+    result = goalagent("run", str(agent), "--env", "hanoi", "--env-param", "disks=[0,0]")
+    assert result.returncode == 2
+    assert result.stderr.strip() == (
+        "error: --env-param disks: environment 'hanoi' has no init parameter 'disks' (did you "
+        "mean discs?); its parameters: discs, snapshots")
