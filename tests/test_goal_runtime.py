@@ -193,3 +193,16 @@ def test_goal7_channels_reach_their_subscribers(tmp_path: Path) -> None:
     result = goalagent("run", str(tmp_path / "s.mas2g"), "--max-cycles", "3")
     assert result.returncode == 0, result.stderr
     assert sorted(result.stdout.split()) == ["heard(sam,hello)", "heard(sam,hello)"]
+
+
+def test_traces_and_warnings_name_the_users_own_modules(tmp_path: Path) -> None:
+    (tmp_path / "moverMain.mod2g").write_text(
+        "module moverMain { if bel(atom_length(X, _)) then print(x). "
+        "if true then print(moved). }\n")
+    (tmp_path / "s.mas2g").write_text(
+        "define mover as agent { use moverMain as main module. }\n"
+        "launchpolicy { launch mover. }\n")
+    result = goalagent("run", str(tmp_path / "s.mas2g"), "--max-cycles", "1", "--trace=rules")
+    assert result.returncode == 0, result.stderr
+    assert "fired moverMain " in result.stdout and "fired main " not in result.stdout
+    assert "warning: agent mover: module moverMain, rule at" in result.stderr

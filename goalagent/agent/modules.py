@@ -67,7 +67,7 @@ def leave_focus(agent: Agent) -> None:
         agent.ms.pop_goal_base()
     if agent.listeners:
         agent.tell(module_event(agent.name, EventKind.MODULE_LEFT, focus.module,
-                                focus.module.name))
+                                focus.module.declared or focus.module.name))
 
 
 def _enter_goal_focus(ms: MentalState, module: ast.Module, condition: ast.Condition,

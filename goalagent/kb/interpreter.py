@@ -49,6 +49,7 @@ class RuleInfo:
     rule: ast.Rule
     names: tuple[str, ...]
     recorded: frozenset[int] = frozenset()  # actions whose closed form the journal keeps
+    shown: str = ""  # the module's name as its file gives it (traces and warnings say it)
 
 
 # Rules by id (ids are shared by every agent that runs the same program text).
@@ -338,7 +339,8 @@ class CompiledProgram:
         rule_id = _rule_ids.get(key)
         if rule_id is None:
             rule_id = len(_rules)
-            _rules.append(RuleInfo(rule_id, module.name, rule, names, recorded))
+            _rules.append(RuleInfo(rule_id, module.name, rule, names, recorded,
+                                   module.declared or module.name))
             _rule_ids[key] = rule_id
         return _rules[rule_id]
 
