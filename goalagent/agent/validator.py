@@ -113,14 +113,17 @@ def _duplicate_actions(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
 
 
 def _actionspec_parameters(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
-    """Distinct parameters; a postcondition's variables bound by them or the precondition."""
+    """Distinct parameters; a postcondition's variables bound by them, the precondition or
+    the parameters of the module the actionspec is written in."""
+    given = {id(spec): {var for param in module.params for var in variable_occurrences(param.text)}
+             for module in program.modules for spec in module.actionspecs}
     for spec in program.actionspecs:
         params = [var for param in spec.params for var in variable_occurrences(param.text)]
         twice = [var for var, count in Counter(params).items() if count > 1]
         if twice:
             yield GoalSyntaxError.at(spec.pos, f"action {spec.name}: parameter "
                                      f"{twice[0]} occurs twice")
-        bound = set(params) | set(variable_occurrences(spec.pre.text))
+        bound = set(params) | set(variable_occurrences(spec.pre.text)) | given.get(id(spec), set())
         unbound = [var for var in dict.fromkeys(variable_occurrences(spec.post.text))
                    if var not in bound and not var.startswith("_")]
         if unbound:

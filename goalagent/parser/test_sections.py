@@ -19,7 +19,8 @@ class TestParts(BuilderBase):
     def _condition(self, kind: str, meta, children) -> ast.TestCondition:
         text, _ = self.source.fragment(meta.start_pos, meta.end_pos)
         text = text.rstrip(".").strip()
-        conditions = [c for c in children if isinstance(c, tuple)]
+        conditions = [c if isinstance(c, tuple) else (c,) for c in children
+                      if isinstance(c, (tuple, ast.MentalLiteral, ast.NotLiteral))]
         then = conditions[1] if len(conditions) > 1 else None
         return ast.TestCondition(kind, conditions[0], self._pos(meta), text,  # type: ignore
                                  then)
@@ -43,6 +44,7 @@ class TestParts(BuilderBase):
         return self._condition("watch", meta, children)
 
     def leadsto(self, meta, children):
+        """``C leadsto D``, GOAL 5's ``always C -> eventually D`` and ``reactTo(C, D)``."""
         return self._condition("leadsto", meta, children)
 
     def test_condition(self, meta, children):
