@@ -179,8 +179,10 @@ MAX_REPORTED = 20
 
 def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool:
     """Checks one program file, telling ``report`` every warning and every error line (up to
-    ``MAX_REPORTED``, then how many more); True when it has no error (``sandbox``: also load
-    each agent as ``--sandbox`` would)."""
+    ``MAX_REPORTED``, then how many more); True when it has no error. Each agent is loaded
+    as ``run`` would (``sandbox``: as ``--sandbox`` would) but runs none of its code
+    (``Limits.runs_code``): its directives are checked, not run, and its goals are not
+    adopted."""
     errors: list[GoalSyntaxError] = []
     try:
         if path.suffix == ".mas2g":
@@ -198,11 +200,16 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
                 report(warning)
             if errors:
                 continue
-            if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
-                for warning in _undefined_calls_of(program):
-                    report(warning)
-            if sandbox:  # loading under the sandbox runs no agent code but safe code
-                Agent(program, limits=Limits(sandbox=True), warn=lambda message: None).close()
+            if path.suffix == ".mod2g" and not sandbox:
+                continue  # a module alone lacks its agent's knowledge: no calls to look up
+            agent = Agent(program, output=io.StringIO(), warn=lambda message: None,
+                          limits=Limits(sandbox=sandbox, runs_code=False))
+            try:
+                if path.suffix != ".mod2g":
+                    for warning in undefined_calls(agent):
+                        report(warning)
+            finally:
+                agent.close()
     except GoalSyntaxError as err:
         errors += [err, *_later_syntax_errors(path, err)]
     except AgentError as err:
@@ -277,12 +284,3 @@ def _goal5_module_in_context(path: Path, module: ast.AgentProgram,
             report(f"{path}: checked as part of {importer.name}, which imports it")
             return program
         raise alone from None
-
-
-def _undefined_calls_of(program: ast.AgentProgram) -> list[str]:
-    """Calls of predicates the agent defines nowhere (the agent is loaded, not run)."""
-    agent = Agent(program, output=io.StringIO(), warn=lambda message: None)
-    try:
-        return undefined_calls(agent)
-    finally:
-        agent.close()
