@@ -12,7 +12,10 @@ beforehand (the numbers in bench/README.md name how).
 Prints the files and repositories checked, how many ``check`` accepts, and the refusals
 grouped by their message (quoted names, numbers and paths blanked), largest group first;
 ``--refusals FILE`` writes every refusal, one ``path<TAB>first error`` line each, for
-judging which of them are valid GOAL.
+judging which of them are valid GOAL. ``--judged FILE`` (bench/goal_corpus_judged.tsv)
+lists refusals judged, by reading the files, not to be valid GOAL: the share of valid files
+that check is then printed, with the refusals left by cause, and the verdict GOAL's own
+validator test resources (``analyzer/`` folders) get compared with GOAL's.
 """
 
 from __future__ import annotations
@@ -58,10 +61,58 @@ def cause(error: str) -> str:
     return message[:100]
 
 
+def read_judged(path: Path) -> list[tuple[re.Pattern[str], re.Pattern[str], str]]:
+    """The judgments: (path regex, error regex, reason) per line, comments skipped."""
+    judged = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if line.strip() and not line.startswith("#"):
+            where, error, reason = line.split("\t")
+            judged.append((re.compile(where), re.compile(error), reason))
+    return judged
+
+
+def invalid_reason(judged, repo: str, path: Path, error: str) -> str | None:
+    """Why a refused file is not valid GOAL, if judged so."""
+    inside = f"{repo}/{'/'.join(path.parts[path.parts.index(repo) + 2:])}"
+    return next((reason for where, wrong, reason in judged  # the file, or the one it uses
+                 if (where.search(inside) or where.search(error)) and wrong.search(error)),
+                None)
+
+
+def report_judged(judged, files, refused: dict[Path, str]) -> None:
+    """The valid share, the refusals left by cause, and GOAL's own verdicts matched."""
+    invalid: dict[Path, str] = {}
+    for repo, path in files:
+        if path in refused:
+            reason = invalid_reason(judged, repo, path, refused[path])
+            if reason is not None:
+                invalid[path] = reason
+    valid = len(files) - len(invalid)
+    left = {path: error for path, error in refused.items() if path not in invalid}
+    print(f"{len(invalid)} refused files judged not valid GOAL; of the {valid} valid files "
+          f"{valid - len(left)} check ({(valid - len(left)) / max(valid, 1):.1%})")
+    for reason, count in Counter(invalid.values()).most_common():
+        print(f"  invalid {count:4d}  {reason}")
+    for message, count in Counter(cause(error) for error in left.values()).most_common():
+        print(f"  refused {count:4d}  {message}")
+    for path, error in sorted(left.items()):
+        print(f"    {error}")
+    own = [(repo, path) for repo, path in files if "/analyzer/" in str(path)
+           and re.fullmatch(r"test(_[A-Z0-9_]+)?\.goal|test_[A-Z0-9_]+\.mas2g|template\.mas2g",
+                            path.name)]  # the files GOAL's validator tests give verdicts on
+    if own:  # GOAL's verdict: an error when a judgment names the file whatever its error
+        matched = sum(1 for repo, path in own
+                      if (invalid_reason(judged, repo, path, "any error") is not None)
+                      == (path in refused))
+        print(f"GOAL's validator resources: {matched} of {len(own)} verdicts as GOAL's "
+              f"({matched / len(own):.1%})")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("corpus", type=Path)
     parser.add_argument("--refusals", type=Path)
+    parser.add_argument("--judged", type=Path)
     args = parser.parse_args(argv)
     files = corpus_files(args.corpus)
     refused: list[tuple[str, str]] = []
@@ -75,6 +126,8 @@ def main(argv: list[str] | None = None) -> int:
           f"({accepted / max(len(files), 1):.1%}), {len(refused)} refused")
     for message, count in Counter(cause(error) for _, error in refused).most_common():
         print(f"{count:5d}  {message}")
+    if args.judged is not None:
+        report_judged(read_judged(args.judged), files, {Path(p): e for p, e in refused})
     if args.refusals is not None:
         args.refusals.write_text("".join(f"{path}\t{error}\n" for path, error in refused),
                                  encoding="utf-8")

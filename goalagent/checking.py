@@ -85,12 +85,10 @@ def check_environment(mas: ast.MasProgram) -> list[str]:
         environment = load_environment(mas.environment)
     except EnvironmentInterfaceException as err:
         if mas.environment.lower().endswith(".jar"):
-            if not (Path(mas.file).parent / mas.environment).is_file():
-                raise GoalSyntaxError.at(pos, f"environment '{mas.environment}': no such "
-                                         "file next to the system, and not one goalagent "
-                                         "ships") from None
+            where = ("" if (Path(mas.file).parent / mas.environment).is_file() else
+                     " (and no such file is next to the system)")
             return [f"{pos}: warning: environment '{mas.environment}' is a GOAL environment "
-                    "goalagent does not ship: the system checks, but cannot run here"]
+                    f"goalagent does not ship{where}: the system checks, but cannot run here"]
         hint = did_you_mean(mas.environment, known_environments())
         raise GoalSyntaxError.at(pos, f"{err}{hint}") from None
     for key, value in mas.env_init:

@@ -245,6 +245,8 @@ DIFFERENT = {
     "PROLOG_MENTAL_LITERAL_ANONYMOUS_VARIABLE": "an anonymous variable in a goal literal is "
     "read as Prolog reads it (GOAL's later grammar dropped this check too: its test is off)",
     "SELECTOR_VAR_NOT_BOUND": "a selector variable is bound by the selector's own query",
+    "ENVIRONMENT_COULDNOT_FIND": "an environment jar that is neither shipped nor there is a "
+    "warning for check (the program text is valid; run refuses it), as issue 26 asks",
 }
 
 

@@ -100,16 +100,21 @@ def _macro_parameters(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
 
 
 def _duplicate_actions(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:
-    """One actionspec per name/arity, and none named as a module."""
+    """One actionspec per name/arity in a module (GOAL 4/5 modules may each specify their
+    own), and none named as a module."""
     modules = {(m.name, m.arity) for m in program.modules if m.kind == "user"}
-    seen: set[tuple[str, int]] = set()
-    for spec in program.actionspecs:
-        key = (spec.name, spec.arity)
-        if key in seen or key in modules:
-            what = "a module" if key in modules else "another actionspec"
-            yield GoalSyntaxError.at(spec.pos, f"action {spec.name}/{spec.arity} is already "
-                                     f"defined by {what}")
-        seen.add(key)
+    written = {id(spec) for m in program.modules for spec in m.actionspecs}
+    scopes = [m.actionspecs for m in program.modules]
+    scopes.append(tuple(spec for spec in program.actionspecs if id(spec) not in written))
+    for specs in scopes:
+        seen: set[tuple[str, int]] = set()
+        for spec in specs:
+            key = (spec.name, spec.arity)
+            if key in seen or key in modules:
+                what = "a module" if key in modules else "another actionspec"
+                yield GoalSyntaxError.at(spec.pos, f"action {spec.name}/{spec.arity} is "
+                                         f"already defined by {what}")
+            seen.add(key)
 
 
 def _actionspec_parameters(program: ast.AgentProgram) -> Iterator[GoalSyntaxError]:

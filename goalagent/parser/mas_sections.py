@@ -229,6 +229,8 @@ class MasParts(BuilderBase):
         for child in children[1:]:
             if isinstance(child, Token) and child.type in ("NAME", "VAR"):
                 file = child
+            elif isinstance(child, Token) and child.type == "NUMBER":  # GOAL 4: launch a[3]:f.
+                options.append((Token("NAME", "number"), child))
             elif isinstance(child, tuple):
                 options.append(child)
         return (name, file, options, self._pos(meta))
