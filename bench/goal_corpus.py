@@ -95,7 +95,7 @@ def report_judged(judged, files, refused: dict[Path, str]) -> None:
         print(f"  invalid {count:4d}  {reason}")
     for message, count in Counter(cause(error) for error in left.values()).most_common():
         print(f"  refused {count:4d}  {message}")
-    for path, error in sorted(left.items()):
+    for error in sorted(left.values()):
         print(f"    {error}")
     own = [(repo, path) for repo, path in files if "/analyzer/" in str(path)
            and re.fullmatch(r"test(_[A-Z0-9_]+)?\.goal|test_[A-Z0-9_]+\.mas2g|template\.mas2g",
