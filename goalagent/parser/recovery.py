@@ -17,6 +17,9 @@ from goalagent.parser.source import Source
 
 MAX_SEARCHED = 200
 """Errors looked for in one file at most (each costs a parse)."""
+_BOUNDS = ("more than", "nested more", "larger than", "unterminated")
+"""Words of the errors about a bound passed (an input built to be too big or a text left
+open): the search ends there, as what follows would be the first error's echoes."""
 
 
 def later_errors(text: str, file: str, first: GoalSyntaxError,
@@ -26,6 +29,8 @@ def later_errors(text: str, file: str, first: GoalSyntaxError,
     ones) end the search. When the text left parses, ``parse`` may return the errors it
     finds in the result (a list), which are added."""
     errors: list[GoalSyntaxError] = []
+    if any(words in first.message for words in _BOUNDS):
+        return errors
     error = first
     seen = {(first.line, first.col)}
     while len(errors) < MAX_SEARCHED and error.file == file:
