@@ -153,6 +153,7 @@ class _Monitor:
         self.pending: dict[str, tuple[int, Bindings]] = {}  # leadsto instances waiting
         self.broken: tuple[int, Bindings] | None = None
         self.error = ""  # a Prolog error evaluating the condition: it fails, judged no more
+        self.held: list[int] = []  # watch: the cycles in which it held
 
     def observe(self, cycle: int) -> None:
         if self.error:
@@ -171,7 +172,7 @@ class _Monitor:
         elif kind == "atstart" and self.seen == 1:
             self.at = cycle if judge.holds(condition) else None
         elif kind == "watch" and judge.holds(condition):
-            self.pending.setdefault(str(cycle), (cycle, {}))
+            self.held.append(cycle)
         elif kind == "always" and self.at is None and not judge.holds(condition):
             self.at = cycle
         elif kind == "never" and self.at is None and judge.holds(condition):
@@ -199,7 +200,7 @@ class _Monitor:
             return Verdict(text, pos, self.at is not None, "" if self.at is not None else
                            "did not hold at the start")
         if kind == "watch":  # only watched: reported, never failed
-            held = sorted(cycle for cycle, _ in self.pending.values())
+            held = self.held
             return Verdict(text, pos, True, f"held in {len(held)} of {states}"
                            + (f" (cycles {', '.join(map(str, held[:10]))})" if held else ""))
         if kind in ("always", "never"):

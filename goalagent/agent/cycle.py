@@ -182,7 +182,7 @@ class Agent:
             raise AgentError(f"agent {self.name} has terminated")
         self.cycle += 1
         self.report = CycleReport(self.cycle)
-        if self.io is not None or self.postman is not None:
+        if self.io is not None or self.postman is not None or self.timers:
             self._perceive()
         rule = ast.Rule("if", (ast.MentalLiteral("true", None, pos),), pos, actions=actions)
         self._rules.run_once(ast.Module("do", "user", pos, rules=(rule,), order="linear"))
