@@ -101,13 +101,19 @@ class CanOpeningEnv(gym.Env):
         valid_action(self.action_space, action, self._meaning)
         move = np.asarray(action, dtype=np.float64)
         before = self._state
-        row = np.concatenate([[before], move])[None, :]
-        predicted = float(self.model.predict(row)[0]) if self.model is not None else None
+        if self.model is not None:
+            # F's own steps, as Algorithm 3 takes them (behaviours.learners.exploration): the
+            # row is built from a checked action and a perceived state, and scikit-learn's
+            # validation of every row would cost a quarter of the step
+            inputs = self.model._inputs(np.concatenate([[before], move])[None, :])
+            predicted: float | None = float(self.model.network_.predict(inputs)[0, 0])  # 4.2
+        else:
+            predicted = None
         self._state = float(self.contact.step(move))
         effect = self._state - before  # 4.20
         if self.model is not None and predicted is not None:
             reward = abs(effect - predicted)  # 4.3, 4.6
-            self.model.partial_fit(row, [effect])  # 4.4
+            self.model._learn(inputs, np.array([[effect]]))  # 4.4
         else:
             reward = effect
         self._steps += 1
