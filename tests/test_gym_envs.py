@@ -4,6 +4,7 @@ seeding, the world's change after 10 trials, rendering and recording, and bad in
 
 from __future__ import annotations
 
+import ast
 import subprocess
 import sys
 import warnings
@@ -35,7 +36,8 @@ def test_installing_registers_every_id_with_nothing_imported_but_gymnasium(tmp_p
                           text=True, timeout=120, env={"PATH": "/usr/bin:/bin"})
     assert done.returncode == 0, done.stderr
     ids, loaded = done.stdout.splitlines()[0].rsplit(" ", 1)
-    assert eval(ids) == sorted(ENV_IDS) and loaded == "False"  # registering loads no MuJoCo
+    assert ast.literal_eval(ids) == sorted(ENV_IDS)
+    assert loaded == "False"  # registering loads no MuJoCo
     assert done.stdout.splitlines()[1] == "[1, 0, 0, 1, 0, 0, 0, 1]"
 
 
