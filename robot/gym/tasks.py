@@ -50,6 +50,8 @@ OBSERVATIONS = ("multibinary", "discrete")
 RENDER_MODES = ("rgb_array",)
 MAX_N_STEP = 100
 """Longest trial (actions) an environment accepts, as the EIS task environments do."""
+WHOLE = (int, np.int64)
+"""Action types checked by a quick range test (anything else goes through the space)."""
 NEVER = sys.maxsize
 """A trial number no experiment reaches: ``exchange_after=None`` never exchanges."""
 
@@ -83,6 +85,7 @@ class XcsTaskEnv(gym.Env):
         self._meaning = ", ".join(
             f"{i} {code} {name}" for i, (code, name)
             in enumerate(zip(self.action_codes, self.action_names, strict=True)))
+        self._arrays: dict[str, np.ndarray] = {}
         self._fresh, self._started, self._over = True, False, False
         self._trial = self._next_trial = self._steps = 0
 
@@ -103,9 +106,12 @@ class XcsTaskEnv(gym.Env):
         return format(int(observation), f"0{self.n_bits}b")  # type: ignore[call-overload]
 
     def _observe(self, view: View) -> np.ndarray | np.int64:
-        if self.observation == "multibinary":
-            return (np.frombuffer(view.bits.encode("ascii"), dtype=np.uint8) - 48).astype(np.int8)
-        return np.int64(int(view.bits, 2))
+        if self.observation == "discrete":
+            return np.int64(int(view.bits, 2))
+        seen = self._arrays.get(view.bits)
+        if seen is None:
+            seen = self._arrays[view.bits] = np.array([int(b) for b in view.bits], np.int8)
+        return seen.copy()  # a new array each step, as Gymnasium asks
 
     def _info(self, view: View, outcome: StepResult | None = None) -> dict[str, Any]:
         return {"bits": view.bits, "object": view.obj, "trial": self._trial + 1,
@@ -134,7 +140,8 @@ class XcsTaskEnv(gym.Env):
         """One of the task's actions; terminated at the goal (or a fall), truncated after
         ``n_step`` actions."""
         ready_to_step(self._started, self._over)
-        valid_action(self.action_space, action, self._meaning)
+        if not (type(action) in WHOLE and 0 <= action < len(self.action_codes)):
+            valid_action(self.action_space, action, self._meaning)  # the slower general check
         outcome, view = self.task.perform(int(action))
         self._steps += 1
         terminated = outcome.done
