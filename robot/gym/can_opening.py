@@ -34,7 +34,7 @@ from behaviours.contact import CONTACT_CAMERA, CONTACT_STEP, PartContact
 from behaviours.learners.forward_model import ForwardModel
 from behaviours.perception import make_perception
 from robot.gym.checks import choice, ready_to_step, reset_options, valid_action, whole
-from robot.gym.rendering import OVERVIEW, Frames, scene_cameras
+from robot.gym.rendering import OVERVIEW, Frames, WorldRendering, scene_cameras
 from robot.gym.rendering import View as CameraView
 from robot.gym.tasks import PERCEPTIONS, RENDER_MODES
 from sim.canfile import find_can
@@ -47,7 +47,7 @@ BUDGET = {1: 100, 3: 300}
 SEED_LIMIT = 2 ** 31 - 1
 
 
-class CanOpeningEnv(gym.Env):
+class CanOpeningEnv(WorldRendering, gym.Env):
     """Hold the lid or handle of a can and move it (see the module doc)."""
 
     metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 4}
@@ -127,15 +127,3 @@ class CanOpeningEnv(gym.Env):
     def _info(self, effect: float | None, predicted: float | None) -> dict[str, Any]:
         return {"opening": self.world.opening(), "effect": effect, "prediction": predicted,
                 "steps": self._steps, "part": self.part}
-
-    def render(self) -> np.ndarray | None:
-        """The scene as an RGB frame (``render_mode="rgb_array"``), else None."""
-        if self.render_mode is None:
-            gym.logger.warn("render() needs render_mode='rgb_array' at gymnasium.make")
-            return None
-        return self.frames.render(self.world.model, self.world.data)
-
-    def close(self) -> None:
-        """Free the renderers (calling it again is harmless)."""
-        self.frames.close()
-        self.world.close()

@@ -1,4 +1,5 @@
-"""Frames for ``render_mode="rgb_array"``: the whole scene from above, or a robot camera.
+"""Frames for ``render_mode="rgb_array"``: the whole scene from above, or a robot camera;
+``WorldRendering`` gives an environment its ``render`` and ``close``.
 
 ``Frames`` renders the world a goalagent environment owns. ``"overview"`` is a free camera
 aimed at the task's table (what a person watching the experiment sees, and what
@@ -9,7 +10,9 @@ cameras (``head``: what the robot's perception sees; the cans also have ``close`
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
+import gymnasium as gym
 import mujoco
 import numpy as np
 
@@ -64,3 +67,23 @@ class Frames:
         if self._renderer is not None:
             self._renderer.close()
         self._renderer = self._model = None
+
+
+class WorldRendering:
+    """``render`` and ``close`` of an environment that owns a ``world`` and its ``frames``."""
+
+    render_mode: str | None
+    frames: Frames
+    world: Any
+
+    def render(self) -> np.ndarray | None:
+        """The scene as an RGB frame (``render_mode="rgb_array"``), else None."""
+        if self.render_mode is None:
+            gym.logger.warn("render() needs render_mode='rgb_array' at gymnasium.make")
+            return None
+        return self.frames.render(self.world.model, self.world.data)
+
+    def close(self) -> None:
+        """Free the renderers (calling it again is harmless)."""
+        self.frames.close()
+        self.world.close()

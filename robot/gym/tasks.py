@@ -39,7 +39,7 @@ from behaviours.object_state import make_object_perception
 from behaviours.xcs_tasks import NavigationTask, SearchTask, StackingTask, StepResult, Task, View
 from behaviours.xcs_trials import N_STEP, SEARCH_STEPS
 from robot.gym.checks import choice, ready_to_step, reset_options, valid_action, whole
-from robot.gym.rendering import OVERVIEW, Frames, scene_cameras
+from robot.gym.rendering import OVERVIEW, Frames, WorldRendering, scene_cameras
 from robot.gym.rendering import View as CameraView
 from sim.navigation import NavigationWorld
 from sim.search import SearchWorld
@@ -56,7 +56,7 @@ NEVER = sys.maxsize
 """A trial number no experiment reaches: ``exchange_after=None`` never exchanges."""
 
 
-class XcsTaskEnv(gym.Env):
+class XcsTaskEnv(WorldRendering, gym.Env):
     """One of the chapter-3 / App. A tasks, one trial per episode (see the module doc)."""
 
     metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 4}
@@ -149,18 +149,6 @@ class XcsTaskEnv(gym.Env):
         self._over = terminated or truncated
         return (self._observe(view), float(outcome.reward), terminated, truncated,
                 self._info(view, outcome))
-
-    def render(self) -> np.ndarray | None:
-        """The scene as an RGB frame (``render_mode="rgb_array"``), else None."""
-        if self.render_mode is None:
-            gym.logger.warn("render() needs render_mode='rgb_array' at gymnasium.make")
-            return None
-        return self.frames.render(self.world.model, self.world.data)
-
-    def close(self) -> None:
-        """Free the renderers (calling it again is harmless)."""
-        self.frames.close()
-        self.world.close()
 
 
 class NavigationEnv(XcsTaskEnv):
