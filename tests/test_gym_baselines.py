@@ -3,7 +3,6 @@ runs beside XCS and stable-baselines3's DQN (hand-computed updates)."""
 
 from __future__ import annotations
 
-import gymnasium
 import numpy as np
 import pytest
 
@@ -28,18 +27,6 @@ def test_q_learning_updates_by_sutton_and_bartos_eq_6_8():
     assert {ties.act(0, explore=False) for _ in range(100)} == {0, 1, 2, 3}
     with pytest.raises(ValueError, match="alpha must lie in"):
         QLearning(2, 2, alpha=1.5)
-
-
-def test_q_learning_learns_the_first_navigation_trials_through_gymnasium():
-    from robot.gym.experiments import q_learning_run
-
-    def make_env(**kwargs):
-        return gymnasium.make("goalagent/Navigation-v0", **kwargs)
-
-    records = q_learning_run(make_env, 0, 8, alpha=0.2, gamma=0.7, initial=10.0)
-    assert [r.explore for r in records] == [True, False] * 4
-    assert all(r.steps <= 10 and len(r.actions) == r.steps for r in records)
-    assert all(r.success == (r.payoff > 0) for r in records)  # only the goal pays (3.14)
 
 
 def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path):
