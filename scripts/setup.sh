@@ -26,5 +26,5 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q -e ".[dev,bench,cluster]"
+.venv/bin/python -m pip install -q -e ".[dev,bench,cluster,gym]"
 echo "setup: done (.venv ready, swipl $(swipl --version | awk '{print $3}'))"
