@@ -50,6 +50,17 @@ from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
 
+# The limits and confinement options of run and test (goalagent.kb.limits).
+MaxInferences = Annotated[int, typer.Option(
+    help="Inferences one rule of an agent may make before it is not applicable.")]
+MaxQuerySeconds = Annotated[float, typer.Option(
+    help="Seconds Prolog may run for an agent without returning (then the rule is not "
+         "applicable).")]
+MaxBeliefs = Annotated[int, typer.Option(
+    help="Beliefs and goals an agent may hold before it is stopped.")]
+Sandbox = Annotated[bool, typer.Option(
+    help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")]
+
 
 def _env_params(pairs: list[str]) -> dict[str, Term]:
     params: dict[str, Term] = {}
@@ -138,17 +149,10 @@ def _language_run_options(
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",
-    max_inferences: Annotated[int, typer.Option(
-        help="Inferences one rule of an agent may make before it is not applicable.")
-    ] = Limits.max_inferences,
-    max_query_seconds: Annotated[float, typer.Option(
-        help="Seconds Prolog may run for an agent without returning (then the rule is not "
-             "applicable).")] = Limits.max_query_seconds,
-    max_beliefs: Annotated[int, typer.Option(
-        help="Beliefs and goals an agent may hold before it is stopped.")] = Limits.max_beliefs,
-    sandbox: Annotated[bool, typer.Option(
-        help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
-    ] = False,
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    sandbox: Sandbox = False,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -199,11 +203,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          f"{err.strerror or err}") from None
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
-    try:
-        limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"])
-    except ValueError as err:
-        raise user_error(f"--{str(err).replace('_', '-')}") from None
+    limits = _limits(values["max_inferences"], values["max_query_seconds"],
+                     values["max_beliefs"], values["sandbox"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
@@ -241,6 +242,15 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
             printer.close()
     if code:
         raise typer.Exit(code=code)
+
+
+def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
+            sandbox: bool) -> Limits:
+    """The agents' limits from the options (exit 2 naming the option that is out of range)."""
+    try:
+        return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox)
+    except ValueError as err:
+        raise user_error(f"--{str(err).replace('_', '-')}") from None
 
 
 def _build_system(path: Path, env: str | None, params: dict[str, Term],
@@ -316,13 +326,19 @@ def test(
     max_cycles: Annotated[int, typer.Option(help="Stop each test after this many rounds "
                                             "(besides the file's timeout).")] = 1000,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    sandbox: Sandbox = False,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
-    conditions; a report per test, exit code 1 when one failed."""
+    conditions, under the limits and confinement of run (a condition that passes one fails
+    its item); a report per test, exit code 1 when one failed."""
+    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox)
     failed = False
     for path in paths:
         try:
-            report = run_test_file(path, max_cycles=max_cycles, seed=seed,
+            report = run_test_file(path, max_cycles=max_cycles, seed=seed, limits=limits,
                                    warn=lambda message: err_console.print(message, markup=False))
         except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
             raise user_error(str(err)) from None
