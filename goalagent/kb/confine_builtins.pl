@@ -173,6 +173,7 @@ process_wide(tnodebug/1).
 process_wide(tspy/1).
 process_wide(tspy/2).
 process_wide(tprofile/1).
+process_wide(prolog_server/2).         % library(prolog_server): a top level on a socket
 process_wide(engine_create/3).         % an engine runs its goal outside the agent's
 process_wide(engine_create/4).         % limits (their own stacks; not confined after a
 process_wide(engine_post/2).           % yield)
@@ -214,6 +215,8 @@ private(current_flag/1).
 private(prolog_current_frame/1).
 private(prolog_frame_attribute/3).
 private(prolog_choice_attribute/3).
+private(prolog_current_choice/1).       % a choice point of the runtime's, to cut to
+private(prolog_cut_to/1).
 private((@)/2).
 private(set_module/1).
 private(module/2).
