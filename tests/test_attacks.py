@@ -359,3 +359,16 @@ def test_global_variables_flags_and_records_are_each_agent_s_own():
                                                         Atom("ga_b_"))))),
                        None, module="system")
     assert keys is not None and [str(k) for k in keys[2] if ":k" in str(k)] == []
+
+
+def test_an_answer_with_many_variables_converts_in_linear_time():
+    # an answer of 10,000 fresh variables took 178 s to convert for Python (each compared
+    # with every one seen before): an inspector query or a test condition held the whole
+    # run; a child process so that a regression cannot hang the suite
+    code = ("import sys; sys.path.insert(0, 'tests')\n"
+            "from attack_agent import load_agent\n"
+            "agent = load_agent()\n"
+            "print(len(agent.query('bel', 'length(L, 40000)')[0]['L']))\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            timeout=120, cwd=Path(__file__).resolve().parents[1])
+    assert result.stdout.strip() == "40000", result.stderr

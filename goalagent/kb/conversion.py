@@ -14,6 +14,7 @@ from goalagent.kb.clib import (
     ATOM_BUF,
     ATOM_REF,
     CVT_INTEGER,
+    CVT_VARIABLE,
     CVT_WRITEQ,
     FLOAT_BUF,
     FLOAT_REF,
@@ -35,7 +36,6 @@ from goalagent.kb.clib import (
     SIZE_BUF,
     SIZE_REF,
     TEXT_FLAGS,
-    PL_compare,
     PL_cons_functor_v,
     PL_cons_list,
     PL_copy_term_ref,
@@ -200,8 +200,10 @@ class TermConversion:
         else:
             raise KBError(f"not a Prolog term: {value!r}")
 
-    def _get(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
-        """The Python term in term ref ``t``; ``seen`` keeps unbound variables' identities;
+    def _get(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
+        """The Python term in term ref ``t``; ``seen`` keeps unbound variables' identities
+        (by the name SWI-Prolog writes for each, from its address: one look-up a variable;
+        comparing each with every one seen before took 178 s for a list of 10,000);
         with ``marks``, ``'$ga_var'(Name)`` becomes ``Var(Name)`` (see parse/2)."""
         kind = PL_term_type(t)
         if kind == PL_ATOM:
@@ -253,12 +255,11 @@ class TermConversion:
             PL_get_float(t, FLOAT_REF)
             return FLOAT_BUF.value
         if kind == PL_VARIABLE:
-            for ref, var in seen:
-                if PL_compare(ref, t) == 0:
-                    return var
-            self._counter += 1
-            var = Var("_" if marks else f"_G{self._counter}")
-            seen.append((PL_copy_term_ref(t), var))
+            name = text_of(t, CVT_VARIABLE | REP_UTF8)
+            var = seen.get(name)
+            if var is None:
+                self._counter += 1
+                var = seen[name] = Var("_" if marks else f"_G{self._counter}")
             return var
         if kind == PL_RATIONAL:
             numerator, denominator = text_of(t, CVT_WRITEQ | REP_UTF8).split("r")

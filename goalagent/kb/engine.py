@@ -273,7 +273,7 @@ class Engine(TermConversion):
                         if exception:
                             record = PL_record(exception)
                         break
-                    seen: list[tuple[int, Var]] = []
+                    seen: dict[str, Var] = {}
                     if keep is None:
                         answers.append([get(base + i, seen, marks) for i in outputs])
                     else:
@@ -377,7 +377,7 @@ class Engine(TermConversion):
         try:
             t = PL_new_term_ref()
             PL_recorded(record, t)
-            return self._get(t, [], False)
+            return self._get(t, {}, False)
         finally:
             PL_discard_foreign_frame(fid)
 
@@ -388,7 +388,7 @@ class Engine(TermConversion):
             t = PL_new_term_ref()
             PL_recorded(record, t)
             PL_erase(record)
-            term = self._get(t, [], False)
+            term = self._get(t, {}, False)
             pred = self.predicate("error_message", 2, "ga_kb")
             base = PL_new_term_refs(2)
             PL_put_term(base, t)
@@ -435,7 +435,7 @@ def define_foreign(engine: Engine, module: str, name: str,
         try:
             if not PL_is_acyclic(request):  # a cyclic list would be read for ever
                 raise KBError(_TOO_DEEP_FOR_PYTHON)
-            answer = respond(engine._get(request, [], False))
+            answer = respond(engine._get(request, {}, False))
             if answer is None:
                 return 1
             t = PL_new_term_ref()
