@@ -23,7 +23,7 @@ from rich.console import Console
 from typer.core import TyperCommand
 
 from goalagent.agent import AgentError
-from goalagent.beliefs import BeliefSaver, SaveInterval, check_save_target, load_beliefs
+from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
 from goalagent.checking import check_file, files_to_check
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
@@ -46,6 +46,7 @@ from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
 from goalagent.testing import run_test_file
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
+from ondisk import check_target
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
@@ -96,6 +97,16 @@ def _trace_printer(kinds: str | None, file: Path | None) -> TracePrinter | None:
         raise user_error(str(err)) from None
     except OSError as err:
         raise user_error(f"--trace-file {file}: {err.strerror or err}") from None
+
+
+def _close_trace(printer: TracePrinter) -> bool:
+    """Put the trace file in place; False (said on stderr) when it could not be written."""
+    try:
+        printer.close()
+        return True
+    except OSError as err:
+        err_console.print(f"error: --trace-file: {err}", markup=False)
+        return False
 
 
 class _RunCommand(TyperCommand):
@@ -195,7 +206,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     try:
         every = SaveInterval.parse(values["save_every"])
         if values["save_beliefs"] is not None:
-            check_save_target(values["save_beliefs"])
+            check_target(values["save_beliefs"])
     except ValueError as err:
         raise user_error(str(err)) from None
     except OSError as err:
@@ -238,10 +249,9 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                 (lambda agent: status.update(f"{agent.name}: cycle {agent.cycle}, "  # type: ignore
                                              f"{agent.total_actions} actions")) if live else None))
     finally:
-        if printer is not None:
-            printer.close()
-    if code:
-        raise typer.Exit(code=code)
+        traced = printer is None or _close_trace(printer)
+    if code or not traced:
+        raise typer.Exit(code=code or 1)
 
 
 def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,

@@ -32,7 +32,6 @@ if TYPE_CHECKING:
     from goalagent.agent import Agent
     from goalagent.mas import MultiAgentSystem
 
-QUERY_OPS = ("bel", "goal", "a-goal", "goal-a", "percept")
 _QUERY = re.compile(r"\s*(bel|goal|a-goal|goal-a|percept)\s*\((.*)\)\s*\Z", re.DOTALL)
 _RULE = re.compile(r"\s*(.+):(\d+)\s*\Z")
 MAX_BREAKPOINTS = 100  # each condition breakpoint is a query per agent and cycle

@@ -13,20 +13,21 @@ from __future__ import annotations
 import json
 import os
 import stat
-import tempfile
 from pathlib import Path
+
+from behaviours.learners.schemas import SchemaError, check
+from ondisk import write_atomically
 
 __all__ = [
     "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
-    "json_params", "read_json", "read_learner", "write_learner", "write_text_atomically",
+    "check_store", "json_params", "read_json", "read_learner", "read_store", "write_learner",
+    "write_text_atomically",
 ]
 
 FORMAT = "goalagent-learner"
 VERSION = 1
 MAX_STORE_BYTES = 64 * 2**20
 """Largest JSON store read (a model or learner file is a few kB to a few MB)."""
-_UMASK = os.umask(0)
-os.umask(_UMASK)
 
 
 class StoreFileError(ValueError):
@@ -39,7 +40,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
     The file is opened without blocking and checked on the open descriptor, so a device,
     FIFO or directory is refused before anything is read, and at most MAX_STORE_BYTES + 1
     bytes are read. Malformed JSON (also nesting too deep, or a number too long to convert)
-    is a StoreFileError at ``file:line:col``."""
+    is a StoreFileError at ``file:line:col``; ``NaN`` and ``Infinity`` are refused too."""
     where = str(path)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -57,7 +58,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
         if len(data) > MAX_STORE_BYTES:
             raise StoreFileError(f"cannot read {what} {where!r}: it grew past the "
                                  f"{MAX_STORE_BYTES} bytes accepted")
-        return json.loads(data.decode("utf-8"))
+        return json.loads(data.decode("utf-8"), parse_constant=_not_a_json_number)
     except json.JSONDecodeError as exc:
         raise StoreFileError(f"cannot read {what} {where}:{exc.lineno}:{exc.colno}: not JSON: "
                              f"{exc.msg}") from None
@@ -73,6 +74,11 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
         raise StoreFileError(f"cannot read {what} {where!r}: {reason}") from None
 
 
+def _not_a_json_number(name: str) -> object:
+    """``NaN``, ``Infinity`` and ``-Infinity``, which Python's json reads, are not JSON."""
+    raise ValueError(f"{name} is not a JSON number")
+
+
 class LearnerFileError(ValueError):
     """A file that cannot be read as a saved learner of the expected kind."""
 
@@ -85,56 +91,49 @@ def write_learner(path: str | os.PathLike[str], kind: str, params: dict, state: 
 
 
 def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
-    """A temporary file in the same folder, fsync, ``os.replace``, then fsync of the folder:
-    all or nothing, also after kill -9 or a power cut (the file keeps its mode, or gets
-    the default one, never the temporary file's 0600). Symbolic links are followed; a
-    target that is not a regular file (a device, a folder) is refused, never replaced."""
-    target = Path(os.path.realpath(path))
-    if target.exists() and not target.is_file():
-        raise OSError(f"{path} exists and is not a regular file: not replaced")
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    """Replace ``path`` by ``text`` all or nothing, also after kill -9 or a power cut
+    (``ondisk.write_atomically``: the file keeps its mode; a link, device, FIFO or folder
+    is refused, never replaced)."""
+    return write_atomically(path, text)
+
+
+def read_store(path: str | os.PathLike[str], what: str, format_: str, version: int,
+               error: type[ValueError]) -> dict:
+    """The JSON object of a versioned store (``read_json``) whose ``format`` and ``version``
+    identify it as a ``what`` this goalagent reads, or ``error`` naming the file."""
+    where = str(path)
     try:
-        try:
-            mode = stat.S_IMODE(os.stat(target).st_mode)
-        except OSError:
-            mode = 0o666 & ~_UMASK
-        os.fchmod(fd, mode)
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp_name, target)
-    except BaseException:
-        Path(tmp_name).unlink(missing_ok=True)
-        raise
-    folder = os.open(target.parent, os.O_RDONLY)
+        data = read_json(path, what)
+    except StoreFileError as exc:
+        raise error(str(exc)) from None
+    if not isinstance(data, dict) or data.get("format") != format_:
+        raise error(f"{where!r} is not a goalagent {what}")
+    if data.get("version") != version:
+        raise error(f"{what} {where!r} has version {data.get('version')!r}; this goalagent "
+                    f"reads version {version}")
+    return data
+
+
+def check_store(data: dict, schema: str, path: str | os.PathLike[str], what: str,
+                error: type[ValueError]) -> None:
+    """``data`` checked against ``schemas/SCHEMA.schema.json``, or ``error`` naming the file
+    and the path of the first bad field."""
     try:
-        os.fsync(folder)
-    finally:
-        os.close(folder)
-    return target
+        check(data, schema)
+    except SchemaError as exc:
+        raise error(f"{what} {str(path)!r}: {exc}") from None
 
 
 def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
-    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file."""
-    source = Path(path)
-    try:
-        data = read_json(source, "learner file")
-    except StoreFileError as exc:
-        raise LearnerFileError(str(exc)) from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise LearnerFileError(f"{str(source)!r} is not a goalagent learner file")
-    if data.get("version") != VERSION:
-        raise LearnerFileError(f"learner file {str(source)!r} has version "
-                               f"{data.get('version')!r}; this goalagent reads version {VERSION}")
+    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file:
+    the format, version and kind identify the file, then the kind's JSON Schema
+    (``schemas/KIND.schema.json``) checks every field, naming the first bad one."""
+    data = read_store(path, "learner file", FORMAT, VERSION, LearnerFileError)
     if data.get("kind") != kind:
-        raise LearnerFileError(f"learner file {str(source)!r} holds a {data.get('kind')!r}, "
+        raise LearnerFileError(f"learner file {str(path)!r} holds a {data.get('kind')!r}, "
                                f"not a {kind!r}")
-    params, state = data.get("params"), data.get("state")
-    if not isinstance(params, dict) or not isinstance(state, dict):
-        raise LearnerFileError(f"learner file {str(source)!r} lacks its params or state")
-    return params, state
+    check_store(data, kind, path, "learner file", LearnerFileError)
+    return data["params"], data["state"]
 
 
 def json_params(estimator: object) -> dict:

@@ -37,7 +37,7 @@ from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import KBError, get_engine
-from goalagent.kb.interpreter import Problem
+from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Term, format_term

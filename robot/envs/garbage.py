@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from behaviours.learners.effect_models import ModelStore
 from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
 from behaviours.learning import (
     ACTIVE_N_MAX,
@@ -24,7 +25,6 @@ from behaviours.learning import (
     AffordanceEvidence,
     LearningModeUnavailable,
 )
-from behaviours.models import ModelStore
 from behaviours.part_learning import learn_by_transfer
 from behaviours.perception import Observation, make_perception
 from behaviours.skills import (
