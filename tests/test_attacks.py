@@ -232,7 +232,8 @@ def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
 
 # Issue 24: grammar bodies ran unchecked -- phrase({shell(..)}, []) passed check --sandbox and
 # ran under run --sandbox; phrase({halt}, []) ended the run; phrase({ga_kb:assertz(..)}, [])
-# wrote into the runtime. Now a body is checked as the goal SWI-Prolog translates it to.
+# wrote into the runtime. Now a body is checked as the goal SWI-Prolog translates it to (those
+# built while the agent runs are in tests/test_confinement.py's DYNAMIC).
 GRAMMAR_WRITTEN = [
     f"if bel(phrase({{{HIDDEN}}}, [])) then print(x).",
     f"if bel(phrase(([a], {{{HIDDEN}}}), [a])) then print(x).",
@@ -241,16 +242,6 @@ GRAMMAR_WRITTEN = [
     "if bel(phrase({halt}, [])) then print(x).",
     "if bel(phrase({set_prolog_flag(unknown, fail)}, [])) then print(x).",
 ]
-GRAMMAR_BUILT = [
-    f"if bel(B = {{{HIDDEN}}}, phrase(B, [])) then print(x).",
-    "if bel(phrase(({X = ga_kb:owned}, {assertz(X)}), [])) then print(x).",
-    "if bel(G = assertz(ga_kb:owned), phrase({G}, [])) then print(x).",
-    "if bel(B = ({G = halt}, {G}), phrase(B, [])) then print(x).",
-    # a goal built inside what is checked when it runs: checked again when it is called
-    # (before, call_checked/3 let an argument still unbound when its conjunction began pass)
-    "if bel(G = (X = ga_kb:owned, assertz(X)), call(G)) then print(x).",
-    "if bel(findall(y, (X = ga_kb:owned, assertz(X)), _)) then print(x).",
-]
 
 
 @pytest.mark.parametrize("sandbox", [False, True])
@@ -258,21 +249,6 @@ GRAMMAR_BUILT = [
 def test_grammar_bodies_are_checked_when_loading(rules: str, sandbox: bool):
     with pytest.raises(AgentError, match=r"attack\.goal:3:\d+: .*refused: "):
         load_agent("", rules, sandbox=sandbox).close()
-    _untouched()
-
-
-@pytest.mark.parametrize("sandbox", [False, True])
-@pytest.mark.parametrize("rules", GRAMMAR_BUILT)
-def test_grammar_bodies_built_at_run_time_are_checked_when_they_run(rules: str, sandbox: bool):
-    warnings: list[str] = []
-    agent = load_agent("", rules + "\nif true then print(after).", sandbox=sandbox,
-                       warnings=warnings)
-    try:
-        report = agent.step()
-    finally:
-        agent.close()
-    assert [fired.pos.line for fired in report.fired] == [4]
-    assert len(warnings) == 1 and "refused: " in warnings[0], warnings
     _untouched()
 
 
