@@ -342,8 +342,8 @@ def test(
     sandbox: Sandbox = False,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
-    conditions, under the limits and confinement of run (a condition that passes one fails
-    its item); a report per test, exit code 1 when one failed."""
+    conditions, under the limits and confinement of run (a condition that runs past a limit
+    or is refused fails its item); a report per test, exit code 1 when one failed."""
     limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox)
     failed = False
     for path in paths:
