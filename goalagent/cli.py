@@ -24,10 +24,11 @@ from typer.core import TyperCommand
 
 from goalagent.agent import AgentError
 from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
-from goalagent.checking import check_file, files_to_check
+from goalagent.checking import check_file, did_you_mean, files_to_check, unknown_parameter
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.registry import known_environments, load_environment
 from goalagent.extensions import (
     Extension,
     RunContext,
@@ -36,12 +37,10 @@ from goalagent.extensions import (
     installed_extensions,
 )
 from goalagent.kb.engine import KBError
-from goalagent.kb.limits import Limits
+from goalagent.kb.limits import Limits, default_module_depth
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
-from goalagent.parser import (
-    GoalSyntaxError,
-)
+from goalagent.parser import GoalSyntaxError, parse_mas_file
 from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
 from goalagent.testing import run_test_file
@@ -61,6 +60,10 @@ MaxBeliefs = Annotated[int, typer.Option(
     help="Beliefs and goals an agent may hold before it is stopped.")]
 Sandbox = Annotated[bool, typer.Option(
     help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")]
+DEFAULT_MODULE_DEPTH = default_module_depth()  # (as the C stack allows: read once)
+MaxModuleDepth = Annotated[int, typer.Option(
+    help="How deep module calls may nest before the agent is stopped (default: as deep as "
+         "the C stack safely allows).")]
 
 
 def _env_params(pairs: list[str]) -> dict[str, Term]:
@@ -156,7 +159,8 @@ def _language_run_options(
     inspect: Annotated[bool, typer.Option(
         help="Serve the mind inspector, a web page showing each agent live with pause, "
              "step, breakpoints and queries; the run starts paused.")] = False,
-    port: Annotated[int, typer.Option(help="The inspector's port (0: any free one).")] = 8765,
+    port: Annotated[int, typer.Option(min=0, max=65535,
+                                      help="The inspector's port (0: any free one).")] = 8765,
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",
@@ -164,6 +168,7 @@ def _language_run_options(
     max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
     max_beliefs: MaxBeliefs = Limits.max_beliefs,
     sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -215,7 +220,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
     limits = _limits(values["max_inferences"], values["max_query_seconds"],
-                     values["max_beliefs"], values["sandbox"])
+                     values["max_beliefs"], values["sandbox"], values["max_module_depth"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
@@ -255,17 +260,44 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
 
 
 def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
-            sandbox: bool) -> Limits:
+            sandbox: bool, max_module_depth: int) -> Limits:
     """The agents' limits from the options (exit 2 naming the option that is out of range)."""
     try:
-        return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox)
+        return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox,
+                      max_module_depth=max_module_depth)
     except ValueError as err:
         raise user_error(f"--{str(err).replace('_', '-')}") from None
+
+
+def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> None:
+    """``--env`` names an environment and ``--env-param`` keys it takes, with the closest
+    name when not (said of the option, not of a place in the agent file)."""
+    name = env
+    if name is None and path.suffix == ".mas2g" and params:
+        try:
+            name = parse_mas_file(path).environment
+        except GoalSyntaxError:
+            return  # said where it is when the system is built
+    if name is None:
+        return
+    try:
+        environment = load_environment(name)
+    except EnvironmentInterfaceException as err:
+        if env is None:
+            return
+        raise user_error(f"--env {env}: {err}{did_you_mean(env, known_environments())}"
+                         ) from None
+    for key in params:
+        problem = unknown_parameter(environment, name, key)
+        if problem is not None:
+            raise user_error(f"--env-param {key}: {problem}")
 
 
 def _build_system(path: Path, env: str | None, params: dict[str, Term],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
+    if path.suffix != ".mas2g" or env is None:
+        _check_env_options(path, env, params)
     try:
         if path.suffix == ".mas2g":
             if env is not None:
@@ -340,11 +372,12 @@ def test(
     max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
     max_beliefs: MaxBeliefs = Limits.max_beliefs,
     sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
     conditions, under the limits and confinement of run (a condition that runs past a limit
     or is refused fails its item); a report per test, exit code 1 when one failed."""
-    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox)
+    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth)
     failed = False
     for path in paths:
         try:
