@@ -50,6 +50,21 @@ from ondisk import check_target
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
 
+# The limits and confinement options of run and test (goalagent.kb.limits).
+MaxInferences = Annotated[int, typer.Option(
+    help="Inferences one rule of an agent may make before it is not applicable.")]
+MaxQuerySeconds = Annotated[float, typer.Option(
+    help="Seconds Prolog may run for an agent without returning (then the rule is not "
+         "applicable).")]
+MaxBeliefs = Annotated[int, typer.Option(
+    help="Beliefs and goals an agent may hold before it is stopped.")]
+Sandbox = Annotated[bool, typer.Option(
+    help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")]
+DEFAULT_MODULE_DEPTH = default_module_depth()  # (as the C stack allows: read once)
+MaxModuleDepth = Annotated[int, typer.Option(
+    help="How deep module calls may nest before the agent is stopped (default: as deep as "
+         "the C stack safely allows).")]
+
 
 def _env_params(pairs: list[str]) -> dict[str, Term]:
     params: dict[str, Term] = {}
@@ -149,20 +164,11 @@ def _language_run_options(
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",
-    max_inferences: Annotated[int, typer.Option(
-        help="Inferences one rule of an agent may make before it is not applicable.")
-    ] = Limits.max_inferences,
-    max_query_seconds: Annotated[float, typer.Option(
-        help="Seconds Prolog may run for an agent without returning (then the rule is not "
-             "applicable).")] = Limits.max_query_seconds,
-    max_beliefs: Annotated[int, typer.Option(
-        help="Beliefs and goals an agent may hold before it is stopped.")] = Limits.max_beliefs,
-    sandbox: Annotated[bool, typer.Option(
-        help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
-    ] = False,
-    max_module_depth: Annotated[int, typer.Option(
-        help="How deep module calls may nest before the agent is stopped (default: as deep "
-             "as the C stack safely allows).")] = default_module_depth(),
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -213,12 +219,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          f"{err.strerror or err}") from None
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
-    try:
-        limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"],
-                        max_module_depth=values["max_module_depth"])
-    except ValueError as err:
-        raise user_error(f"--{str(err).replace('_', '-')}") from None
+    limits = _limits(values["max_inferences"], values["max_query_seconds"],
+                     values["max_beliefs"], values["sandbox"], values["max_module_depth"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
@@ -255,6 +257,16 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         traced = printer is None or _close_trace(printer)
     if code or not traced:
         raise typer.Exit(code=code or 1)
+
+
+def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
+            sandbox: bool, max_module_depth: int) -> Limits:
+    """The agents' limits from the options (exit 2 naming the option that is out of range)."""
+    try:
+        return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox,
+                      max_module_depth=max_module_depth)
+    except ValueError as err:
+        raise user_error(f"--{str(err).replace('_', '-')}") from None
 
 
 def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> None:
@@ -356,13 +368,20 @@ def test(
     max_cycles: Annotated[int, typer.Option(help="Stop each test after this many rounds "
                                             "(besides the file's timeout).")] = 1000,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
-    conditions; a report per test, exit code 1 when one failed."""
+    conditions, under the limits and confinement of run (a condition that runs past a limit
+    or is refused fails its item); a report per test, exit code 1 when one failed."""
+    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth)
     failed = False
     for path in paths:
         try:
-            report = run_test_file(path, max_cycles=max_cycles, seed=seed,
+            report = run_test_file(path, max_cycles=max_cycles, seed=seed, limits=limits,
                                    warn=lambda message: err_console.print(message, markup=False))
         except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
             raise user_error(str(err)) from None

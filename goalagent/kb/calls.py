@@ -184,7 +184,7 @@ class PrologCalls(TermConversion):
                         if exception:
                             record = PL_record(exception)
                         break
-                    seen: list[tuple[int, Var]] = []
+                    seen: dict[str, Var] = {}
                     if keep is None:
                         answers.append([get(base + i, seen, marks) for i in outputs])
                     else:
@@ -270,7 +270,7 @@ class PrologCalls(TermConversion):
         try:
             t = PL_new_term_ref()
             PL_recorded(record, t)
-            return self._get_term(t, [], False)
+            return self._get_term(t, {}, False)
         finally:
             PL_discard_foreign_frame(fid)
 
@@ -281,7 +281,7 @@ class PrologCalls(TermConversion):
             t = PL_new_term_ref()
             PL_recorded(record, t)
             PL_erase(record)
-            term = self._get_term(t, [], False)
+            term = self._get_term(t, {}, False)
             pred = self.predicate("error_message", 2, "ga_kb")
             base = PL_new_term_refs(2)
             PL_put_term(base, t)
@@ -319,7 +319,7 @@ def define_foreign(engine: PrologCalls, module: str, name: str,
         try:
             if not PL_is_acyclic(request):  # a cyclic list would be read for ever
                 raise KBError(_TOO_DEEP_FOR_PYTHON)
-            answer = respond(engine._get_term(request, [], False))
+            answer = respond(engine._get_term(request, {}, False))
             if answer is None:
                 return 1
             t = PL_new_term_ref()

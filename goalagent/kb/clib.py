@@ -133,7 +133,6 @@ PL_get_name_arity = _declare("PL_get_name_arity_sz", c_int, term_t, POINTER(atom
                              POINTER(c_size_t))
 PL_get_arg = _declare("_PL_get_arg_sz", c_int, c_size_t, term_t, term_t)
 PL_get_list = _declare("PL_get_list", c_int, term_t, term_t, term_t)
-PL_compare = _declare("PL_compare", c_int, term_t, term_t)
 PL_is_acyclic = _declare("PL_is_acyclic", c_int, term_t)
 PL_put_variable = _declare("PL_put_variable", c_int, term_t)
 PL_put_atom = _declare("PL_put_atom", c_int, term_t, atom_t)
@@ -181,7 +180,7 @@ PL_TERM, PL_NIL, PL_LIST_PAIR = 7, 8, 10
 Q_CATCH = 0x04 | 0x08  # PL_Q_NODEBUG | PL_Q_CATCH_EXCEPTION
 Q_PASS = 0x04 | 0x10  # PL_Q_NODEBUG | PL_Q_PASS_EXCEPTION: PL_exception(0) has it
 REP_UTF8 = 0x00100000
-CVT_ATOM, CVT_STRING, CVT_INTEGER, CVT_WRITEQ = 0x1, 0x2, 0x8, 0x200
+CVT_ATOM, CVT_STRING, CVT_INTEGER, CVT_VARIABLE, CVT_WRITEQ = 0x1, 0x2, 0x8, 0x40, 0x200
 TEXT_FLAGS = CVT_ATOM | CVT_STRING | REP_UTF8
 PUT_STRING = 6 | REP_UTF8  # PL_STRING type for PL_put_chars
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
