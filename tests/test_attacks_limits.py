@@ -55,3 +55,71 @@ def test_a_fact_too_deep_to_write_costs_only_its_agent_s_save(tmp_path: Path):
     assert "% agent counter\nn(5).\n" in text  # every other agent's facts
     assert "% agent atk\n% not saved: keep/1: " in text and "other(b)." in text
     assert "saved 2 " in result.stderr
+
+
+# ----------------------------------------------------------------------------- goal checks
+
+SPIN = "spin(N) :- N1 is N + 1, spin(N1)."
+LIMITS = ("--max-inferences", "200000", "--max-query-seconds", "1")
+
+
+def test_a_runaway_initial_goal_is_a_located_warning_not_a_failed_start(tmp_path: Path):
+    # checking whether the goal is believed ran away: the start failed (exit 2) unlocated
+    result = _run_beside_counter(tmp_path, f"""
+init module {{ knowledge {{ {SPIN} p :- spin(0). }}
+  goals {{ p. }} }}
+main module [exit=always] {{ program {{ if true then print(after). }} }}
+""", *LIMITS)
+    _counter_finished(result)
+    assert result.returncode == 0 and "after" in result.stdout
+    assert (f"warning: agent atk: module init, goal at {tmp_path / 'atk.goal'}:3:11: checking "
+            "whether p is believed ran more than 200,000 inferences (--max-inferences); the "
+            "goal is adopted") in result.stderr
+    assert "atk: terminated after 1 cycles, 1 actions, 1 goals left" in result.stderr
+
+
+def test_a_runaway_goal_adopted_in_a_nogoals_module_is_a_located_warning(tmp_path: Path):
+    # was 'Unhandled exception: inference_limit_exceeded': the module call had used up the
+    # calling rule's limit, which escaped the nested query
+    result = _run_beside_counter(tmp_path, f"""
+init module {{ knowledge {{ {SPIN} p :- spin(0). }} }}
+main module [exit=always] {{ program {{ if true then m. }} }}
+module m [exit=nogoals] {{ program {{ if true then adopt(p). }} }}
+""", *LIMITS)
+    _counter_finished(result)
+    assert result.returncode == 0, result.stderr
+    atk = tmp_path / "atk.goal"
+    assert (f"module m, rule at {atk}:4:37: ran more than 200,000 inferences") in result.stderr
+    assert (f"module main, rule at {atk}:3:39: ran more than 200,000 inferences") in result.stderr
+    assert "atk: terminated after 1 cycles, 0 actions, 0 goals left" in result.stderr
+
+
+def test_a_runaway_goal_achievement_check_keeps_the_goal_with_a_located_warning(tmp_path: Path):
+    # the check after insert(flag) ran away outside every rule's catch: the agent stopped
+    result = _run_beside_counter(tmp_path, f"""
+init module {{ knowledge {{ {SPIN} q :- flag, spin(0). }} goals {{ q. }} }}
+main module [exit=always] {{ program {{ if true then insert(flag) + print(after). }} }}
+""", *LIMITS)
+    _counter_finished(result)
+    assert result.returncode == 0 and "after" in result.stdout
+    assert (f"warning: agent atk: module main, rule at {tmp_path / 'atk.goal'}:3:39: checking "
+            "whether goal q is achieved ran more than 200,000 inferences (--max-inferences); "
+            "the goal is kept") in result.stderr
+    assert "atk: terminated after 1 cycles, 2 actions, 1 goals left" in result.stderr
+
+
+def test_a_runaway_goal_check_at_the_end_of_a_cycle_names_the_goal_s_place(tmp_path: Path):
+    # a message makes the cycle's end check every goal (no rule runs then)
+    (tmp_path / "sender.goal").write_text(
+        "main module [exit=always] { program { if true then atk.send(hi). } }\n")
+    (tmp_path / "atk.goal").write_text(f"""
+init module {{ knowledge {{ {SPIN} q :- received(_, hi), spin(0). }} goals {{ q. }} }}
+main module {{ program {{ if bel(fail) then print(never). }} }}
+""")
+    (tmp_path / "s.mas2g").write_text('agentfiles { "atk.goal". "sender.goal". }\n')
+    result = goalagent_measured("run", str(tmp_path / "s.mas2g"), *LIMITS, "--max-cycles", "3")
+    assert result.returncode == 0, result.stderr
+    assert (f"warning: agent atk: module init, goal at {tmp_path / 'atk.goal'}:2:102: checking "
+            "whether goal q is achieved ran more than 200,000 inferences") in result.stderr
+    assert "atk: stopped at the cycle limit after 3 cycles, 0 actions, 1 goals left" in (
+        result.stderr)

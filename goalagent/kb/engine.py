@@ -73,6 +73,7 @@ _SUPPORT = Path(__file__).with_name("mentalstate.pl")
 _GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts, limits
 _CONFINE = Path(__file__).with_name("confine.pl")  # what agents' Prolog may call
 _PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
+_INFERENCES_SPENT = "inference_limit_exceeded"  # call_with_inference_limit/3's exception
 
 # A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
 _FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, term_t, term_t)
@@ -442,9 +443,14 @@ def define_foreign(engine: Engine, module: str, name: str,
             engine._put(t, answer, {})
             return 1 if PL_unify(reply, t) else 0
         except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
+            t = PL_new_term_ref()
+            if isinstance(error, PrologRuntimeError) and error.term == _INFERENCES_SPENT:
+                # A nested query (a module call) used up the enclosing query's inference
+                # limit: it is that query's limit, met where it called Python.
+                PL_put_atom(t, engine._atom_handle(_INFERENCES_SPENT))
+                return PL_raise_exception(t)
             engine._python_errors.append(KBError(_TOO_DEEP_FOR_PYTHON) if _too_deep(error)
                                          else error)
-            t = PL_new_term_ref()
             PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
             return PL_raise_exception(t)
         finally:

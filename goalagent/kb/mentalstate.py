@@ -193,6 +193,9 @@ class MentalState:
         self._recheck = True
         self._run_pred: int | None = None
         self._has_percepts = self._has_mail = False  # the percept base, received/2 not empty
+        # Goals adopted or kept because checking them passed a limit or raised an error
+        # (facts, why), for the agent to warn about (take_unchecked()).
+        self._unchecked: list[tuple[list[Term], str]] = []
         clauses = [("knowledge", text) for text in knowledge]
         clauses += [("beliefs", text) for text in beliefs]
         # Directives (op/3, use_module/1, ...) change how this agent reads text.
@@ -456,10 +459,21 @@ class MentalState:
 
     def adopt(self, formula: ast.PrologText | str,
               bindings: Mapping[str, Term] | None = None) -> bool:
-        """Adds the conjunction as one goal; False when already believed or already a goal."""
+        """Adds the conjunction as one goal; False when already believed or already a goal.
+        Checking whether it is believed is bounded by --max-inferences; one that passes a
+        limit or raises an error adopts the goal (see :meth:`take_unchecked`)."""
         term = self._term(formula, bindings)
-        result = self._call("adopt", self._b, self._g, term, None)[3]
+        result = self._call("adopt_checked", self._b, self._g, term, None)[3]
+        if isinstance(result, Struct):  # unchecked(Message)
+            self._unchecked.append((list(_split_update(term, "insert")[1]), str(result.args[0])))
+            return True
         return result == "adopted"
+
+    def take_unchecked(self) -> list[tuple[list[Term], str]]:
+        """The goals adopted or kept since the last call because checking whether they are
+        believed passed a limit or raised an error: (their facts, what the check met)."""
+        unchecked, self._unchecked = self._unchecked, []
+        return unchecked
 
     def drop(self, formula: ast.PrologText | str,
              bindings: Mapping[str, Term] | None = None) -> list[list[Term]]:
@@ -482,7 +496,10 @@ class MentalState:
             return []
         removed, self._achieved = self._achieved, []
         if self._recheck:
-            removed += self._call("check_goals", self._b, self._g, None)[2]
+            result = self._call("check_goals_bounded", self._b, self._g, None, None)
+            removed += result[2]
+            self._unchecked += [(facts, str(why)) for facts, why in
+                                (pair.args for pair in result[3])]  # type: ignore[union-attr]
             self._recheck = False
         unique: list[list[Term]] = []
         for goal in removed:
