@@ -157,6 +157,9 @@ def _language_run_options(
              "applicable).")] = Limits.max_query_seconds,
     max_beliefs: Annotated[int, typer.Option(
         help="Beliefs and goals an agent may hold before it is stopped.")] = Limits.max_beliefs,
+    max_memory: Annotated[int, typer.Option(
+        help="Megabytes an agent's clauses (with their atoms) may hold, and one of its calls "
+             "take outside Prolog's stacks, before it is stopped.")] = Limits.max_memory,
     sandbox: Annotated[bool, typer.Option(
         help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
     ] = False,
@@ -212,7 +215,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise user_error("--max-cycles must be 0 or more")
     try:
         limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"])
+                        values["max_beliefs"], values["sandbox"],
+                        max_memory=values["max_memory"])
     except ValueError as err:
         raise user_error(f"--{str(err).replace('_', '-')}") from None
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],

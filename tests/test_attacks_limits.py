@@ -5,9 +5,14 @@ would otherwise take the test process down with it or hang the suite)."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
-from measured import Measured, goalagent_measured
+import pytest
+from measured import ROOT, Measured, goalagent_measured
+
+from goalagent.kb.limits import Limits
+from goalagent.mas import MultiAgentSystem
 
 COUNTER = """
 init module { beliefs { n(0). } goals { n(5). } }
@@ -123,3 +128,62 @@ main module {{ program {{ if bel(fail) then print(never). }} }}
             "whether goal q is achieved ran more than 200,000 inferences") in result.stderr
     assert "atk: stopped at the cycle limit after 3 cycles, 0 actions, 1 goals left" in (
         result.stderr)
+
+
+# ----------------------------------------------------------------------------- memory
+
+MEMORY = ("--max-memory", "64", "--max-cycles", "300")
+
+
+@pytest.mark.parametrize("rules, says", [
+    # an atom doubled in one condition: SWI collects atoms by count, not size, and the
+    # process ended in 'Could not allocate memory' (exit 134) on a smaller machine
+    ("if bel(dbl(x, 40, B), atom_length(B, L)) then print(L).",
+     "took {} MB outside Prolog's stacks in one call, more than --max-memory 64 MB"),
+    # an atom doubled each cycle, each kept in a fact
+    ("if bel(a(A), atom_concat(A, A, B)) then delete(a(A)) + insert(a(B)) + insert(kept(A)).",
+     "holds {} MB in its clauses and their atoms, more than --max-memory 64 MB"),
+    # a 200,000-element fact each cycle (2,000,000 ended the process after 76 cycles, and
+    # --max-beliefs, which counts clauses, never saw it)
+    ("if bel(n(N), M is N + 1, numlist(1, 200000, L)) then delete(n(N)) + insert(n(M)) + "
+     "insert(big(M, L)).",
+     "holds {} MB in its clauses and their atoms, more than --max-memory 64 MB"),
+    # facts asserted in a loop inside one call
+    ("if bel(numlist(1, 100000, L), forall(between(1, 1000, I), assertz(big(I, L)))) "
+     "then print(never).", "holds {} MB in its clauses and their atoms"),
+    # text written to a string, never stored
+    ("if bel(length(C, 100000), maplist(=(0'x), C), atom_codes(A, C), with_output_to("
+     "string(S), forall(between(1, 100000, _), write(A))), string_length(S, N)) then print(N).",
+     "took {} MB outside Prolog's stacks in one call"),
+])
+def test_an_agent_over_its_memory_is_stopped_alone(tmp_path: Path, rules: str, says: str):
+    result = _run_beside_counter(tmp_path, f"""
+init module {{ knowledge {{ dbl(A, 0, A) :- !.
+    dbl(A, N, B) :- atom_concat(A, A, A1), N1 is N - 1, dbl(A1, N1, B). }}
+  beliefs {{ a(x). n(0). }} }}
+main module {{ program {{
+{rules}
+}} }}
+""", *MEMORY)
+    _counter_finished(result)
+    found = re.search(r"error: agent atk failed: (holds|took) (\d+) MB.*; stopped\n",
+                      result.stderr)
+    assert found and says.format(found.group(2)) in found.group(0), result.stderr
+    assert result.returncode == 1 and result.peak_mb < 1500, (result.peak_mb, result.stderr)
+
+
+def test_memory_limits_are_options_of_the_run_and_of_an_agent_file(tmp_path: Path):
+    assert Limits(max_memory=2).max_memory_bytes == 2 * 2**20
+    with pytest.raises(ValueError, match="max_memory"):
+        Limits(max_memory=0)
+    result = goalagent_measured("run", str(ROOT / "bench" / "reference_agent.goal"),
+                                "--max-memory", "0")
+    assert result.returncode == 2 and "--max-memory must be a positive" in result.stderr
+    (tmp_path / "a.goal").write_text("main module [exit=always] { program { if true then "
+                                     "insert(x). } }\n")
+    (tmp_path / "s.mas2g").write_text('agentfiles { "a.goal" [max_memory = 3]. }\n')
+    system = MultiAgentSystem.from_mas_file(tmp_path / "s.mas2g")
+    try:
+        assert system.agents[0].ms.limits.max_memory == 3
+    finally:
+        system.close()

@@ -80,6 +80,7 @@ class PrologCalls(TermConversion):
         self.stretch_since: float | None = None
         self.abort_reason: str | None = None  # why the watchdog aborted the running query
         self.depth = 0  # queries open (a callback into Python can open more)
+        self.query = 0  # the number of the outermost query (the watchdog's memory watch)
         # A stop a signal asked for while queries were open: raised when they are all closed
         # (raising inside a callback would leave Prolog in between; see kb.watchdog).
         self.pending_stop: BaseException | None = None
@@ -219,6 +220,8 @@ class PrologCalls(TermConversion):
         """A query opens: a new stretch in Prolog (see goalagent.kb.watchdog); returns the
         enclosing one's start, for :meth:`_leave`."""
         outer_since = self.stretch_since
+        if not self.depth:
+            self.query += 1
         self.depth += 1
         self.stretch += 1
         self.stretch_since = monotonic()

@@ -168,11 +168,14 @@ condition_error(E, Id) :-
 limit_error(E, _) :- var(E), !, fail.
 limit_error(inference_limit_exceeded, inferences(Max)) :-
     b_getval('$ga_max_inferences', Max).
-limit_error(ga_limit(Limit), Limit).
+limit_error(ga_limit(Limit), Limit) :-
+    Limit \= memory(_, _).                   % (stops the agent: see passes_on/2)
 
-%   passes_on(+E, +Id): E ends more than the rule Id (noting Id for an abort's message).
+%   passes_on(+E, +Id): E ends more than the rule Id (noting Id for an abort's message);
+%   an agent over its memory (memory.pl) is stopped.
 passes_on(E, _) :- var(E), !, fail.
 passes_on('$ga_python', _).
+passes_on(ga_limit(memory(_, _)), _).
 passes_on('$aborted', Id) :-
     (   nb_current('$ga_aborted_rule', none) -> nb_setval('$ga_aborted_rule', Id) ; true ).
 
