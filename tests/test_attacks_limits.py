@@ -5,12 +5,19 @@ would otherwise take the test process down with it or hang the suite)."""
 
 from __future__ import annotations
 
+import os
 import re
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
+from attack_agent import load_agent
 from measured import ROOT, Measured, goalagent_measured
 
+from goalagent.agent import AgentError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 
@@ -187,3 +194,93 @@ def test_memory_limits_are_options_of_the_run_and_of_an_agent_file(tmp_path: Pat
         assert system.agents[0].ms.limits.max_memory == 3
     finally:
         system.close()
+
+
+# ----------------------------------------------------------------------------- one call
+
+SIZES_KNOWLEDGE = """
+init module { knowledge {
+    sq(X, 0, X) :- !.
+    sq(X, N, Y) :- Z is X * X, M is N - 1, sq(Z, M, Y).
+    digits(N, L) :- length(L, N), maplist(=(0'7), L).
+} }
+"""
+
+
+@pytest.mark.parametrize("condition, says", [
+    # one inference of 43 s: no signal, no time limit could end it (written out, they are
+    # refused when loading: see below)
+    ("N = 9, X is 7 ^ (10 ^ N)", "7 ^ 1000000000 would make an integer of about "
+                                 "3,000,000,000 bits"),
+    ("N = 9, E = 7 ^ (10 ^ N), X is E + 1", "7 ^ 1000000000 would make an integer"),  # built
+    ("N = 9, X is 1 << (10 ^ N)", "1 << 1000000000 would make an integer"),
+    ("N = 9, 7 ** (10 ^ N) > 0", "7 ** 1000000000 would make an integer"),
+    # writing a 100,000,000-digit integer ran 30 s past a 2 s time limit
+    ("sq(3, 22, Y), format(atom(A), '~d', [Y])", "an integer of 6,647,815 bits written"),
+    ("N is 2 * 10 ^ 9, tab(N)", "tab writes 2,000,000,000 spaces"),  # 2 GB written
+    # SWI reads digits in time that grows with their square (300,000: 9 s)
+    ("digits(300000, L), number_codes(N, L)", "a text with 300,000 digits in a row"),
+    ("digits(300000, L), atom_codes(A, L), term_to_atom(T, A)",
+     "a text with 300,000 digits in a row"),
+])
+def test_work_one_call_could_not_be_interrupted_in_is_refused_before_it_starts(
+        tmp_path: Path, condition: str, says: str):
+    result = _run_beside_counter(tmp_path, SIZES_KNOWLEDGE + f"""
+main module [exit=always] {{ program [order=linearall] {{
+    if bel({condition}) then print(never).
+    if bel(X is 2 ^ 1000, Y is X ** 3, Z is 1 << 5000, F is 2.0 ** 0.5) then print(small).
+}} }}
+""", "--max-query-seconds", "2", timeout=60)
+    _counter_finished(result)
+    assert result.returncode == 0 and result.stdout == "small\n", result.stderr
+    assert (f"warning: agent atk: module main, rule at {tmp_path / 'atk.goal'}:9:5: Prolog "
+            f"error in the condition: refused: {says}") in result.stderr
+    assert result.seconds < 30
+
+
+def test_tab_and_format_counts_known_when_loading_are_refused_then():
+    with pytest.raises(AgentError, match="tab writes 2,000,000,000 spaces"):
+        load_agent("", "if bel(tab(2000000000)) then print(x).").close()
+    with pytest.raises(AgentError, match="7 \\^ 1000000000 would make an integer"):
+        load_agent("", "if bel(X is 7 ^ (10 ^ 9)) then print(x).").close()
+
+
+def test_a_print_too_big_to_write_is_a_warning_not_a_stop(tmp_path: Path):
+    # the warning itself carries the firing's bindings: a huge integer among them is named
+    result = _run_beside_counter(tmp_path, SIZES_KNOWLEDGE + """
+main module [exit=always] { program [order=linearall] {
+    if bel(sq(3, 22, Y)) then print(Y).
+    if bel(length(L, 600000), maplist(=(a), L)) then print(L).
+    if true then print(after).
+} }
+""", "--max-query-seconds", "10", timeout=60)
+    _counter_finished(result)
+    assert result.returncode == 0 and result.stdout == "after\n", result.stderr
+    assert "print failed: an integer of 6,647,815 bits written, more than 1,000,000" in (
+        result.stderr)
+    assert "print failed: a text of more than 1,000,000 characters to write" in result.stderr
+
+
+def test_a_signal_ends_a_call_prolog_cannot_interrupt_within_seconds(tmp_path: Path):
+    # shell/1 waits for its child with signals held: SIGTERM waited for it (25 s for a
+    # 100,000,000-digit integer written); the run now ends 5 s after the signal
+    program = tmp_path / "wait.goal"
+    program.write_text("init module { program { if true then print(started). } }\n"
+                       "main module { program { if bel(shell('sleep 60')) then print(x). } }\n")
+    child = subprocess.Popen([sys.executable, "-m", "goalagent", "run", str(program)],
+                             cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env={**os.environ, "PYTHONUNBUFFERED": "1"},
+                             start_new_session=True)
+    try:
+        assert child.stdout is not None and child.stdout.readline() == "started\n"
+        time.sleep(1.0)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGTERM)
+        child.wait(timeout=60)
+        took = time.monotonic() - sent
+    finally:
+        os.killpg(child.pid, signal.SIGKILL)  # the sleep left behind (it holds the pipes)
+    _, stderr = child.communicate(timeout=60)
+    assert child.returncode == 143 and 4.5 < took < 15, (took, stderr)
+    assert ("SIGTERM: Prolog did not return within 5 s (a built-in that does not look at "
+            "signals); ending at once; the last save is kept") in stderr

@@ -323,8 +323,8 @@ stretch_action(abort) :-
     abort.
 stretch_action(time(T)) :-
     throw(ga_limit(time(T))).
-stretch_action(call_memory(B, Max, Growth)) :-
-    ga_memory:call_growth(B, Max, Growth).
+stretch_action(call_memory(B, Max, Base, Page)) :-
+    ga_memory:call_growth(B, Max, Base, Page).
 stretch_action(held_memory(B, Max)) :-
     ga_memory:held_check(B, Max).
 

@@ -105,18 +105,24 @@ term_text_args(I, Arity, T, N0, N) :-
         term_text_args(I1, Arity, T, N1, N)
     ).
 
-%!  call_growth(+B, +Max, +Growth) is det.
+%!  call_growth(+B, +Max, +Base, +Page) is det.
 %   Sent by the watchdog into a running call of the agent of belief module B (allowed Max
-%   bytes) when the process's resident memory has grown by Growth bytes since the call
-%   began (or since the watchdog's look before: earlier calls' growth may be in it). First
-%   what the agent holds is checked; then what is neither Prolog's stacks (bounded by SWI's
-%   stack_limit, and given back when the query ends) nor held in its clauses is what the
-%   call took -- text written to an atom or string, atoms -- and over Max the agent is
-%   stopped.
-call_growth(B, Max, Growth) :-
+%   bytes) when the process's resident memory has grown past Max since the call began (it
+%   was Base pages of Page bytes then, or at the watchdog's look before: earlier calls'
+%   growth may be in it). First what the agent holds is checked (the garbage atoms
+%   collected); then what the process has grown by that is neither Prolog's stacks
+%   (bounded by SWI's stack_limit, and given back when the query ends) nor held in its
+%   clauses is what the call took -- text written to an atom or string, atoms it still
+%   reaches -- and over Max the agent is stopped.
+call_growth(B, Max, Base, Page) :-
     held_bytes(B, Max, Held),
+    setup_call_cleanup(open('/proc/self/statm', read, In),
+                       read_line_to_string(In, Line),
+                       close(In)),
+    split_string(Line, " ", "", [_, Resident|_]),
+    number_string(Pages, Resident),
     statistics(stack, Stacks),
-    Outside is Growth - Stacks - Held,
+    Outside is (Pages - Base) * Page - Stacks - Held,
     (   Outside > Max
     ->  throw(ga_limit(memory(call(Outside), Max)))
     ;   true
@@ -131,6 +137,7 @@ held_check(B, Max) :-
 
 held_bytes(B, Max, Bytes) :-
     garbage_collect_atoms,
+    trim_heap,
     statistics(atom_space, AtomSpace),
     held(B, Max, AtomSpace, Bytes),
     (   Bytes > Max

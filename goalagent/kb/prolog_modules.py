@@ -69,7 +69,7 @@ class PrologModules:
         self._g = Atom(f"ga_g_{secret}")
         # What the watchdog's memory watch needs of this agent's calls, and the memory
         # alarm it last accounted after (goalagent/kb/memory.py).
-        self._memory = (str(self._b), self.limits.max_memory_bytes)
+        self._memory = (str(self._b), self.limits.max_memory_bytes, agent_name)
         self._generation = self._watchdog.generation
         self._closed = False
         # What blind commitment (GoalBases) has still to do, which every part changes:

@@ -486,8 +486,10 @@ user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     ;   update(B, G, insert, Post, _, _, _)
     ).
 
-%   print/1 and log/1: atoms and strings as they are, other terms as writeq shows them.
+%   print/1 and log/1: atoms and strings as they are, other terms as writeq shows them
+%   (within ga_sizes:printable/1's bounds).
 output(Kind, T) :-
+    ga_sizes:printable(T),
     (   ( atom(T) ; string(T) )
     ->  atom_string(T, Text)
     ;   write_text(T, true, Text)
@@ -584,8 +586,9 @@ tell(Event) :-
 problem(condition(Id, E)) :- !,
     error_message(E, Message),
     '$ga_py'(problem(condition(Id, Message)), _).
-problem(action(Firing, K, E)) :- !,
+problem(action(Firing0, K, E)) :- !,
     error_message(E, Message),
+    ga_sizes:reportable(Firing0, Firing),
     '$ga_py'(problem(action(Firing, K, Message)), _).
 problem(precondition(Index, E)) :- !,
     error_message(E, Message),
