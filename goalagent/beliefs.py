@@ -84,14 +84,22 @@ def load_beliefs(agents: Agent | Iterable[Agent], path: str | Path,
 
 
 def beliefs_of(agent: Agent, predicate: SavedPredicate) -> list[Term]:
-    """The agent's current beliefs of ``predicate`` as terms, in belief-base order."""
+    """The agent's current beliefs of ``predicate`` as terms, in belief-base order. Facts
+    taking more memory than the agent's --max-memory (an agent stopped for holding too
+    much) are not read: a KBError says so (writing them would take minutes)."""
     if not agent.query("bel", f"current_predicate({quote_atom(predicate.name)}/"
                               f"{predicate.arity})"):
         return []
+    names = [f"A{index}" for index in range(predicate.arity)]
+    text = f"{quote_atom(predicate.name)}({', '.join(names)})" if names else quote_atom(
+        predicate.name)
+    size = agent.query("bel", f"predicate_property({text}, size(Size))")
+    most = agent.ms.limits.max_memory_bytes
+    if size and isinstance(size[0]["Size"], int) and size[0]["Size"] > most:
+        raise KBError(f"its facts take {size[0]['Size'] >> 20:,} MB, more than its "
+                      f"--max-memory of {most >> 20:,} MB")
     if predicate.arity == 0:
         return [Atom(predicate.name) for _ in agent.query("bel", quote_atom(predicate.name))]
-    names = [f"A{index}" for index in range(predicate.arity)]
-    text = f"{quote_atom(predicate.name)}({', '.join(names)})"
     facts: list[Term] = []
     for answer in agent.query("bel", text):
         args = tuple(answer[name] for name in names)

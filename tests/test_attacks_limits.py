@@ -284,3 +284,21 @@ def test_a_signal_ends_a_call_prolog_cannot_interrupt_within_seconds(tmp_path: P
     assert child.returncode == 143 and 4.5 < took < 15, (took, stderr)
     assert ("SIGTERM: Prolog did not return within 5 s (a built-in that does not look at "
             "signals); ending at once; the last save is kept") in stderr
+
+
+def test_the_save_leaves_out_facts_bigger_than_their_agent_s_memory(tmp_path: Path):
+    # an agent stopped for holding too much kept the save writing its facts for minutes
+    saved = tmp_path / "saved.pl"
+    result = _run_beside_counter(tmp_path, """
+init module { beliefs { n(0). } }
+main module { program {
+    if bel(n(N), M is N + 1, K is M + 200000, numlist(M, K, L)) then delete(n(N)) +
+        insert(n(M)) + insert(keep(L)).
+} }
+""", "--max-memory", "32", "--max-cycles", "300", "--save-beliefs", str(saved),
+        "--save-predicate", "keep/1", "--save-predicate", "n/1")
+    _counter_finished(result)
+    assert "error: agent atk failed: holds " in result.stderr
+    assert re.search(r"keep/1: its facts take \d+ MB, more than its --max-memory of 32 MB",
+                     result.stderr), result.stderr
+    assert "% agent counter\nn(5).\n" in saved.read_text() and result.seconds < 60
