@@ -58,6 +58,9 @@ MaxQuerySeconds = Annotated[float, typer.Option(
          "applicable).")]
 MaxBeliefs = Annotated[int, typer.Option(
     help="Beliefs and goals an agent may hold before it is stopped.")]
+MaxMemory = Annotated[int, typer.Option(
+    help="Megabytes an agent's clauses (with their atoms) may hold, and one of its calls take "
+         "outside Prolog's stacks, before it is stopped.")]
 Sandbox = Annotated[bool, typer.Option(
     help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")]
 DEFAULT_MODULE_DEPTH = default_module_depth()  # (as the C stack allows: read once)
@@ -167,6 +170,7 @@ def _language_run_options(
     max_inferences: MaxInferences = Limits.max_inferences,
     max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
     max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    max_memory: MaxMemory = Limits.max_memory,
     sandbox: Sandbox = False,
     max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
@@ -220,7 +224,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
     limits = _limits(values["max_inferences"], values["max_query_seconds"],
-                     values["max_beliefs"], values["sandbox"], values["max_module_depth"])
+                     values["max_beliefs"], values["sandbox"], values["max_module_depth"],
+                     values["max_memory"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
@@ -260,11 +265,11 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
 
 
 def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
-            sandbox: bool, max_module_depth: int) -> Limits:
+            sandbox: bool, max_module_depth: int, max_memory: int) -> Limits:
     """The agents' limits from the options (exit 2 naming the option that is out of range)."""
     try:
         return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox,
-                      max_module_depth=max_module_depth)
+                      max_module_depth=max_module_depth, max_memory=max_memory)
     except ValueError as err:
         raise user_error(f"--{str(err).replace('_', '-')}") from None
 
@@ -371,13 +376,15 @@ def test(
     max_inferences: MaxInferences = Limits.max_inferences,
     max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
     max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    max_memory: MaxMemory = Limits.max_memory,
     sandbox: Sandbox = False,
     max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
     conditions, under the limits and confinement of run (a condition that runs past a limit
     or is refused fails its item); a report per test, exit code 1 when one failed."""
-    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth)
+    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth,
+                     max_memory)
     failed = False
     for path in paths:
         try:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from goalagent import ast
 from goalagent.events import ProblemKind
 from goalagent.kb.interpreter_requests import Problem
-from goalagent.kb.terms import format_term
+from goalagent.kb.terms import Term, format_term
 
 
 def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
@@ -25,6 +25,10 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
         assert problem.rule is not None
         return (f"module {problem.rule.shown}, rule at {problem.rule.rule.pos}: ran "
                 f"{detail}; the rule is not applicable")
+    if kind is ProblemKind.GOAL_UNCHECKED:
+        assert problem.rule is not None
+        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: checking "
+                f"whether goal {goal_text(problem.term)} is achieved {detail}; the goal is kept")
     if kind is ProblemKind.PRECONDITION_ERROR:
         assert problem.spec_index is not None
         spec = program.actionspecs[problem.spec_index]
@@ -45,3 +49,9 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
     if kind is ProblemKind.DELIVERY_FAILED:
         return f"{action.pos}: {detail}"
     return f"{action.pos}: {action.name} failed: {detail}"
+
+
+def goal_text(facts: Term | None) -> str:
+    """A goal's facts as the program would write them (``on(a, b), clear(c)``)."""
+    items = facts if isinstance(facts, list) else [facts]
+    return ", ".join(format_term(fact) for fact in items)

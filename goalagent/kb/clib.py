@@ -24,6 +24,7 @@ the process after SWI's crash report) and SIGUSR2 (its thread alert, as with
 from __future__ import annotations
 
 import ctypes
+import ctypes.util
 import importlib
 import importlib.util
 import signal
@@ -158,6 +159,29 @@ PL_thread_attach_engine = _declare("PL_thread_attach_engine", c_int, c_void_p)
 PL_thread_destroy_engine = _declare("PL_thread_destroy_engine", c_int)
 PL_chars_to_term = _declare("PL_chars_to_term", c_int, c_char_p, term_t)
 PL_call = _declare("PL_call", c_int, term_t, c_void_p)
+
+
+class _Mpz(ctypes.Structure):
+    """GMP's mpz_t, read for its size only."""
+
+    _fields_ = [("alloc", c_int), ("size", c_int), ("limbs", c_void_p)]
+
+
+PL_get_mpz = _declare("PL_get_mpz", c_int, term_t, POINTER(_Mpz))
+_mpz_clear = ctypes.CDLL(ctypes.util.find_library("gmp") or "libgmp.so.10").__gmpz_clear
+_mpz_clear.restype, _mpz_clear.argtypes = None, (POINTER(_Mpz),)
+
+
+def integer_bits(t: int) -> int:
+    """About how many bits the integer in term ref ``t`` has (its GMP limbs), without
+    converting it: writing a huge one in decimal takes SWI-Prolog seconds, uninterruptibly."""
+    mpz = _Mpz()
+    if not PL_get_mpz(t, byref(mpz)):
+        return 0
+    try:
+        return abs(mpz.size) * 64
+    finally:
+        _mpz_clear(byref(mpz))
 
 
 def _call_text(goal: bytes) -> bool:

@@ -166,6 +166,9 @@ prepare_call(G, Ctx, Prepared) :-
     ->  checked(Ctx, G, Prepared)           % its text checked when it is printed
     ;   format_sized(G, Ctx)
     ->  checked(Ctx, G, Prepared)           % its counts checked when it runs
+    ;   ga_sizes:sized(G, Ctx, Sized)       % what it makes bounded before it starts
+    ->  sandbox_allows(G, Ctx),
+        Prepared = Sized
     ;   meta_specs(G, Specs)
     ->  G =.. [Name|Args0],
         (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)

@@ -63,10 +63,22 @@ from goalagent.kb.clib import (
     PL_recorded,
     PL_register_atom,
     PL_term_type,
+    integer_bits,
     text_of,
 )
 from goalagent.kb.errors import KBError
-from goalagent.kb.terms import Atom, Struct, Term, Var, decimal_int, format_term
+from goalagent.kb.terms import (
+    MAX_INT_DIGITS,
+    Atom,
+    Struct,
+    Term,
+    Var,
+    decimal_int,
+    format_term,
+)
+
+# The bits of the largest integer converted (decimal_int's digits, rounded up to limbs).
+_MAX_INT_BITS = MAX_INT_DIGITS * 3322 // 1000 + 64
 
 
 class Record:
@@ -266,6 +278,9 @@ class TermConversion:
     def _get_integer(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         if PL_get_int64(t, INT_REF):
             return INT_BUF.value
+        if integer_bits(t) > _MAX_INT_BITS:  # (not written out first: seconds for one)
+            raise KBError(f"an integer of more than {MAX_INT_DIGITS:,} digits is too "
+                          "large to convert")
         try:
             return decimal_int(text_of(t, CVT_INTEGER))
         except ValueError as error:
