@@ -44,8 +44,7 @@ from goalagent.extensions import (
 )
 from goalagent.kb.engine import KBError
 from goalagent.kb.limits import Limits
-from goalagent.kb.terms import Term
-from goalagent.mas import MultiAgentSystem, parse_parameter
+from goalagent.mas import MultiAgentSystem, ParameterText
 from goalagent.parser import (
     GoalSyntaxError,
     load_agents,
@@ -65,13 +64,15 @@ HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
 
 
-def _env_params(pairs: list[str]) -> dict[str, Term]:
-    params: dict[str, Term] = {}
+def _env_params(pairs: list[str]) -> dict[str, ParameterText]:
+    """``--env-param KEY=VALUE`` pairs, each value kept as typed until the environment says
+    whether it is a path (``goalagent.mas.read_parameter``)."""
+    params: dict[str, ParameterText] = {}
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
             raise user_error(f"--env-param {pair!r}: expected KEY=VALUE")
-        params[key.strip()] = parse_parameter(value.strip())
+        params[key.strip()] = ParameterText(value.strip())
     return params
 
 
@@ -115,7 +116,8 @@ def _language_run_options(
     env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
     env_param: Annotated[
         list[str] | None,
-        typer.Option("--env-param", help="KEY=VALUE environment init parameter (Prolog term)."),
+        typer.Option("--env-param", help="KEY=VALUE environment init parameter (a Prolog "
+                                          "term; a file name for a path parameter)."),
     ] = None,
     max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
@@ -257,7 +259,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise typer.Exit(code=code)
 
 
-def _build_system(path: Path, env: str | None, params: dict[str, Term],
+def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
     try:

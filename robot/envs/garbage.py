@@ -63,14 +63,14 @@ class GarbageEnvironment(PythonEnvironment):
     entity_names = ("robot",)
     default_entity_type = "robot"
     parameters = {
-        "can": str,
+        "can": str | Path,
         "perception": str,
         "seed": int,
-        "record": bool | str,
+        "record": bool | Path,
         "delta": float,
         "trials": int,
-        "models": str,
-        "objects": str,
+        "models": Path,
+        "objects": Path,
         "learning": str,
         "n_max": int,
         "active_n_max": int,
