@@ -312,9 +312,10 @@ class GarbageWorld(RenderedWorld):
         self.model.geom_conaffinity[geom] = int(on)
 
     def ball_touches_can(self) -> bool:
-        """True if the ball currently touches the can's body, lid or handle."""
+        """True if the ball currently touches the can: its body, lid (or a sliding lid's tab),
+        handle or pedal."""
         m, d = self.model, self.data
-        can_bodies = {m.body(n).id for n in ("can_body", "lid", "handle", "pedal")
+        can_bodies = {m.body(n).id for n in ("can_body", "lid", "lid_tab", "handle", "pedal")
                       if _has_body(m, n)}
         for c in d.contact[: d.ncon]:
             b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
@@ -328,6 +329,17 @@ class GarbageWorld(RenderedWorld):
         """Gap (m) between the rim's front edge and the lid's front edge."""
         gap = self.data.site("lid_front").xpos - self.data.site("rim_front").xpos
         return float(np.linalg.norm(gap))
+
+    def free_rim_y(self) -> float:
+        """Where across the can (world y, m) the rim's front edge is most open: the middle of
+        the stretch a sideways-moved lid has uncovered, else the middle of the can (a hinged
+        lid lifts off the whole edge)."""
+        shift = float(self.data.site("lid_front").xpos[1] - self.data.site("rim_front").xpos[1])
+        inner = self.spec.width / 2 - WALL
+        uncovered = abs(shift) - WALL  # the lid's edge moved this far past the inner wall
+        if uncovered <= 0.0:
+            return 0.0
+        return -math.copysign(inner - uncovered / 2, shift)
 
     def set_opening(self, width: float) -> None:
         """Put the lid (and a geared handle) where the opening is ``width`` m, at rest."""
