@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Protocol
 import cv2
 import numpy as np
 
-from sim.scene import MARKER_SIZE
+from sim.canspec import MARKER_SIZE
 
 if TYPE_CHECKING:
     from sim.world import GarbageWorld
@@ -60,8 +60,6 @@ Area is a fraction of the image (~0.001..0.01 for a marker), the ratios lie in 0
 per-mille weighs as much as the ratios. (Standardising by the spread instead over-weights
 squareness, which is ~1 for every marker, so a one-pixel jag would decide the nearest part.)
 """
-PERCEPTION_MODES = ("camera", "truth")
-"""Names accepted by ``make_perception``."""
 
 
 @dataclass(frozen=True)

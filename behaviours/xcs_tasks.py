@@ -64,7 +64,7 @@ class View:
 
 
 @dataclass(frozen=True)
-class Outcome:
+class StepResult:
     """What one action brought: reward, end of trial, success, and the push effect (if any)."""
 
     reward: float
@@ -80,7 +80,7 @@ class Task(Protocol):
     names: dict[str, str]
 
     def reset(self, trial: int) -> View: ...
-    def perform(self, action: int) -> tuple[Outcome, View]: ...
+    def perform(self, action: int) -> tuple[StepResult, View]: ...
     def view(self) -> View: ...
 
 
@@ -110,7 +110,7 @@ class NavigationTask:
         self.state = self.perception.observe(self.world)
         return _view(self.state)
 
-    def perform(self, action: int) -> tuple[Outcome, View]:
+    def perform(self, action: int) -> tuple[StepResult, View]:
         """Walk or push, then reward by eq. 3.14; falling off the table ends the trial."""
         name = self.names[self.actions[action]]
         before, distance = self.state, self.world.distance_to_destination()
@@ -123,7 +123,7 @@ class NavigationTask:
         reward = navigation_reward(now, distance - now)
         success = now < D_DST
         effect = push_effect(before, self.state) if name == "push_ahead" else None
-        return Outcome(reward, success or self.world.fallen, success, effect), _view(self.state)
+        return StepResult(reward, success or self.world.fallen, success, effect), _view(self.state)
 
 
 class StackingTask:
@@ -147,7 +147,7 @@ class StackingTask:
         self.state = self.perception.observe(self.world)
         return _view(self.state)
 
-    def perform(self, action: int) -> tuple[Outcome, View]:
+    def perform(self, action: int) -> tuple[StepResult, View]:
         """Push in a pose or ask for an object, then reward by eq. 3.15."""
         name = self.names[self.actions[action]]
         before = self.state
@@ -159,7 +159,7 @@ class StackingTask:
         self.state = self.perception.observe(self.world)
         stacked = self.world.state().stacked
         effect = push_effect(before, self.state) if verb == "push" else None
-        return (Outcome(stacking_reward(stacked, verb == "choose"), stacked, stacked, effect),
+        return (StepResult(stacking_reward(stacked, verb == "choose"), stacked, stacked, effect),
                 _view(self.state))
 
 
@@ -185,9 +185,9 @@ class SearchTask:
         """What the head camera sees now."""
         return View(self.perception.observe(self.world), None)
 
-    def perform(self, action: int) -> tuple[Outcome, View]:
+    def perform(self, action: int) -> tuple[StepResult, View]:
         """Turn the head one step (reset past the boundary) and reward what the centre sees."""
         self.world.look(self.names[self.actions[action]].removeprefix("look_"))
         view = self.view()
         found = centre_seen(view.bits)
-        return Outcome(search_reward(view.bits), found, found), view
+        return StepResult(search_reward(view.bits), found, found), view

@@ -302,10 +302,6 @@ class MasProgram:
     definitions: tuple[AgentDefinition, ...] = ()
     env_pos: Pos | None = None
 
-    def agent_names(self) -> list[str]:
-        """The names launch rules may refer to: agent files' and agent definitions'."""
-        return [a.name for a in self.agentfiles] + [d.name for d in self.definitions]
-
 
 def iter_rules(rules: Iterable[Rule]) -> Iterator[Rule]:
     """Every rule, nested ones included, in source order."""

@@ -4,17 +4,14 @@
 starts; ``--save-beliefs FILE`` writes the final beliefs of the saved predicates (those the
 installed extensions declare, e.g. the robot application's ``afford/6``, and those named with
 ``--save-predicate NAME/ARITY``), every ``--save-every`` while the run goes and before any
-report at its end. Files are written atomically (temp file + ``os.replace``), so kill -9 at
+report at its end. Files are written atomically (``ondisk.write_atomically``), so kill -9 at
 any moment leaves the last complete save. Files read are checked first: only ground facts,
 nothing run, the checks of the extensions' saved predicates (e.g. afford/6's types).
 """
 
 from __future__ import annotations
 
-import os
 import re
-import stat
-import tempfile
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -26,57 +23,13 @@ from goalagent.kb.facts import FactCheck, FactFile, FactFileError, read_facts
 from goalagent.kb.terms import Atom, Struct, Term, format_term, quote_atom
 from goalagent.parser import GoalSyntaxError
 from goalagent.parser.source import MAX_FACT_FILE_BYTES, Source, read_program_file
+from ondisk import write_atomically
 
 _BRACKETS = re.compile(r"[()\[\]{}]")
 _EXACT_SCAN_DEPTH = 5000  # nesting from which the brackets are located exactly first
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
-
-_UMASK = os.umask(0)
-os.umask(_UMASK)
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that a crash, Ctrl-C, kill -9 or a power cut leaves
-    either the old or the new file, whole: a temporary file in the same folder, fsync,
-    ``os.replace``, fsync of the folder. The file keeps its mode (or gets the default
-    one, never the temporary file's 0600)."""
-    path = check_save_target(path)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                         suffix=".tmp")
-    try:
-        try:
-            mode = stat.S_IMODE(os.stat(path).st_mode)
-        except OSError:
-            mode = 0o666 & ~_UMASK
-        os.fchmod(handle, mode)
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    folder = os.open(path.parent, os.O_RDONLY)
-    try:
-        os.fsync(folder)
-    finally:
-        os.close(folder)
-
-
-def check_save_target(path: Path) -> Path:
-    """The file a save replaces (symbolic links followed), its folder created: refuses
-    (``OSError``) a target that exists and is not a regular file -- a save must never
-    replace a device, a FIFO or a folder -- or a folder where no file can be made."""
-    target = Path(os.path.realpath(path))
-    if target.exists() and not target.is_file():
-        raise OSError(f"{path} exists and is not a regular file")
-    target.parent.mkdir(parents=True, exist_ok=True)
-    if not os.access(target.parent, os.W_OK | os.X_OK):
-        raise OSError(f"cannot write in the folder {target.parent}")
-    return target
 
 
 def _check_nesting(text: str, file: str) -> None:

@@ -1,26 +1,35 @@
-"""What ``goalagent check`` finds before anything runs, beyond the checks made when an agent is
-loaded (``goalagent.agent.validate_program``): the environment a ``.mas2g`` names and its
-init parameters, calls in ``bel``/precondition queries of predicates defined nowhere
-(warnings), and the files under a directory given as an argument.
+"""What ``goalagent check`` does: for each file (or every program file under a directory) the
+programs it holds or names are parsed and validated (``goalagent.agent.validate_program``),
+the environment a ``.mas2g`` names and its init parameters are checked, and calls in
+``bel``/precondition queries of predicates defined nowhere are warnings. The command line
+(``goalagent.cli``) only prints what :func:`check_file` reports.
 """
 
 from __future__ import annotations
 
 import difflib
+import io
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from goalagent import ast
+from goalagent.agent import Agent, AgentError, validate_program
 from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.eis.registry import known_environments, load_environment
 from goalagent.kb.engine import KBError, get_engine
+from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
-from goalagent.parser import GoalSyntaxError
-
-if TYPE_CHECKING:
-    from goalagent.agent import Agent
+from goalagent.parser import (
+    GoalSyntaxError,
+    load_agents,
+    load_module_as_agent,
+    parse_action_file,
+    parse_agent_file,
+    parse_mas_file,
+    parse_prolog_file,
+    parse_test_file,
+)
 
 SYSTEM_SUFFIXES = (".goal", ".mas2g", ".test2g")
 # Control constructs whose arguments are goals (argument positions), and meta-calls.
@@ -144,3 +153,80 @@ def _calls(term: Term) -> Iterator[tuple[str, int]]:
         return
     for index in goals:
         yield from _calls(args[index])
+
+
+def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool:
+    """Checks one program file, telling ``report`` every warning and error line; True when
+    it has no error. Each agent is loaded as ``run`` would (``sandbox``: as ``--sandbox``
+    would) but runs none of its code (``Limits.runs_code``): its directives are checked,
+    not run, and its goals are not adopted."""
+    try:
+        if path.suffix == ".mas2g":
+            for warning in check_environment(parse_mas_file(path)):
+                report(warning)
+        for program in programs_to_check(path, report):
+            validate_program(program)
+            for warning in program.warnings:
+                report(warning)
+            if path.suffix == ".mod2g" and not sandbox:
+                continue  # a module alone lacks its agent's knowledge: no calls to look up
+            agent = Agent(program, output=io.StringIO(), warn=lambda message: None,
+                          limits=Limits(sandbox=sandbox, runs_code=False))
+            try:
+                if path.suffix != ".mod2g":
+                    for warning in undefined_calls(agent):
+                        report(warning)
+            finally:
+                agent.close()
+    except (GoalSyntaxError, AgentError) as err:
+        report(str(err))
+        return False
+    return True
+
+
+def programs_to_check(path: Path, report: Callable[[str], None] = lambda line: None
+                      ) -> list[ast.AgentProgram]:
+    """The agent programs a file holds or names: a system's agents (any GOAL version), a
+    module file as its own agent, a test's system; action and Prolog files are only read."""
+    if path.suffix == ".mas2g":
+        return list(load_agents(parse_mas_file(path)).values())
+    if path.suffix == ".test2g":
+        return list(load_agents(parse_mas_file(parse_test_file(path).mas)).values())
+    if path.suffix == ".mod2g":
+        try:
+            return [load_module_as_agent(path)]
+        except GoalSyntaxError as err:
+            try:  # a GOAL 5 module file is written in the single-file syntax
+                module = parse_agent_file(path)
+            except GoalSyntaxError as goal5:
+                # report the reading that got further into the file
+                further = (goal5.file, goal5.line, goal5.col) > (err.file, err.line, err.col)
+                raise (goal5 if further and goal5.file == err.file else err) from None
+            return [_goal5_module_in_context(path, module, report)]
+    if path.suffix == ".act2g":
+        parse_action_file(path)
+        return []
+    if path.suffix == ".pl":
+        parse_prolog_file(path)
+        return []
+    return [parse_agent_file(path)]
+
+
+def _goal5_module_in_context(path: Path, module: ast.AgentProgram,
+                             report: Callable[[str], None]) -> ast.AgentProgram:
+    """A GOAL 5 module file valid on its own, else the first agent next to it that
+    ``#import``s it and is valid with it (the module may use that agent's actions); the
+    module's own error when there is none."""
+    try:
+        validate_program(module)
+        return module
+    except GoalSyntaxError as alone:
+        for importer in importers_of(path):
+            try:
+                program = parse_agent_file(importer)
+                validate_program(program)
+            except GoalSyntaxError:
+                continue
+            report(f"{path}: checked as part of {importer.name}, which imports it")
+            return program
+        raise alone from None

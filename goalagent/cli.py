@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import contextlib
 import inspect
-import io
 import os
 import sys
 from collections.abc import Callable, Sequence
@@ -23,15 +22,9 @@ import typer
 from rich.console import Console
 from typer.core import TyperCommand
 
-from goalagent import ast
-from goalagent.agent import Agent, AgentError, validate_program
-from goalagent.beliefs import BeliefSaver, SaveInterval, check_save_target, load_beliefs
-from goalagent.checking import (
-    check_environment,
-    files_to_check,
-    importers_of,
-    undefined_calls,
-)
+from goalagent.agent import AgentError
+from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
+from goalagent.checking import check_file, files_to_check
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
@@ -47,18 +40,12 @@ from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem, ParameterText
 from goalagent.parser import (
     GoalSyntaxError,
-    load_agents,
-    load_module_as_agent,
-    parse_action_file,
-    parse_agent_file,
-    parse_mas_file,
-    parse_prolog_file,
-    parse_test_file,
 )
 from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
 from goalagent.testing import run_test_file
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
+from ondisk import check_target
 
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
@@ -100,6 +87,16 @@ def _trace_printer(kinds: str | None, file: Path | None) -> TracePrinter | None:
         raise user_error(str(err)) from None
     except OSError as err:
         raise user_error(f"--trace-file {file}: {err.strerror or err}") from None
+
+
+def _close_trace(printer: TracePrinter) -> bool:
+    """Put the trace file in place; False (said on stderr) when it could not be written."""
+    try:
+        printer.close()
+        return True
+    except OSError as err:
+        err_console.print(f"error: --trace-file: {err}", markup=False)
+        return False
 
 
 class _RunCommand(TyperCommand):
@@ -207,7 +204,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
     try:
         every = SaveInterval.parse(values["save_every"])
         if values["save_beliefs"] is not None:
-            check_save_target(values["save_beliefs"])
+            check_target(values["save_beliefs"])
     except ValueError as err:
         raise user_error(str(err)) from None
     except OSError as err:
@@ -253,10 +250,9 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                 (lambda agent: status.update(f"{agent.name}: cycle {agent.cycle}, "  # type: ignore
                                              f"{agent.total_actions} actions")) if live else None))
     finally:
-        if printer is not None:
-            printer.close()
-    if code:
-        raise typer.Exit(code=code)
+        traced = printer is None or _close_trace(printer)
+    if code or not traced:
+        raise typer.Exit(code=code or 1)
 
 
 def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
@@ -306,53 +302,6 @@ def _debugger(values: dict[str, Any], system: MultiAgentSystem,
     return debugger
 
 
-def _programs_to_check(path: Path) -> list:
-    """The agent programs a file holds or names: a system's agents (any GOAL version), a
-    module file as its own agent, a test's system; action and Prolog files are only read."""
-    if path.suffix == ".mas2g":
-        return list(load_agents(parse_mas_file(path)).values())
-    if path.suffix == ".test2g":
-        return list(load_agents(parse_mas_file(parse_test_file(path).mas)).values())
-    if path.suffix == ".mod2g":
-        try:
-            return [load_module_as_agent(path)]
-        except GoalSyntaxError as err:
-            try:  # a GOAL 5 module file is written in the single-file syntax
-                module = parse_agent_file(path)
-            except GoalSyntaxError as goal5:
-                # report the reading that got further into the file
-                further = (goal5.file, goal5.line, goal5.col) > (err.file, err.line, err.col)
-                raise (goal5 if further and goal5.file == err.file else err) from None
-            return [_goal5_module_in_context(path, module)]
-    if path.suffix == ".act2g":
-        parse_action_file(path)
-        return []
-    if path.suffix == ".pl":
-        parse_prolog_file(path)
-        return []
-    return [parse_agent_file(path)]
-
-
-def _goal5_module_in_context(path: Path, module: ast.AgentProgram) -> ast.AgentProgram:
-    """A GOAL 5 module file valid on its own, else the first agent next to it that
-    ``#import``s it and is valid with it (the module may use that agent's actions); the
-    module's own error when there is none."""
-    try:
-        validate_program(module)
-        return module
-    except GoalSyntaxError as alone:
-        for importer in importers_of(path):
-            try:
-                program = parse_agent_file(importer)
-                validate_program(program)
-            except GoalSyntaxError:
-                continue
-            err_console.print(f"{path}: checked as part of {importer.name}, which imports it",
-                              markup=False)
-            return program
-        raise alone from None
-
-
 def check(
     paths: Annotated[list[Path], typer.Argument(help="Program files to check: .goal, "
                                                 ".mas2g, .mod2g, .act2g, .pl, .test2g; a "
@@ -366,25 +315,10 @@ def check(
     singleton variables and calls of predicates defined nowhere are reported as warnings."""
     failed = False
     for path in (file for given in paths for file in files_to_check(given)):
-        try:
-            if path.suffix == ".mas2g":
-                for warning in check_environment(parse_mas_file(path)):
-                    err_console.print(warning, markup=False)
-            for program in _programs_to_check(path):
-                validate_program(program)
-                for warning in program.warnings:
-                    err_console.print(warning, markup=False)
-                if path.suffix != ".mod2g":  # a module alone lacks its agent's knowledge
-                    for warning in _undefined_calls(program):
-                        err_console.print(warning, markup=False)
-                if sandbox:  # loading under the sandbox runs no agent code but safe code
-                    Agent(program, limits=Limits(sandbox=True),
-                          warn=lambda message: None).close()
-        except (GoalSyntaxError, AgentError) as err:
-            err_console.print(str(err), markup=False)
+        if check_file(path, sandbox, lambda line: err_console.print(line, markup=False)):
+            err_console.print(f"{path}: ok", markup=False)
+        else:
             failed = True
-            continue
-        err_console.print(f"{path}: ok", markup=False)
     if failed:
         raise typer.Exit(code=USER_ERROR)
 
@@ -408,15 +342,6 @@ def test(
         failed = failed or not report.passed
     if failed:
         raise typer.Exit(code=1)
-
-
-def _undefined_calls(program: ast.AgentProgram) -> list[str]:
-    """Calls of predicates the agent defines nowhere (the agent is loaded, not run)."""
-    agent = Agent(program, output=io.StringIO(), warn=lambda message: None)
-    try:
-        return undefined_calls(agent)
-    finally:
-        agent.close()
 
 
 def _show_version(shown: bool) -> None:

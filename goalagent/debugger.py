@@ -32,9 +32,9 @@ if TYPE_CHECKING:
     from goalagent.agent import Agent
     from goalagent.mas import MultiAgentSystem
 
-QUERY_OPS = ("bel", "goal", "a-goal", "goal-a", "percept")
 _QUERY = re.compile(r"\s*(bel|goal|a-goal|goal-a|percept)\s*\((.*)\)\s*\Z", re.DOTALL)
 _RULE = re.compile(r"\s*(.+):(\d+)\s*\Z")
+MAX_BREAKPOINTS = 100  # each condition breakpoint is a query per agent and cycle
 
 
 class DebuggerError(ValueError):
@@ -159,6 +159,9 @@ class Debugger(RunHook):
     def add_breakpoint(self, text: str) -> Breakpoint:
         """A new breakpoint from what the user wrote (``DebuggerError`` when unusable)."""
         breakpoint = Breakpoint.parse(text)
+        if len(self.breakpoints) >= MAX_BREAKPOINTS and breakpoint not in self.breakpoints:
+            raise DebuggerError(f"{breakpoint.text}: there are {MAX_BREAKPOINTS} breakpoints "
+                                "already; remove one first")
         if breakpoint.op:
             self._check_query(breakpoint.op, breakpoint.query)
         elif self.system is not None and not self._rule_exists(breakpoint):
@@ -175,7 +178,7 @@ class Debugger(RunHook):
         """The answers of a query on ``agent`` as lines (``DebuggerError`` when malformed)."""
         op, query = split_query(text)
         try:
-            return answer_text(agent.query(op, query))
+            return answer_text(agent.query(op, query, confined=True))
         except KBError as err:
             raise DebuggerError(str(err)) from None
 
@@ -227,14 +230,14 @@ class Debugger(RunHook):
     @staticmethod
     def _holds(agent: Agent, breakpoint: Breakpoint) -> bool:
         try:
-            return bool(agent.query(breakpoint.op, breakpoint.query))
+            return bool(agent.query(breakpoint.op, breakpoint.query, confined=True))
         except KBError:
             return False
 
     def _check_query(self, op: str, query: str) -> None:
         if self.system is not None and self.system.agents:
             try:
-                self.system.agents[0].query(op, query)
+                self.system.agents[0].query(op, query, confined=True)
             except KBError as err:
                 raise DebuggerError(str(err)) from None
 

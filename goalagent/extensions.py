@@ -3,11 +3,12 @@
 goalagent never imports an application. An installed package declares an entry point in the
 group ``goalagent.extensions`` (``[project.entry-points."goalagent.extensions"]`` in its
 ``pyproject.toml``) naming an ``Extension``: environment names (imported only when an agent
-asks for one), commands for the ``goalagent`` CLI, hooks that observe ``goalagent run``
-(reports, plots, periodic saving) with the ``run`` options they read, and the predicates
-``--save-beliefs`` writes. Entry points are read the first time something asks for them, so
-an extension's heavy dependencies (MuJoCo, OpenCV) load only when one of its environments or
-commands is used: the extension's own module must stay light.
+asks for one), Prolog libraries agents ``#import`` by name, commands for the ``goalagent``
+CLI, hooks that observe ``goalagent run`` (reports, plots, periodic saving) with the ``run``
+options they read, and the predicates ``--save-beliefs`` writes. Entry points are read the
+first time something asks for them, so an extension's heavy dependencies (MuJoCo, OpenCV)
+load only when one of its environments or commands is used: the extension's own module must
+stay light.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from importlib.metadata import entry_points
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -128,6 +130,8 @@ class Extension:
     Attributes:
         name: shown in messages about the extension.
         environments: environment name -> ``package.module:Class``, imported on first use.
+        prolog_libraries: Prolog files agents ``#import`` by their file name (``#import
+            "affordance.pl".``) when no file of that name is next to the program.
         add_commands: called with the ``goalagent`` Typer app to add commands or sub-apps.
         run_options: options added to ``goalagent run`` for this extension's hooks.
         run_hooks: factories (e.g. RunHook subclasses) of the hooks observing each run.
@@ -139,6 +143,7 @@ class Extension:
 
     name: str
     environments: Mapping[str, str] = field(default_factory=dict)
+    prolog_libraries: Sequence[Path] = ()
     add_commands: Callable[[typer.Typer], None] | None = None
     run_options: Sequence[RunOption] = ()
     run_hooks: Sequence[Callable[[], RunHook]] = ()
@@ -182,6 +187,16 @@ def installed_extensions() -> tuple[Extension, ...]:
 def saved_predicates() -> tuple[SavedPredicate, ...]:
     """Every predicate the installed extensions ask ``--save-beliefs`` to write."""
     return tuple(p for extension in installed_extensions() for p in extension.saved_predicates)
+
+
+def prolog_library(name: str) -> Path | None:
+    """The Prolog library file called ``name`` (e.g. ``affordance.pl``) that an installed
+    extension brings (the first, in extension-name order), or None."""
+    for extension in installed_extensions():
+        for library in extension.prolog_libraries:
+            if library.name == name:
+                return library
+    return None
 
 
 def _warn(message: str) -> None:

@@ -26,8 +26,8 @@ from goalagent.eis.terms import (
     percept_to_term,
 )
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
+from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
-from goalagent.kb.mentalstate import AgentDirectory, goal_count
 from goalagent.kb.terms import Atom, Struct, Term, Var
 from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
 
@@ -338,7 +338,7 @@ class MultiAgentSystem:
             else:
                 status = "stopped at the cycle limit"
             result.append(AgentSummary(agent.name, agent.cycle, agent.total_actions,
-                                       goal_count(agent.ms), status))
+                                       agent.ms.goal_count(), status))
         return result
 
     def close(self) -> None:

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 from goalagent.extensions import RunContext, RunHook
 from goalagent.kb.engine import get_engine
 from goalagent.kb.errors import Interrupted
-from goalagent.kb.interpreter import aborted_rule
+from goalagent.kb.rule_registry import aborted_rule
 from goalagent.kb.watchdog import watchdog
 
 if TYPE_CHECKING:

@@ -13,11 +13,8 @@ from __future__ import annotations
 
 import difflib
 import json
-import os
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
-from typing import IO
 
 from rich.console import Console
 from rich.text import Text
@@ -25,6 +22,7 @@ from rich.text import Text
 from goalagent.agent import Event, EventKind
 from goalagent.agent.events import show_term
 from goalagent.kb.terms import Term
+from ondisk import AtomicFile, check_target
 
 KINDS: dict[str, frozenset[EventKind]] = {
     "percepts": frozenset({EventKind.PERCEPTS}),
@@ -87,37 +85,6 @@ def _record(event: Event, text: str) -> dict:
     return record
 
 
-class _AtomicFile:
-    """A text file written in the same folder under a temporary name (made at the first
-    write), put in place by :meth:`close` (os.replace), so readers never see half a trace."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self._temporary = ""
-        self._stream: IO[str] | None = None
-
-    def write(self, line: str) -> None:
-        if self._stream is None:
-            handle, self._temporary = tempfile.mkstemp(
-                dir=self.path.parent, prefix=f".{self.path.name}.", suffix=".tmp")
-            self._stream = os.fdopen(handle, "w", encoding="utf-8")
-        self._stream.write(line)
-
-    def close(self) -> None:
-        if self._stream is None:
-            self.write("")
-        assert self._stream is not None
-        self._stream.close()
-        os.chmod(self._temporary, 0o666 & ~_umask())
-        os.replace(self._temporary, self.path)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 class TracePrinter:
     """A listener (``agent.listen``) writing the chosen events: to a Rich console (styled,
     never markup) or to a file (text, or JSON lines for ``.jsonl``)."""
@@ -128,7 +95,9 @@ class TracePrinter:
         self.idle = idle
         self.console = console if console is not None or file is not None else Console(
             highlight=False, soft_wrap=True, emoji=False)
-        self._file = _AtomicFile(file) if file is not None else None
+        self.path = None if file is None else check_target(file)
+        self._file: AtomicFile | None = None  # made at the first line (nothing to leave before)
+        self._failure: OSError | None = None
         self._json = file is not None and file.suffix in (".jsonl", ".json")
         self._percepts: dict[str, set[str]] = {}
 
@@ -138,9 +107,9 @@ class TracePrinter:
         text = self.text(event)
         if text is None:
             return
-        if self._file is not None:
+        if self.path is not None:
             line = json.dumps(_record(event, text)) if self._json else self.line(event, text)
-            self._file.write(line + "\n")
+            self._write(line + "\n")
         if self.console is not None:
             self.console.print(Text.assemble((event.agent, "dim"), " ",
                                              (f"#{event.cycle:<3}", "dim"), " ",
@@ -165,9 +134,32 @@ class TracePrinter:
             return None
         return event.text
 
-    def close(self) -> None:
-        """Put the trace file in place."""
-        if self._file is not None:
-            self._file.close()
-            self._file = None
+    def _write(self, line: str) -> None:
+        """Add a line to the trace file; after a write error (a full disk) the file is
+        dropped and :meth:`close` reports it, the run goes on."""
+        if self._failure is not None or self.path is None:
+            return
+        try:
+            if self._file is None:
+                self._file = AtomicFile(self.path)
+            self._file.write(line)
+        except OSError as error:
+            self._failure = error
+            if self._file is not None:
+                self._file.discard()
 
+    def close(self) -> None:
+        """Put the trace file in place; ``OSError`` if it could not be written (the file
+        that was there before is then left as it was)."""
+        if self.path is None:
+            return
+        self._write("")  # a trace with no line is still a file
+        path, self.path = self.path, None
+        if self._failure is None and self._file is not None:
+            try:
+                self._file.commit()
+            except OSError as error:
+                self._failure = error
+        if self._failure is not None:
+            reason = self._failure.strerror or self._failure
+            raise OSError(f"cannot write the trace file {path}: {reason}")

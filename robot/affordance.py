@@ -1,13 +1,15 @@
 """Affordance knowledge seen from Python: afford/6 rows, their history and its plot.
 
-The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in the language's library
-``goalagent/lib/affordance.pl`` and the agent program; this module only reads an agent's
+The reasoning itself (eq. 6.3, rules 6.2/6.4/6.12) is Prolog, in the library
+``robot/affordance.pl`` (which agents ``#import``, see ``robot/extension.py``) and the agent
+program; this module only reads an agent's
 ``afford/6`` beliefs, keeps their history for a plot, and declares ``afford/6`` to
 ``--save-beliefs`` (``AFFORD``), which writes them as Prolog facts.
 """
 
 from __future__ import annotations
 
+import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO
@@ -15,6 +17,7 @@ from typing import TYPE_CHECKING, BinaryIO
 from goalagent.extensions import SavedPredicate
 from goalagent.kb.facts import FactWatch
 from goalagent.kb.terms import Atom, Term
+from ondisk import write_atomically
 
 if TYPE_CHECKING:
     from goalagent.agent import Agent
@@ -155,7 +158,10 @@ class ReliabilityHistory:
         axes.set_title(title)
         axes.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
         figure.tight_layout()
-        if isinstance(path, Path):
-            path.parent.mkdir(parents=True, exist_ok=True)
-        figure.savefig(path, dpi=110, format="png")
+        if isinstance(path, Path):  # a file is put in place whole, never half drawn
+            picture = io.BytesIO()
+            figure.savefig(picture, dpi=110, format="png")
+            write_atomically(path, picture.getvalue())
+        else:
+            figure.savefig(path, dpi=110, format="png")
         plt.close(figure)

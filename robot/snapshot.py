@@ -14,7 +14,8 @@ import cv2
 import numpy as np
 
 from behaviours.perception import Observation, dark_region, observe_image
-from sim.scene import CanSpec
+from ondisk import write_atomically
+from sim.canspec import CanSpec
 
 SCALE = 2
 """The annotated PNG is this many times the camera frame's size (nearest-neighbour)."""
@@ -76,10 +77,12 @@ def render_snapshot(can: str | CanSpec, out: Path, seed: int = 0,
     finally:
         world.close()
     obs = observe_image(image)
+    encoded, png = cv2.imencode(".png", cv2.cvtColor(annotate(image, obs), cv2.COLOR_RGB2BGR))
+    if not encoded:
+        raise ValueError("could not encode the snapshot as PNG")
     try:
-        out.parent.mkdir(parents=True, exist_ok=True)
+        write_atomically(out, png.tobytes())
     except OSError as err:
-        raise ValueError(f"cannot create the folder for {str(out)!r}: {err.strerror}") from None
-    if not cv2.imwrite(str(out), cv2.cvtColor(annotate(image, obs), cv2.COLOR_RGB2BGR)):
-        raise ValueError(f"could not write the snapshot to {str(out)!r}")
+        raise ValueError(f"could not write the snapshot to {str(out)!r}: "
+                         f"{err.strerror or err}") from None
     return obs

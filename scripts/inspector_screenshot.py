@@ -22,6 +22,8 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as when
 from selenium.webdriver.support.ui import WebDriverWait
 
+from ondisk import write_atomically
+
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = ROOT / "docs" / "inspector.png"
 STEPS = 8
@@ -49,7 +51,7 @@ def main() -> int:
         assert process.stderr is not None
         try:
             line = process.stderr.readline()
-            match = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            match = re.search(r"http://127\.0\.0\.1:\d+/\?token=[\w-]+", line)
             if match is None:
                 print(line + process.stderr.read(), file=sys.stderr)
                 return 1
@@ -69,9 +71,7 @@ def main() -> int:
                 browser.find_element(By.ID, "query-input").send_keys(QUERY)
                 browser.find_element(By.ID, "query-send").click()
                 wait.until(when.text_to_be_present_in_element((By.ID, "query-result"), "A="))
-                partial = TARGET.with_name(f".{TARGET.stem}.partial.png")
-                browser.save_screenshot(str(partial))
-                os.replace(partial, TARGET)
+                write_atomically(TARGET, browser.get_screenshot_as_png())
             finally:
                 browser.quit()
         finally:

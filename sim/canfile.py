@@ -22,7 +22,7 @@ from pathlib import Path
 import jsonschema
 import yaml
 
-from sim.scene import MARKER_SIZE, CanSpec
+from sim.canspec import MARKER_SIZE, CanSpec
 
 CAN_DIR = Path(__file__).parent / "cans"
 SCHEMA_PATH = CAN_DIR / "can.schema.json"

@@ -40,7 +40,7 @@ LANES = (-0.225, -0.075, 0.075, 0.225)
 """The four lanes (y, m) the robot can stand in; a step sideways from the outer ones falls off."""
 START_X = 0.10
 """x (m) of the robot's centre at the start of every trial."""
-START_LANE = -0.225
+START_LANE = LANES[0]
 """The robot starts in the right-most lane, facing the box on the right (§3.5.8)."""
 DESTINATION_AHEAD = 0.40
 """The destination lies this far ahead of the start (§3.5.7)."""

@@ -1,7 +1,8 @@
 """One parameterised MJCF generator for garbage-can scenes (thesis Fig. 5.2 and beyond).
 
-Cans are data: each is a ``CanSpec`` read from a YAML file by ``sim.canfile`` (the five thesis
-cans and two new mechanisms ship in ``sim/cans/``); ``CANS`` holds the thesis's o1..o5.
+Cans are data: each is a ``CanSpec`` (``sim.canspec``) read from a YAML file by
+``sim.canfile`` (the five thesis cans and two new mechanisms ship in ``sim/cans/``); ``CANS``
+holds the thesis's o1..o5.
 
 World frame: the robot stands at negative x and faces +x ("forward"), +y is its left, +z up.
 Every scene holds a table, one can whose front face lies in the plane x = 0, a yellow ball on
@@ -30,27 +31,17 @@ Run ``python -m sim.scene`` to (re)write the generated scenes to ``sim/assets/<c
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
-from sim.mjcf import LIGHTING
-from sim.mjcf import box as _box
-from sim.mjcf import fmt as _v
-from sim.mjcf import look_at as _look_at
+from ondisk import write_atomically
+from sim.canfile import load_can, shipped_can_path
+from sim.canspec import MARKER_SIZE, TABLE_TOP, CanSpec
+from sim.mjcf import LIGHTING, box, fmt, look_at
 
-TABLE_TOP = 0.40
-"""Height of the table surface (m)."""
 WALL = 0.008
 """Thickness of the can walls (m)."""
 CAP = 0.002
 """Height of the dark caps on the back and side walls (the rim seen from above is dark)."""
-MARKER_SIZE: dict[str, tuple[float, float]] = {
-    "body": (0.08, 0.04),
-    "lid": (0.05, 0.02),
-    "handle": (0.10, 0.03),
-    "pedal": (0.05, 0.02),
-}
-"""Visible (width along y, height along z) of each part's colour marker, in metres."""
 MARKER_THICKNESS = 0.002
 HANDLE_DEPTH = 0.01
 """Thickness of the handle bar along x (thesis: 10 cm x 3 cm x 1 cm)."""
@@ -96,80 +87,8 @@ RGBA = {
 }
 
 
-MECHANISMS: dict[str, tuple[str, str]] = {
-    "push_lid": ("lid", "extend_arm"),
-    "lift_handle": ("handle", "lift_up"),
-    "pull_handle": ("handle", "contract_arm"),
-    "slide_lid": ("lid", "sweep_left"),  # or sweep_right, see CanSpec.slide
-    "pedal": ("pedal", "sweep_down"),
-}
-"""Each opening mechanism and the (part, action) that opens it: the can's functional pair."""
-
-
-@dataclass(frozen=True)
-class CanSpec:
-    """Geometry, mechanism and paint of one garbage can (lengths in metres, colours RGB 0..1).
-
-    Cans are data: ``sim.canfile`` reads them from YAML files (``sim/cans/*.yaml``).
-    """
-
-    name: str
-    mechanism: str
-    width: float
-    depth: float
-    height: float
-    lid_height: float
-    lid_marker_z: float
-    gear: float = 0.0
-    handle_drop: float = 0.13
-    slide: str = "left"
-    """Which way a sliding lid opens (``left`` or ``right``; slide_lid only)."""
-    pedal_z: float = 0.035
-    """Height of the pedal bar's centre above the table (pedal only)."""
-    body_colour: tuple[float, float, float] = (0.80, 0.80, 0.82)
-    lid_colour: tuple[float, float, float] = (0.93, 0.93, 0.90)
-    source: str = ""
-    """The file the can was read from (empty for a can made in code)."""
-
-    def __post_init__(self) -> None:
-        if self.mechanism not in MECHANISMS:
-            raise ValueError(f"unknown mechanism {self.mechanism!r}; known: "
-                             f"{', '.join(MECHANISMS)}")
-
-    @property
-    def parts(self) -> tuple[str, ...]:
-        """The can's parts: body and lid, plus a handle or a pedal if the mechanism has one."""
-        extra = {"lift_handle": ("handle",), "pull_handle": ("handle",), "pedal": ("pedal",)}
-        return ("body", "lid", *extra.get(self.mechanism, ()))
-
-    @property
-    def functional(self) -> tuple[str, str]:
-        """The (part, action) that opens the can."""
-        if self.mechanism == "slide_lid":
-            return "lid", f"sweep_{self.slide}"
-        return MECHANISMS[self.mechanism]
-
-    @property
-    def rim(self) -> float:
-        """World height of the rim (top of the body walls)."""
-        return TABLE_TOP + self.height
-
-    @property
-    def lid_joint(self) -> str:
-        """The joint that opens the lid: a hinge, or a slide for a sliding lid."""
-        return "lid_slide" if self.mechanism == "slide_lid" else "lid_hinge"
-
-    @property
-    def geared_joint(self) -> str | None:
-        """The joint geared to the lid (handle or pedal slide), if any."""
-        return {"lift_handle": "handle_slide", "pull_handle": "handle_slide",
-                "pedal": "pedal_slide", "slide_lid": "tab_slide"}.get(self.mechanism)
-
-
 def _load_cans() -> dict[str, CanSpec]:
     """The five thesis cans from their files (sim/cans/o1.yaml .. o5.yaml)."""
-    from sim.canfile import load_can, shipped_can_path
-
     return {name: load_can(shipped_can_path(name)) for name in ("o1", "o2", "o3", "o4", "o5")}
 
 
@@ -209,30 +128,30 @@ def _body_xml(c: CanSpec) -> list[str]:
     z0 = TABLE_TOP
     paint = _rgba(c.body_colour)
     rows = ['<body name="can_body" pos="0 0 0">']
-    rows.append(_box("body_bottom", (d / 2, 0, z0 + t / 2), (d / 2, w, t / 2), paint))
-    rows.append(_box("body_front", (t / 2, 0, z0 + h / 2), (t / 2, w, h / 2), paint))
+    rows.append(box("body_bottom", (d / 2, 0, z0 + t / 2), (d / 2, w, t / 2), paint))
+    rows.append(box("body_front", (t / 2, 0, z0 + h / 2), (t / 2, w, h / 2), paint))
     hb = (h - CAP) / 2  # back and side walls stop under a dark cap, seen only when open
-    rows.append(_box("body_back", (d - t / 2, 0, z0 + hb), (t / 2, w, hb), paint))
-    rows.append(_box("cap_back", (d - t / 2, 0, z0 + h - CAP / 2), (t / 2, w, CAP / 2),
+    rows.append(box("body_back", (d - t / 2, 0, z0 + hb), (t / 2, w, hb), paint))
+    rows.append(box("cap_back", (d - t / 2, 0, z0 + h - CAP / 2), (t / 2, w, CAP / 2),
                      RGBA["dark"]))
     for side, sign in (("left", 1), ("right", -1)):
         y = sign * (w - t / 2)
-        rows.append(_box(f"body_{side}", (d / 2, y, z0 + hb), (d / 2 - t, t / 2, hb),
+        rows.append(box(f"body_{side}", (d / 2, y, z0 + hb), (d / 2 - t, t / 2, hb),
                          paint))
-        rows.append(_box(f"cap_{side}", (d / 2, y, z0 + h - CAP / 2), (d / 2 - t, t / 2, CAP / 2),
+        rows.append(box(f"cap_{side}", (d / 2, y, z0 + h - CAP / 2), (d / 2 - t, t / 2, CAP / 2),
                          RGBA["dark"]))
     li = 0.001
     inner = (d / 2 - t - li, w - t - li)
-    rows.append(_box("liner_bottom", (d / 2, 0, z0 + t + li), (inner[0], inner[1], li),
+    rows.append(box("liner_bottom", (d / 2, 0, z0 + t + li), (inner[0], inner[1], li),
                      RGBA["dark"], collide=False))
     for name, cx, hx in (("liner_front", t + li, li), ("liner_back", d - t - li, li)):
-        rows.append(_box(name, (cx, 0, z0 + h / 2 + t / 2), (hx, inner[1], h / 2 - t / 2 - li),
+        rows.append(box(name, (cx, 0, z0 + h / 2 + t / 2), (hx, inner[1], h / 2 - t / 2 - li),
                          RGBA["dark"], collide=False))
     for name, sign in (("liner_left", 1), ("liner_right", -1)):
-        rows.append(_box(name, (d / 2, sign * (w - t - li), z0 + h / 2 + t / 2),
+        rows.append(box(name, (d / 2, sign * (w - t - li), z0 + h / 2 + t / 2),
                          (inner[0], li, h / 2 - t / 2 - li), RGBA["dark"], collide=False))
     mw, mh = MARKER_SIZE["body"]
-    rows.append(_box("marker_body", (-MARKER_THICKNESS / 2, 0, z0 + 0.20 * h),
+    rows.append(box("marker_body", (-MARKER_THICKNESS / 2, 0, z0 + 0.20 * h),
                      (MARKER_THICKNESS / 2, mw / 2, mh / 2), RGBA["red"], collide=False))
     rows.append(f'<site name="rim_front" pos="0 0 {z0 + h:.5g}" {SITE}/>')
     rows.append("</body>")
@@ -248,16 +167,16 @@ def _lid_xml(c: CanSpec) -> list[str]:
     zb = 0.0 if push else -lh  # z of the lid's underside in the hinge frame
     hinge_z = c.rim if push else c.rim + lh
     mw, mh = MARKER_SIZE["lid"]
-    rows = [f'<body name="lid" pos="{_v(d, 0, hinge_z)}">',
+    rows = [f'<body name="lid" pos="{fmt(d, 0, hinge_z)}">',
             f'<joint name="lid_hinge" type="hinge" axis="0 1 0" range="0 {LID_RANGE}" '
             f'limited="true" damping="1.0" frictionloss="0.25" armature="0.002" {HOLD}/>',
-            _box("lid_shell", (-d / 2, 0, zb + lh / 2), (d / 2, w, lh / 2), _rgba(c.lid_colour),
+            box("lid_shell", (-d / 2, 0, zb + lh / 2), (d / 2, w, lh / 2), _rgba(c.lid_colour),
                  extra=' mass="0.1"'),
-            _box("lid_underside", (-d / 2, 0, zb - 0.0011), (d / 2 - 0.001, w - 0.001, 0.001),
+            box("lid_underside", (-d / 2, 0, zb - 0.0011), (d / 2 - 0.001, w - 0.001, 0.001),
                  RGBA["dark"], collide=False),
-            _box("marker_lid", (-d - MARKER_THICKNESS / 2, 0, zb + c.lid_marker_z),
+            box("marker_lid", (-d - MARKER_THICKNESS / 2, 0, zb + c.lid_marker_z),
                  (MARKER_THICKNESS / 2, mw / 2, mh / 2), RGBA["blue"], collide=False),
-            f'<site name="lid_front" pos="{_v(-d, 0, zb)}" {SITE}/>',
+            f'<site name="lid_front" pos="{fmt(-d, 0, zb)}" {SITE}/>',
             "</body>"]
     return rows
 
@@ -272,18 +191,18 @@ def _slide_lid_xml(c: CanSpec) -> list[str]:
     axis = f"0 {1 if c.slide == 'left' else -1} 0"
     travel = SLIDE_TRAVEL * c.width
     paint = _rgba(c.lid_colour)
-    return [f'<body name="lid" pos="{_v(0, 0, c.rim)}">',
+    return [f'<body name="lid" pos="{fmt(0, 0, c.rim)}">',
             f'<joint name="lid_slide" type="slide" axis="{axis}" range="0 {travel:.5g}" '
             f'limited="true" damping="2" frictionloss="3" armature="0.02" {HOLD}/>',
-            _box("lid_shell", (d / 2, 0, lh / 2), (d / 2, w, lh / 2), paint, extra=' mass="0.1"'),
+            box("lid_shell", (d / 2, 0, lh / 2), (d / 2, w, lh / 2), paint, extra=' mass="0.1"'),
             f'<site name="lid_front" pos="0 0 0" {SITE}/>',
             "</body>",
-            f'<body name="lid_tab" pos="{_v(-TAB_GAP - TAB_DEPTH / 2, 0, c.rim + lh / 2)}">',
+            f'<body name="lid_tab" pos="{fmt(-TAB_GAP - TAB_DEPTH / 2, 0, c.rim + lh / 2)}">',
             f'<joint name="tab_slide" type="slide" axis="{axis}" range="0 {travel / c.gear:.5g}" '
             f'limited="true" damping="2" frictionloss="3" armature="0.02" {HOLD}/>',
-            _box("tab", (0, 0, 0), (TAB_DEPTH / 2, mw / 2, TAB_HALF_HEIGHT), paint,
+            box("tab", (0, 0, 0), (TAB_DEPTH / 2, mw / 2, TAB_HALF_HEIGHT), paint,
                  extra=' mass="0.01"'),
-            _box("marker_lid", (-TAB_DEPTH / 2 - MARKER_THICKNESS / 2, 0, 0),
+            box("marker_lid", (-TAB_DEPTH / 2 - MARKER_THICKNESS / 2, 0, 0),
                  (MARKER_THICKNESS / 2, mw / 2, mh / 2), RGBA["blue"], collide=False),
             "</body>"]
 
@@ -295,12 +214,12 @@ def _pedal_xml(c: CanSpec) -> list[str]:
     x = -HANDLE_GAP - PEDAL_DEPTH / 2
     y = c.width / 2 - pw / 2 - 0.015
     travel = min(LID_RANGE / c.gear, c.pedal_z - ph / 2 - PEDAL_CLEARANCE)
-    rows = [f'<body name="pedal" pos="{_v(x, y, TABLE_TOP + c.pedal_z)}">',
+    rows = [f'<body name="pedal" pos="{fmt(x, y, TABLE_TOP + c.pedal_z)}">',
             f'<joint name="pedal_slide" type="slide" axis="0 0 -1" range="0 {travel:.5g}" '
             f'limited="true" damping="2" frictionloss="6" armature="0.05" {HOLD}/>',
-            _box("marker_pedal", (0, 0, 0), (PEDAL_DEPTH / 2, pw / 2, ph / 2), RGBA["magenta"],
+            box("marker_pedal", (0, 0, 0), (PEDAL_DEPTH / 2, pw / 2, ph / 2), RGBA["magenta"],
                  extra=' mass="0.05"'),
-            _box("pedal_post", (PEDAL_DEPTH / 2 + HANDLE_GAP / 2, 0, 0),
+            box("pedal_post", (PEDAL_DEPTH / 2 + HANDLE_GAP / 2, 0, 0),
                  (HANDLE_GAP / 2, 0.005, ph / 2), RGBA["post"], extra=' mass="0.01"'),
             "</body>"]
     return rows
@@ -313,13 +232,13 @@ def _handle_xml(c: CanSpec) -> list[str]:
     axis = "0 0 1" if c.mechanism == "lift_handle" else "-1 0 0"
     travel = LID_RANGE / c.gear
     post_y = bw / 2 - 0.005
-    rows = [f'<body name="handle" pos="{_v(bx, 0, c.rim - c.handle_drop)}">',
+    rows = [f'<body name="handle" pos="{fmt(bx, 0, c.rim - c.handle_drop)}">',
             f'<joint name="handle_slide" type="slide" axis="{axis}" range="0 {travel:.5g}" '
             f'limited="true" damping="2" frictionloss="6" armature="0.05" {HOLD}/>',
-            _box("marker_handle", (0, 0, 0), (HANDLE_DEPTH / 2, bw / 2, bh / 2), RGBA["green"],
+            box("marker_handle", (0, 0, 0), (HANDLE_DEPTH / 2, bw / 2, bh / 2), RGBA["green"],
                  extra=' mass="0.05"')]
     for name, sign in (("handle_post_l", 1), ("handle_post_r", -1)):
-        rows.append(_box(name, (HANDLE_DEPTH / 2 + HANDLE_GAP / 2, sign * post_y, 0),
+        rows.append(box(name, (HANDLE_DEPTH / 2 + HANDLE_GAP / 2, sign * post_y, 0),
                          (HANDLE_GAP / 2, 0.005, bh / 2), RGBA["post"], extra=' mass="0.01"'))
     rows.append("</body>")
     return rows
@@ -343,32 +262,32 @@ def build_mjcf(can: str | CanSpec) -> str:
              "<worldbody>",
              '<light name="top" pos="0 0 2.2" dir="0 0 -1" diffuse="0.45 0.45 0.45" '
              'castshadow="false"/>',
-             _box("floor", (0, 0, -0.005), (2, 2, 0.005), RGBA["floor"]),
-             _box("table", (0.05, 0, TABLE_TOP / 2), (0.40, 0.55, TABLE_TOP / 2), RGBA["table"]),
-             _box("backdrop", (1.2, 0, 1.0), (0.01, 2.0, 1.0), RGBA["wall"], collide=False),
-             f'<camera name="head" pos="{_v(*HEAD_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
-             f'xyaxes="{_look_at(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>',
-             f'<camera name="close" pos="{_v(*CLOSE_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
-             f'xyaxes="{_look_at(CLOSE_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>']
+             box("floor", (0, 0, -0.005), (2, 2, 0.005), RGBA["floor"]),
+             box("table", (0.05, 0, TABLE_TOP / 2), (0.40, 0.55, TABLE_TOP / 2), RGBA["table"]),
+             box("backdrop", (1.2, 0, 1.0), (0.01, 2.0, 1.0), RGBA["wall"], collide=False),
+             f'<camera name="head" pos="{fmt(*HEAD_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
+             f'xyaxes="{look_at(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>',
+             f'<camera name="close" pos="{fmt(*CLOSE_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
+             f'xyaxes="{look_at(CLOSE_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>']
     parts += _body_xml(c)
     parts += _lid_xml(c)
     if "handle" in c.parts:
         parts += _handle_xml(c)
     if "pedal" in c.parts:
         parts += _pedal_xml(c)
-    parts += [f'<body name="hand" pos="{_v(hx, hy, hz)}" gravcomp="1">',
-              f'<joint name="arm_x" type="slide" axis="1 0 0" range="{_v(x0 - hx, x1 - hx)}" '
+    parts += [f'<body name="hand" pos="{fmt(hx, hy, hz)}" gravcomp="1">',
+              f'<joint name="arm_x" type="slide" axis="1 0 0" range="{fmt(x0 - hx, x1 - hx)}" '
               'damping="60"/>',
-              f'<joint name="arm_y" type="slide" axis="0 1 0" range="{_v(y0 - hy, y1 - hy)}" '
+              f'<joint name="arm_y" type="slide" axis="0 1 0" range="{fmt(y0 - hy, y1 - hy)}" '
               'damping="60"/>',
-              f'<joint name="arm_z" type="slide" axis="0 0 1" range="{_v(z0 - hz, z1 - hz)}" '
+              f'<joint name="arm_z" type="slide" axis="0 0 1" range="{fmt(z0 - hz, z1 - hz)}" '
               'damping="60"/>',
               f'<geom name="hand" type="sphere" size="{HAND_RADIUS}" mass="0.3" condim="1" '
               f'priority="1" rgba="{RGBA["hand"]}"/>',
               '<geom name="forearm" type="capsule" fromto="-0.012 0 0 -0.22 0 0.03" '
               f'size="0.009" rgba="{RGBA["arm"]}" contype="0" conaffinity="0" density="0"/>',
               "</body>",
-              f'<body name="ball" pos="{_v(-0.10, 0.22, TABLE_TOP + BALL_RADIUS)}">',
+              f'<body name="ball" pos="{fmt(-0.10, 0.22, TABLE_TOP + BALL_RADIUS)}">',
               '<freejoint name="ball_free"/>',
               f'<geom name="ball" type="sphere" size="{BALL_RADIUS}" mass="0.03" '
               f'rgba="{RGBA["ball"]}" condim="4"/>',
@@ -384,20 +303,20 @@ def build_mjcf(can: str | CanSpec) -> str:
     parts.append("</contact>")
     parts.append("<equality>")
     parts.append(f'<weld name="grip" body1="hand" body2="ball" active="false" '
-                 f'relpose="{_v(GRIP_OFFSET, 0, 0, 1, 0, 0, 0)}" solref="0.01 1"/>')
+                 f'relpose="{fmt(GRIP_OFFSET, 0, 0, 1, 0, 0, 0)}" solref="0.01 1"/>')
     if c.geared_joint is not None:
         parts.append(f'<joint name="gear" joint1="{c.lid_joint}" joint2="{c.geared_joint}" '
                      f'polycoef="0 {c.gear:.5g} 0 0 0" solref="0.005 1"/>')
     for part in HOLDABLE:  # anchors are set when the hand takes hold (GarbageWorld.hold)
         if part in c.parts:
             parts.append(f'<connect name="hold_{part}" body1="hand" body2="{part}" '
-                         f'anchor="0 0 0" active="false" solref="{_v(*HOLD_SOLREF)}"/>')
+                         f'anchor="0 0 0" active="false" solref="{fmt(*HOLD_SOLREF)}"/>')
     parts.append("</equality>")
     parts.append("<actuator>")
     for axis, (lo, hi), home in zip("xyz", ARM_RANGE, HOME, strict=True):
         parts.append(f'<position name="act_{axis}" joint="arm_{axis}" kp="{ARM_KP:g}" '
-                     f'ctrlrange="{_v(lo - home, hi - home)}" '
-                     f'forcerange="{_v(-ARM_FORCE, ARM_FORCE)}"/>')
+                     f'ctrlrange="{fmt(lo - home, hi - home)}" '
+                     f'forcerange="{fmt(-ARM_FORCE, ARM_FORCE)}"/>')
     parts.append("</actuator>")
     parts.append("</mujoco>")
     return "\n".join(parts) + "\n"
@@ -427,7 +346,7 @@ def write_assets() -> list[Path]:
     paths = []
     for can in thesis_cans():
         path = asset_path(can)
-        path.write_text(build_mjcf(can))
+        write_atomically(path, build_mjcf(can))
         paths.append(path)
     return paths
 

@@ -179,7 +179,6 @@ class StackingWorld(RenderedWorld):
         """Build the scene, everything in its initial place."""
         super().__init__(build_mjcf(), width, height)
         self._squat = self.model.joint("squat").qposadr[0]
-        self._push = self.model.joint("push").qposadr[0]
         self._lift = self.model.joint("lift").qposadr[0]
         self._bodies = {name: self.model.body(name).id for name in OBJECTS}
         self.reset()

@@ -1,4 +1,4 @@
-"""goalagent/lib/affordance.pl in a real mental state: eq. 6.3, parameters, bands, roulette.
+"""robot/affordance.pl in a real mental state: eq. 6.3, parameters, bands, roulette.
 
 The library is read the way ``#import "affordance.pl".`` reads it (parse_prolog_file) and
 loaded as knowledge into a MentalState, i.e. into the agent's own SWI-Prolog module.
@@ -15,10 +15,11 @@ from hypothesis import strategies as st
 from scipy.stats import chisquare
 
 from goalagent.ast import Pos, PrologText
+from goalagent.extensions import prolog_library
 from goalagent.kb.engine import PrologRuntimeError
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, format_term
-from goalagent.parser import LIBRARY, parse_prolog_file
+from goalagent.parser import parse_prolog_file
 
 ACTIONS = ["sweep_left", "sweep_right", "extend_arm", "contract_arm", "lift_up", "sweep_down"]
 
@@ -29,7 +30,7 @@ class AgentBeliefs:
     def __init__(self, knowledge: tuple[str, ...] = ()) -> None:
         extra = tuple(PrologText(c, Pos("<test>", i + 1, 1)) for i, c in enumerate(knowledge))
         self.ms = MentalState(
-            "afford_test", knowledge=parse_prolog_file(LIBRARY / "affordance.pl") + extra
+            "afford_test", knowledge=parse_prolog_file(prolog_library("affordance.pl")) + extra
         )
 
     def believe(self, obj: str, act: str, eff: str, tot: int, suc: int, rel: float) -> None:

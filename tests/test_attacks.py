@@ -227,3 +227,43 @@ def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
     finally:
         agent.close()
     assert len(warnings) == 1 and "repeats or pads 1,000,000,000" in warnings[0], warnings
+
+
+# Issue 24: goalagent check ran agent code (the undefined-call check loaded the agent
+# unconfined; adopting the initial goals ran knowledge rules), even under check --sandbox.
+CHECKED = """
+init module {
+    knowledge {
+        :- dynamic(seen/1).
+        :- shell('touch PWNED1').
+        :- initialization(shell('touch PWNED2')).
+        foo :- shell('touch PWNED3').
+        :- use_module(library(lists)).
+    }
+    beliefs { :- shell('touch PWNED4'). }
+    goals { foo. }
+}
+main module { program {
+    if bel(foo, sum_list([1], _), seen(_)) then print(x).
+    if bel(undefined_here(1)) then print(y).
+} }
+"""
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool):
+    (tmp_path / "evil.goal").write_text(CHECKED)
+    result = subprocess.run([sys.executable, "-m", "goalagent", "check", "evil.goal"]
+                            + ["--sandbox"] * sandbox, capture_output=True, text=True,
+                            timeout=120, cwd=tmp_path, stdin=subprocess.DEVNULL)
+    assert not list(tmp_path.glob("PWNED*")), result.stderr
+    assert "Traceback" not in result.stderr
+    if sandbox:  # refused, located; and still not run
+        assert result.returncode == 2
+        assert result.stderr.startswith("evil.goal:5:9: knowledge clause `:- shell(")
+        assert "not allowed in the sandbox" in result.stderr
+    else:  # declarations and library loads took effect: only the real undefined call
+        assert result.returncode == 0, result.stderr
+        assert result.stderr.splitlines() == [
+            "evil.goal:15:12: warning: undefined_here/1 is called but defined nowhere (not "
+            "built in, not in knowledge or beliefs, never inserted)", "evil.goal: ok"]

@@ -7,7 +7,7 @@ import ast
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("goalagent", "sim", "behaviours", "robot")
+PACKAGES = ("goalagent", "sim", "behaviours", "robot", "ondisk")
 MAX_FILE_LINES = 600
 MAX_CLASS_LINES = 400
 

@@ -8,11 +8,14 @@ import sys
 import textwrap
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
+from goalagent import extensions
 from goalagent.cli import create_app
 from goalagent.eis import load_environment
 from goalagent.extensions import Extension, RunContext, RunHook, RunOption, installed_extensions
+from goalagent.parser import GoalSyntaxError, parse_agent_file
 
 ROOT = Path(__file__).resolve().parents[1]
 HELLO = ROOT / "agents" / "examples" / "hello_world.goal"
@@ -69,7 +72,7 @@ def test_no_import_sets_an_environment_variable_and_the_garbage_environment_choo
             importlib.import_module(library)
         before = dict(os.environ)
         names = []
-        for package in ("goalagent", "sim", "behaviours", "robot"):
+        for package in ("goalagent", "sim", "behaviours", "robot", "ondisk"):
             names.append(package)
             module = importlib.import_module(package)
             for info in pkgutil.walk_packages(module.__path__, package + "."):
@@ -174,3 +177,30 @@ def test_a_broken_extension_is_a_warning_and_the_language_still_runs(tmp_path: P
             "not be loaded: ModuleNotFoundError: No module named 'no_such_module'"
             in result.stderr)
     assert "Traceback" not in result.stderr and f"{HELLO}: ok" in result.stderr
+
+
+def test_an_extension_brings_prolog_libraries_agents_import_by_name(tmp_path: Path,
+                                                                     monkeypatch) -> None:
+    library = tmp_path / "lib" / "greetings.pl"
+    library.parent.mkdir()
+    library.write_text("greeting(hello).\n")
+    extension = Extension(name="greeter", prolog_libraries=(library,))
+    monkeypatch.setattr(extensions, "installed_extensions", lambda: (extension,))
+    agent = tmp_path / "agents" / "greeter.goal"
+    agent.parent.mkdir()
+    agent.write_text('main: greeter {\n    knowledge { #import "greetings". }\n'
+                     "    main module [exit=always] { program { if true then print(hi). } }\n}\n")
+    program = parse_agent_file(agent)
+    assert [clause.text for clause in program.knowledge] == ["greeting(hello)"]
+    (agent.parent / "greetings.pl").write_text("greeting(next_to_the_program).\n")
+    program = parse_agent_file(agent)  # a file next to the program comes first
+    assert [clause.text for clause in program.knowledge] == ["greeting(next_to_the_program)"]
+    agent.write_text(agent.read_text().replace('"greetings"', '"farewells.pl"'))
+    with pytest.raises(GoalSyntaxError, match="cannot #import 'farewells.pl': no such file next "
+                       "to this program nor among the installed extensions' Prolog libraries"):
+        parse_agent_file(agent)
+
+
+def test_the_robot_brings_the_affordance_library():
+    assert extensions.prolog_library("affordance.pl") == ROOT / "robot" / "affordance.pl"
+    assert extensions.prolog_library("no_such_library.pl") is None

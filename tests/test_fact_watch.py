@@ -12,8 +12,8 @@ from rich.console import Console
 from goalagent.agent import Agent
 from goalagent.extensions import RunContext
 from goalagent.kb.terms import Atom, Struct
+from robot.afford_report import MAX_ROWS, AffordanceReport
 from robot.affordance import MAX_SERIES, ReliabilityHistory
-from robot.report import MAX_ROWS, AffordanceReport
 
 AGENT = "main module [exit=always] { program { if true then print(ok). } }\n"
 

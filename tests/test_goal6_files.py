@@ -275,14 +275,14 @@ def test_newest_dialect_bare_conditions_percept_rules_and_unspecified_actions(
 
 def test_goal5_module_file_is_still_checked_with_the_single_file_syntax(
         tmp_path: Path) -> None:
-    from goalagent.cli import _programs_to_check
+    from goalagent.checking import programs_to_check
 
     write(tmp_path, message_mod2g="""
         module message [exit=always] {
             program { if true then print(hi). }
         }
     """)
-    (program,) = _programs_to_check(tmp_path / "message.mod2g")
+    (program,) = programs_to_check(tmp_path / "message.mod2g")
     assert [m.name for m in program.modules] == ["message"]
 
 

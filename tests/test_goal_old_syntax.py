@@ -99,7 +99,7 @@ def test_an_agent_definition_named_with_a_capital() -> None:
 
 def test_a_goal_5_module_files_error_is_reported_where_it_is(tmp_path: Path) -> None:
     """The GOAL 6 reading stops at the first line; the GOAL 5 one gets to the real mistake."""
-    from goalagent.cli import _programs_to_check
+    from goalagent.checking import programs_to_check
 
     path = tmp_path / "orgReasoning.mod2g"
     path.write_text(textwrap.dedent("""
@@ -110,14 +110,14 @@ def test_a_goal_5_module_files_error_is_reported_where_it_is(tmp_path: Path) -> 
         }
     """))
     with pytest.raises(GoalSyntaxError) as err:
-        _programs_to_check(path)
+        programs_to_check(path)
     assert (err.value.line, err.value.col) == (4, 40)
 
 
 def test_a_goal_5_module_file_is_checked_in_the_agent_that_imports_it(tmp_path: Path) -> None:
     """OJAzzIC medic_capabilities.mod2g calls putDown, specified in unaware_medic.goal,
     which #imports it: the module is valid there; with no importer its error stands."""
-    from goalagent.cli import _programs_to_check
+    from goalagent.checking import programs_to_check
 
     module = tmp_path / "capabilities.mod2g"
     module.write_text(textwrap.dedent("""
@@ -126,7 +126,7 @@ def test_a_goal_5_module_file_is_checked_in_the_agent_that_imports_it(tmp_path: 
         }
     """))
     with pytest.raises(GoalSyntaxError, match="unknown action putDown/0") as err:
-        _programs_to_check(module)
+        programs_to_check(module)
     assert (err.value.line, err.value.col) == (3, 39)
     # an importer that lacks putDown too is passed over
     (tmp_path / "broken.goal").write_text('#import "capabilities.mod2g".\n'
@@ -136,7 +136,7 @@ def test_a_goal_5_module_file_is_checked_in_the_agent_that_imports_it(tmp_path: 
         main module { program { if true then locateInjured. } }
         #import "capabilities.mod2g".
     """))
-    (program,) = _programs_to_check(module)
+    (program,) = programs_to_check(module)
     assert program.file.endswith("medic.goal")
     assert [m.name for m in program.modules][-1] == "locateInjured"
 

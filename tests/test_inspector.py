@@ -1,7 +1,9 @@
 """``goalagent run --inspect`` end to end in Debian's headless Chromium (driven through
 chromedriver by Selenium): the page loads paused, steps a cycle, takes a breakpoint on a
 rule and stops there, answers a query, scrolls back through the history, and stays up
-after the agents end until Ctrl-C. Also: the robot's panels through the extension seam."""
+after the agents end until Ctrl-C. A page of another origin cannot open its socket, nor
+can a page reached through a foreign host name (DNS rebinding). Also: the robot's panels
+through the extension seam."""
 
 from __future__ import annotations
 
@@ -10,8 +12,12 @@ import re
 import signal
 import subprocess
 import sys
+import threading
 from collections.abc import Iterator
+from functools import partial
+from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
+from urllib.parse import urlsplit
 
 import pytest
 from selenium import webdriver
@@ -46,7 +52,7 @@ def inspected(tmp_path: Path) -> Iterator[tuple[subprocess.Popen, str]]:
         cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         line = process.stderr.readline()
-        match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        match = re.search(r"http://127\.0\.0\.1:(\d+)/\?token=[\w-]+", line)
         assert match, line + process.stderr.read()
         yield process, match.group(0)
     finally:
@@ -61,6 +67,8 @@ def browser(tmp_path: Path) -> Iterator[webdriver.Chrome]:
     options.binary_location = CHROMIUM
     for flag in FLAGS:
         options.add_argument(flag)
+    # a name of another site that resolves to this machine, as after a DNS rebinding
+    options.add_argument("--host-resolver-rules=MAP rebound.test 127.0.0.1")
     options.add_argument(f"--user-data-dir={tmp_path / 'chromium-profile'}")
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
     try:
@@ -154,3 +162,64 @@ def test_a_taken_port_is_a_clear_error(tmp_path: Path) -> None:
                                 text=True, timeout=120, env={**os.environ})
     assert result.returncode == 2, result.stderr
     assert "error: --inspect" in result.stderr and "Traceback" not in result.stderr
+
+
+# Served from another origin (another port of 127.0.0.1): it knows the inspector's address
+# and even its token, opens its socket and tries to run the agents and a query; the title
+# says what happened.
+FOREIGN_PAGE = """<!doctype html><title>waiting</title><script>
+const socket = new WebSocket("ws://127.0.0.1:PORT/ws?token=TOKEN");
+socket.onopen = () => { document.title = "opened";
+  socket.send(JSON.stringify({op: "run"}));
+  socket.send(JSON.stringify({op: "query", agent: "counter", text: "bel(count(X))"})); };
+socket.onmessage = (m) => { document.title = "answered " + m.data.slice(0, 40); };
+socket.onerror = () => { if (document.title === "waiting") document.title = "refused"; };
+</script>"""
+
+
+@pytest.fixture
+def foreign_site(tmp_path: Path) -> Iterator[tuple[Path, str]]:
+    """A local web server on another port: its folder and its address."""
+    folder = tmp_path / "site"
+    folder.mkdir()
+    handler = partial(SimpleHTTPRequestHandler, directory=str(folder))
+    handler.log_message = lambda *args: None  # type: ignore[attr-defined]
+    server = ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield folder, f"http://127.0.0.1:{server.server_address[1]}"
+    finally:
+        server.shutdown()
+        thread.join(timeout=10)
+
+
+def test_a_page_of_another_origin_cannot_open_the_socket(inspected, browser, foreign_site):
+    process, url = inspected
+    parts = urlsplit(url)
+    folder, site = foreign_site
+    (folder / "attack.html").write_text(FOREIGN_PAGE.replace("PORT", str(parts.port))
+                                        .replace("TOKEN", parts.query.split("=", 1)[1]))
+    browser.get(f"{site}/attack.html")
+    WebDriverWait(browser, 30).until(lambda driver: driver.title != "waiting")
+    assert browser.title == "refused"
+    # the run is where it was: paused before the first cycle
+    browser.get(url)
+    WebDriverWait(browser, 60).until(when.text_to_be_present_in_element(
+        (By.ID, "status"), "before the first cycle"))
+    assert "count(0)" in _text(browser, ".agent .beliefs")
+    assert process.poll() is None
+
+
+def test_a_page_reached_through_another_host_name_is_refused(inspected, browser):
+    # DNS rebinding: a page of rebound.test whose name now resolves to 127.0.0.1
+    _, url = inspected
+    parts = urlsplit(url)
+    browser.get(f"http://rebound.test:{parts.port}/?{parts.query}")
+    assert "forbidden" in browser.find_element(By.TAG_NAME, "body").text
+    assert "Host" in browser.find_element(By.TAG_NAME, "body").text
+    browser.get(url)  # the right address with the right token is served
+    WebDriverWait(browser, 60).until(when.text_to_be_present_in_element(
+        (By.ID, "status"), "before the first cycle"))
+    browser.get(f"http://127.0.0.1:{parts.port}/")  # without the token: refused
+    assert "token" in browser.find_element(By.TAG_NAME, "body").text

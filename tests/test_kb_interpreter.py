@@ -7,7 +7,8 @@ from __future__ import annotations
 import pytest
 
 from goalagent.events import EventKind, ProblemKind
-from goalagent.kb.interpreter import CompiledProgram, Firing, Problem, Step
+from goalagent.kb.interpreter import CompiledProgram
+from goalagent.kb.interpreter_requests import Firing, Problem, Step
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term
 from goalagent.parser import parse_agent

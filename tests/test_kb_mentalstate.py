@@ -297,7 +297,7 @@ def test_identity(empty: MentalState) -> None:
 
 
 def test_agents_of_a_directory_share_one_agent_list(empty: MentalState) -> None:
-    from goalagent.kb.mentalstate import AgentDirectory
+    from goalagent.kb.identity import AgentDirectory
 
     directory = AgentDirectory()
     with MentalState("other") as other:

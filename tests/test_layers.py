@@ -2,29 +2,33 @@
 
 ``lint-imports`` (pyproject.toml) checks the same contract in ``make test``; this check reads
 the sources itself with ``ast``, so imports inside functions and ``TYPE_CHECKING`` blocks count
-as much as those at the top of a module, and it runs with the suite.
+as much as those at the top of a module, and it runs with the suite. The same reading finds
+import cycles between files: every import that runs counts, inside functions too (an import
+under ``if TYPE_CHECKING:`` only names a type for annotations and never runs).
 """
 
 from __future__ import annotations
 
 import ast
 import sys
-from collections.abc import Iterator
+from collections.abc import Collection, Iterable, Iterator
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("goalagent", "sim", "behaviours", "robot")
+PACKAGES = ("goalagent", "sim", "behaviours", "robot", "ondisk")
 ALLOWED: dict[str, frozenset[str]] = {
-    "goalagent": frozenset(),  # the language knows no world, behaviour or robot
-    "sim": frozenset(),  # the worlds import nothing of ours
-    "behaviours": frozenset({"sim"}),
-    "robot": frozenset({"goalagent", "behaviours", "sim"}),  # the application, on top
+    "ondisk": frozenset(),  # files on disk, the lowest layer: imports nothing of ours
+    "goalagent": frozenset({"ondisk"}),  # the language knows no world, behaviour or robot
+    "sim": frozenset({"ondisk"}),  # the worlds import nothing of ours but ondisk
+    "behaviours": frozenset({"sim", "ondisk"}),
+    "robot": frozenset({"goalagent", "behaviours", "sim", "ondisk"}),  # the application, on top
 }
 LEARNERS = ("behaviours", "learners")
-LEARNER_LIBRARIES = frozenset({"numpy", "scipy", "sklearn"})
-"""Pure learners import only these, the standard library and other learners."""
+LEARNER_LIBRARIES = frozenset({"numpy", "scipy", "sklearn", "ondisk"})
+"""Pure learners import only these, the standard library and other learners (ondisk: their
+stores are written atomically like every other file)."""
 
 
 def module_name(path: Path) -> str:
@@ -33,21 +37,44 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def imported_modules(source: str, module: str, is_package: bool) -> Iterator[tuple[int, str]]:
-    """(line, absolute module name) of every import in ``source``, wherever it stands."""
+def imported_modules(source: str, module: str, is_package: bool, *, runtime_only: bool = False,
+                     submodules: Collection[str] = ()) -> Iterator[tuple[int, str]]:
+    """(line, absolute module name) of every import in ``source``, wherever it stands;
+    ``runtime_only``: not those in ``if TYPE_CHECKING:`` blocks (they never run); a name
+    ``from``-imported that is one of ``submodules`` counts as that module."""
     package = module if is_package else module.rpartition(".")[0]
-    for node in ast.walk(ast.parse(source)):
+    for node in _imports(ast.parse(source), runtime_only):
         if isinstance(node, ast.Import):
             for alias in node.names:
                 yield node.lineno, alias.name
-        elif isinstance(node, ast.ImportFrom):
+        else:
             if node.level:  # relative: resolve against this module's package
                 base = package.split(".")
                 base = base[: len(base) - node.level + 1]
                 target = ".".join(base + ([node.module] if node.module else []))
             else:
                 target = node.module or ""
-            yield node.lineno, target
+            for alias in node.names:
+                submodule = f"{target}.{alias.name}"
+                yield node.lineno, submodule if submodule in submodules else target
+
+
+def _imports(node: ast.AST, runtime_only: bool) -> Iterator[ast.Import | ast.ImportFrom]:
+    """The import statements in ``node`` (at any depth: in functions, classes, branches)."""
+    if isinstance(node, (ast.Import, ast.ImportFrom)):
+        yield node
+        return
+    children: Iterable[ast.AST] = ast.iter_child_nodes(node)
+    if runtime_only and isinstance(node, ast.If) and _is_type_checking(node.test):
+        children = node.orelse
+    for child in children:
+        yield from _imports(child, runtime_only)
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    """``TYPE_CHECKING`` or ``typing.TYPE_CHECKING``."""
+    return ((isinstance(test, ast.Name) and test.id == "TYPE_CHECKING")
+            or (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"))
 
 
 def broken_layers(source: str, module: str, is_package: bool = False) -> list[str]:
@@ -88,6 +115,30 @@ def package_graph() -> dict[str, set[str]]:
     return graph
 
 
+def file_graph(files: Iterable[tuple[str, str, bool]]) -> dict[str, set[str]]:
+    """Module -> the modules of the tree it imports when it runs (module ``files`` as
+    (name, source, is_package)), imports inside functions included; a package's
+    ``__init__`` is a module of its own."""
+    files = list(files)
+    modules = {module for module, _, _ in files}
+    graph: dict[str, set[str]] = {}
+    for module, source, is_package in files:
+        graph[module] = set()
+        for _, target in imported_modules(source, module, is_package, runtime_only=True,
+                                          submodules=modules):
+            while target not in modules and "." in target:
+                target = target.rpartition(".")[0]
+            if target in modules and target != module:
+                graph[module].add(target)
+    return graph
+
+
+def tree_files() -> Iterator[tuple[str, str, bool]]:
+    """The tree's modules as :func:`file_graph` reads them."""
+    for path, module in sources():
+        yield module, path.read_text(), path.name == "__init__.py"
+
+
 def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
     """One cycle of the graph as a path (first node repeated at the end), or None."""
     state: dict[str, str] = {}
@@ -121,9 +172,10 @@ def test_no_import_in_the_tree_breaks_a_layer():
 def test_the_package_graph_is_the_layer_picture_and_has_no_cycle():
     graph = package_graph()
     assert find_cycle(graph) is None
-    assert graph["robot"] == {"goalagent", "behaviours", "sim"}
-    assert graph["behaviours"] == {"sim"}
-    assert graph["goalagent"] == set() and graph["sim"] == set()
+    assert graph["robot"] == {"goalagent", "behaviours", "sim", "ondisk"}
+    assert graph["behaviours"] == {"sim", "ondisk"}
+    assert graph["goalagent"] == {"ondisk"} and graph["sim"] <= {"ondisk"}
+    assert graph["ondisk"] == set()
 
 
 @pytest.mark.parametrize(("module", "source", "expected"), [
@@ -137,6 +189,8 @@ def test_the_package_graph_is_the_layer_picture_and_has_no_cycle():
      "behaviours.learners.xcs:1 imports mujoco (learners are pure"),
     ("behaviours.learners.xcs", "from behaviours.skills import ACTION_TYPES\n",
      "behaviours.learners.xcs:1 imports behaviours.skills (learners are pure"),
+    ("ondisk.atomic", "def f():\n    import sim\n",
+     "ondisk.atomic:2 imports sim (ondisk may not use sim)"),
 ])
 def test_the_check_sees_imports_inside_functions_type_checking_and_relative(module, source,
                                                                             expected):
@@ -155,3 +209,19 @@ def test_allowed_imports_pass_the_check():
 def test_a_cycle_is_found():
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+def test_no_import_cycle_between_files():
+    assert find_cycle(file_graph(tree_files())) is None
+
+
+def test_a_file_cycle_hidden_in_a_function_is_found_and_one_of_annotations_is_not():
+    hidden = [("sim.scene", "def load():\n    from sim.canfile import load_can\n", False),
+              ("sim.canfile", "from sim.scene import CanSpec\n", False)]
+    assert find_cycle(file_graph(hidden)) == ["sim.canfile", "sim.scene", "sim.canfile"]
+    annotations = [("a.cycle", "from a.rules import RuleApplication\n", False),
+                   ("a.rules", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+                               "    from a.cycle import Agent\n", False)]
+    assert find_cycle(file_graph(annotations)) is None
+    submodule = [("a", "from a import b\n", True), ("a.b", "import a\n", False)]
+    assert find_cycle(file_graph(submodule)) == ["a", "a.b", "a"]

@@ -205,7 +205,7 @@ class KnownObjectDatabase:
         return known
 
     def _write(self, objects: Mapping[str, KnownObject]) -> None:
-        """Write the objects: a temporary file in the same folder, fsync, then os.replace."""
+        """Write the objects, all or nothing (``persist.write_text_atomically``)."""
         payload = {"format": DATABASE_FORMAT, "version": DATABASE_VERSION,
                    "objects": [known.to_record() for known in objects.values()]}
         text = json.dumps(payload, indent=1, allow_nan=False, default=_plain)

@@ -13,8 +13,9 @@ from __future__ import annotations
 import json
 import os
 import stat
-import tempfile
 from pathlib import Path
+
+from ondisk import write_atomically
 
 __all__ = [
     "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
@@ -25,8 +26,6 @@ FORMAT = "goalagent-learner"
 VERSION = 1
 MAX_STORE_BYTES = 64 * 2**20
 """Largest JSON store read (a model or learner file is a few kB to a few MB)."""
-_UMASK = os.umask(0)
-os.umask(_UMASK)
 
 
 class StoreFileError(ValueError):
@@ -85,35 +84,10 @@ def write_learner(path: str | os.PathLike[str], kind: str, params: dict, state: 
 
 
 def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
-    """A temporary file in the same folder, fsync, ``os.replace``, then fsync of the folder:
-    all or nothing, also after kill -9 or a power cut (the file keeps its mode, or gets
-    the default one, never the temporary file's 0600). Symbolic links are followed; a
-    target that is not a regular file (a device, a folder) is refused, never replaced."""
-    target = Path(os.path.realpath(path))
-    if target.exists() and not target.is_file():
-        raise OSError(f"{path} exists and is not a regular file: not replaced")
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    try:
-        try:
-            mode = stat.S_IMODE(os.stat(target).st_mode)
-        except OSError:
-            mode = 0o666 & ~_UMASK
-        os.fchmod(fd, mode)
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp_name, target)
-    except BaseException:
-        Path(tmp_name).unlink(missing_ok=True)
-        raise
-    folder = os.open(target.parent, os.O_RDONLY)
-    try:
-        os.fsync(folder)
-    finally:
-        os.close(folder)
-    return target
+    """Replace ``path`` by ``text`` all or nothing, also after kill -9 or a power cut
+    (``ondisk.write_atomically``: the file keeps its mode; a link, device, FIFO or folder
+    is refused, never replaced)."""
+    return write_atomically(path, text)
 
 
 def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:

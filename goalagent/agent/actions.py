@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Protocol
 
 from goalagent.agent.problems import warning_text
 from goalagent.events import ProblemKind
-from goalagent.kb.interpreter import Firing, Problem
+from goalagent.kb.interpreter_requests import Firing, Problem
 from goalagent.kb.terms import Atom, Struct, Term
 
 if TYPE_CHECKING:

@@ -37,7 +37,7 @@ from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import KBError, get_engine
-from goalagent.kb.interpreter import Problem
+from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Term, format_term
@@ -93,8 +93,11 @@ class Agent:
             self.ms = MentalState(self.name, knowledge=program.knowledge, beliefs=program.beliefs,
                                   limits=limits)
             self.ms.declare_updates(update_formulas(program))
-            for goal in program.goals:
-                self.ms.adopt(goal)
+            if self.ms.limits.runs_code:  # (adopting asks whether a goal is believed: code)
+                for goal in program.goals:
+                    self.ms.adopt(goal)
+            else:
+                self.ms.declare_updates(program.goals)
             self._rules = RuleApplication(self)
             self._event = program.module("event")
             self._main = program.module("main")
@@ -175,9 +178,11 @@ class Agent:
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str) -> list[Bindings]:
-        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values."""
-        return self.ms.query(op, text)
+    def query(self, op: str, text: str, *, confined: bool = False) -> list[Bindings]:
+        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values;
+        ``confined``: checked as the agent's own code is, in its sandbox if it has one (a
+        query a user types in the debugger or the inspector)."""
+        return self.ms.query(op, text, trusted=not confined)
 
     def beliefs(self) -> list[Term]:
         return self.ms.beliefs()

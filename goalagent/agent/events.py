@@ -13,7 +13,7 @@ from typing import Protocol
 from goalagent import ast
 from goalagent.agent.reports import describe, describe_firing
 from goalagent.events import EventKind
-from goalagent.kb.interpreter import Step
+from goalagent.kb.interpreter_requests import Step
 from goalagent.kb.terms import Struct, Term, Var, format_term
 
 _SHOWN_INSTANTIATIONS = 5  # a tried rule's line shows this many instantiations at most

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Protocol
 from goalagent.agent.actions import ActionFailed
 from goalagent.agent.problems import warning_text
 from goalagent.events import ProblemKind
-from goalagent.kb.interpreter import Firing, Problem
+from goalagent.kb.interpreter_requests import Firing, Problem
 from goalagent.kb.terms import Struct, Term, Var, format_term
 
 if TYPE_CHECKING:

@@ -12,7 +12,7 @@ from goalagent import ast
 from goalagent.agent.events import module_event
 from goalagent.agent.reports import describe
 from goalagent.events import EventKind
-from goalagent.kb.interpreter import Firing
+from goalagent.kb.interpreter_requests import Firing
 from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Struct, Term
 

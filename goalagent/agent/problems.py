@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from goalagent import ast
 from goalagent.events import ProblemKind
-from goalagent.kb.interpreter import Problem
+from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.terms import format_term
 
 

@@ -14,7 +14,8 @@ from goalagent.agent.errors import AgentError
 from goalagent.agent.events import interpreter_event
 from goalagent.agent.problems import warning_text
 from goalagent.agent.reports import RunRecord, Span
-from goalagent.kb.interpreter import CompiledProgram, Firing, Problem, RunOutcome, Step
+from goalagent.kb.interpreter import CompiledProgram, RunOutcome
+from goalagent.kb.interpreter_requests import Firing, Problem, Step
 from goalagent.kb.terms import Term
 
 if TYPE_CHECKING:
@@ -49,7 +50,7 @@ class _CyclePlans(dict):
 
 class RuleApplication:
     """Runs one agent's modules on the interpreter and answers what it asks (this object is
-    the agent's :class:`~goalagent.kb.interpreter.Requests`)."""
+    the agent's :class:`~goalagent.kb.interpreter_requests.Requests`)."""
 
     def __init__(self, agent: Agent) -> None:
         self._agent = agent

@@ -7,8 +7,9 @@ changes, entities appearing, being freed or deleted, and percepts the environmen
 
 Subclasses implement the world in a few hooks: ``do_init``, ``do_start``, ``do_pause``,
 ``do_kill``, ``do_reset``, ``percepts_for_entity`` and ``perform_entity_action``; the base class
-does the bookkeeping and checking. Everything runs on the caller's thread (pyswip is not
-thread-safe, so environments must not call listeners from other threads).
+does the bookkeeping and checking (entities and agents in relations.py, its base).
+Everything runs on the caller's thread (pyswip is not thread-safe, so environments must not
+call listeners from other threads).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from goalagent.eis.exceptions import (
     RelationException,
     TranslationException,
 )
+from goalagent.eis.relations import EntityRelations, tell
 from goalagent.eis.terms import Action, Parameter, Percept, to_parameter
 
 __all__ = [
@@ -92,24 +94,14 @@ class AgentListener(Protocol):
         """``percept`` arrived for ``agent``."""
 
 
-def _call(listener: object, method: str, *args: object) -> None:
-    """Call ``listener.method(*args)`` when the listener has that method (Protocols are loose)."""
-    handler = getattr(listener, method, None)
-    if handler is not None:
-        handler(*args)
-
-
-class Environment:
+class Environment(EntityRelations):
     """Base of all environments: state machine, entities, agents, percepts, actions, listeners."""
 
     name: str = "environment"
 
     def __init__(self) -> None:
+        super().__init__()
         self._state = EnvironmentState.INITIALIZING
-        self._entities: dict[str, str] = {}
-        self._agents: dict[str, list[str]] = {}
-        self._env_listeners: list[object] = []
-        self._agent_listeners: dict[str, list[object]] = {}
         self.params: dict[str, Parameter] = {}
         # The folder of the program that starts the environment (a .mas2g's), where a file
         # named by an init parameter is looked for first: GOAL looks next to the
@@ -164,7 +156,7 @@ class Environment:
         self._check_transition(new)
         self._state = new
         for listener in list(self._env_listeners):
-            _call(listener, "handle_state_change", new)
+            tell(listener, "handle_state_change", new)
 
     def _check_transition(self, new: EnvironmentState) -> None:
         """Raise ManagementException now if moving to ``new`` would be invalid."""
@@ -243,122 +235,6 @@ class Environment:
         self.params = merged
         self._set_state(EnvironmentState.PAUSED)
 
-    # ---- entities ---------------------------------------------------------------------------
-
-    def entities(self) -> list[str]:
-        """All entities, in the order they appeared."""
-        return list(self._entities)
-
-    def entity_type(self, entity: str) -> str:
-        """The type of ``entity``."""
-        self._require_entity(entity, EntityException)
-        return self._entities[entity]
-
-    def _require_entity(self, entity: str, error: type[EnvironmentInterfaceException]) -> None:
-        if entity not in self._entities:
-            known = ", ".join(self._entities) or "none"
-            raise error(
-                f"environment '{self.name}' has no entity '{entity}' (entities: {known})"
-            )
-
-    def _require_agent(self, agent: str, error: type[EnvironmentInterfaceException]) -> None:
-        if agent not in self._agents:
-            raise error(f"agent '{agent}' is not registered with environment '{self.name}'")
-
-    def add_entity(self, entity: str, type: str = "entity") -> None:
-        """Add a new entity of ``type`` and tell the environment listeners."""
-        if entity in self._entities:
-            raise EntityException(f"environment '{self.name}' already has entity '{entity}'")
-        self._entities[entity] = type
-        for listener in list(self._env_listeners):
-            _call(listener, "handle_new_entity", entity, type)
-
-    def delete_entity(self, entity: str) -> None:
-        """Remove ``entity`` and its associations, and tell the listeners which agents had it."""
-        self._require_entity(entity, EntityException)
-        agents = self._drop_associations(entity)
-        del self._entities[entity]
-        for listener in list(self._env_listeners):
-            _call(listener, "handle_deleted_entity", entity, agents)
-
-    def free_entity(self, entity: str) -> None:
-        """Dissociate every agent from ``entity`` and tell the listeners which agents had it."""
-        self._require_entity(entity, EntityException)
-        agents = self._drop_associations(entity)
-        if not agents:
-            raise RelationException(f"entity '{entity}' is not associated with any agent")
-        self._notify_free(entity, agents)
-
-    def _drop_associations(self, entity: str) -> list[str]:
-        agents = [agent for agent, ents in self._agents.items() if entity in ents]
-        for agent in agents:
-            self._agents[agent].remove(entity)
-        return agents
-
-    def _notify_free(self, entity: str, agents: list[str]) -> None:
-        for listener in list(self._env_listeners):
-            _call(listener, "handle_free_entity", entity, agents)
-
-    # ---- agents -------------------------------------------------------------------------------
-
-    def agents(self) -> list[str]:
-        """All registered agents, in registration order."""
-        return list(self._agents)
-
-    def register_agent(self, agent: str) -> None:
-        """Register ``agent`` so it can be associated with entities."""
-        if agent in self._agents:
-            raise AgentException(
-                f"agent '{agent}' is already registered with environment '{self.name}'"
-            )
-        self._agents[agent] = []
-
-    def unregister_agent(self, agent: str) -> None:
-        """Unregister ``agent``, freeing its entities and dropping its listeners."""
-        self._require_agent(agent, AgentException)
-        self.free_agent(agent)
-        del self._agents[agent]
-        self._agent_listeners.pop(agent, None)
-
-    def associate_entity(self, agent: str, entity: str) -> None:
-        """Let ``agent`` perceive and act through ``entity`` (an entity may have several agents)."""
-        self._require_agent(agent, RelationException)
-        self._require_entity(entity, RelationException)
-        if entity in self._agents[agent]:
-            raise RelationException(f"agent '{agent}' is already associated with '{entity}'")
-        self._agents[agent].append(entity)
-
-    def free_agent(self, agent: str) -> None:
-        """Dissociate ``agent`` from all its entities; entities left without agents are freed."""
-        self._require_agent(agent, RelationException)
-        for entity in list(self._agents[agent]):
-            self.free_pair(agent, entity)
-
-    def free_pair(self, agent: str, entity: str) -> None:
-        """Dissociate ``agent`` from ``entity``; tell the listeners if the entity is now free."""
-        self._require_agent(agent, RelationException)
-        self._require_entity(entity, RelationException)
-        if entity not in self._agents[agent]:
-            raise RelationException(f"agent '{agent}' is not associated with '{entity}'")
-        self._agents[agent].remove(entity)
-        if not self.associated_agents(entity):
-            self._notify_free(entity, [agent])
-
-    def associated_entities(self, agent: str) -> list[str]:
-        """The entities ``agent`` is associated with, in association order."""
-        self._require_agent(agent, AgentException)
-        return list(self._agents[agent])
-
-    def associated_agents(self, entity: str) -> list[str]:
-        """The agents associated with ``entity``, in registration order."""
-        self._require_entity(entity, EntityException)
-        return [agent for agent, ents in self._agents.items() if entity in ents]
-
-    def free_entities(self) -> list[str]:
-        """Entities no agent is associated with."""
-        taken = {entity for ents in self._agents.values() for entity in ents}
-        return [entity for entity in self._entities if entity not in taken]
-
     # ---- listeners --------------------------------------------------------------------------
 
     def attach_environment_listener(self, listener: EnvironmentListener) -> None:
@@ -390,7 +266,7 @@ class Environment:
             self._require_agent(agent, AgentException)
         for agent in agents or tuple(self._agents):
             for listener in list(self._agent_listeners.get(agent, ())):
-                _call(listener, "handle_percept", agent, percept)
+                tell(listener, "handle_percept", agent, percept)
 
     def notify_agents_via_entity(self, percept: Percept, *entities: str) -> None:
         """Push ``percept`` to the agents associated with ``entities`` (each agent once)."""
@@ -403,19 +279,6 @@ class Environment:
             self.notify_agents(percept, *targets)
 
     # ---- perceiving and acting --------------------------------------------------------------
-
-    def _targets(
-        self, agent: str, entities: tuple[str, ...], error: type[EnvironmentInterfaceException]
-    ) -> list[str]:
-        """The entities ``agent`` addresses: the given ones (checked) or all its associated."""
-        self._require_agent(agent, error)
-        if not entities:
-            return list(self._agents[agent])
-        for entity in entities:
-            self._require_entity(entity, error)
-            if entity not in self._agents[agent]:
-                raise error(f"agent '{agent}' is not associated with entity '{entity}'")
-        return list(entities)
 
     def get_all_percepts(self, agent: str, *entities: str) -> dict[str, list[Percept]]:
         """The current percepts of ``agent``'s entities (all associated ones if none given)."""

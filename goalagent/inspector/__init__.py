@@ -76,8 +76,14 @@ class Inspector:
         debugger.on_event = self._event
         debugger.on_cycle = self._cycle_ended
         self.port = self.server.start()
-        self.console.print(f"inspector: http://{self.host}:{self.port}/ (the run starts "
-                           "paused; Ctrl-C stops)", markup=False)
+        self.console.print(f"inspector: {self.url} (the run starts paused; Ctrl-C stops)",
+                           markup=False)
+
+    @property
+    def url(self) -> str:
+        """The page's address with the run's token (nothing else is served)."""
+        host = f"[{self.host}]" if ":" in self.host else self.host
+        return f"http://{host}:{self.port}/?token={self.server.token}"
 
     # ------------------------------------------------------------------ debugger front end
     def wait(self, debugger: Debugger, stop: Stop) -> None:
@@ -85,7 +91,9 @@ class Inspector:
         self._stop = stop
         self._publish(debugger)
         while True:
-            command = self.server.commands.get()
+            command = self._next_command()
+            if command is None:
+                continue
             if self._carry_out(debugger, command):
                 self._stop = None
                 self._publish(debugger)
@@ -97,18 +105,25 @@ class Inspector:
         self._stop = None
         self._publish(debugger)
         self.console.print(f"inspector: the agents have ended; the page stays up at "
-                           f"http://{self.host}:{self.port}/ until Ctrl-C", markup=False)
+                           f"{self.url} until Ctrl-C", markup=False)
         try:
             while True:
-                try:
-                    command = self.server.commands.get(timeout=0.5)
-                except queue.Empty:
-                    continue
-                self._carry_out(debugger, command)
+                command = self._next_command()
+                if command is not None:
+                    self._carry_out(debugger, command)
         except KeyboardInterrupt:
             self.console.print("inspector: stopped", markup=False)
         finally:
             self.server.stop()
+
+    def _next_command(self) -> Command | None:
+        """The next browser command, or None after half a second without one. Never an
+        endless wait: after an agent's shell/1, SWI-Prolog leaves SIGINT's handler
+        restarting interrupted system calls, and Ctrl-C would not end a wait for a lock."""
+        try:
+            return self.server.commands.get(timeout=0.5)
+        except queue.Empty:
+            return None
 
     # ------------------------------------------------------------------ observing
     def _event(self, event: Event) -> None:

@@ -5,7 +5,8 @@ The agents run on another thread (Prolog is bound to it): the server never touch
 agent. It keeps the latest state and the history the run thread publishes, pushes each
 state to every browser, answers history requests itself, and hands every other command
 (step, run, pause, breakpoints, queries) to the run thread through a queue; their replies
-come back through :meth:`InspectorServer.reply`.
+come back through :meth:`InspectorServer.reply`. Every request passes ``gate.Gate`` first (the
+inspector's own Host and Origin, the run's token); every message is bounded (``gate``).
 """
 
 from __future__ import annotations
@@ -25,7 +26,22 @@ from starlette.responses import HTMLResponse
 from starlette.routing import Route, WebSocketRoute
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from goalagent.inspector.gate import (
+    MAX_FRAME,
+    MAX_SOCKETS,
+    RATE,
+    Budget,
+    Gate,
+    new_token,
+    parse_message,
+)
+
 HISTORY_LIMIT = 5000  # cycles kept for scrolling back (oldest dropped first)
+COMMANDS_WAITING = 1000  # commands queued for the run thread at most (beyond: an error)
+# What the page is served with: never framed by another page, never cached, no referrer.
+_PAGE_HEADERS = {"Content-Security-Policy": "frame-ancestors 'none'",
+                 "X-Frame-Options": "DENY", "Cache-Control": "no-store",
+                 "Referrer-Policy": "no-referrer", "X-Content-Type-Options": "nosniff"}
 
 
 class Command:
@@ -41,7 +57,8 @@ class InspectorServer:
 
     def __init__(self, host: str, port: int) -> None:
         self.host = host
-        self.commands: queue.Queue[Command] = queue.Queue()
+        self.token = new_token()
+        self.commands: queue.Queue[Command] = queue.Queue(maxsize=COMMANDS_WAITING)
         self._state: dict[str, Any] = {"type": "state", "agents": [], "paused": True}
         self._history: deque[dict[str, Any]] = deque(maxlen=HISTORY_LIMIT)
         self._lock = threading.Lock()
@@ -49,9 +66,11 @@ class InspectorServer:
         self._loop: asyncio.AbstractEventLoop | None = None
         self._page = files("goalagent.inspector").joinpath("page.html").read_text("utf-8")
         app = Starlette(routes=[Route("/", self._index), WebSocketRoute("/ws", self._socket)])
-        self._server = uvicorn.Server(uvicorn.Config(app, host=host, port=port,
+        self._gate = Gate(app, host, self.token)
+        self._server = uvicorn.Server(uvicorn.Config(self._gate, host=host, port=port,
                                                      log_level="warning", lifespan="off",
-                                                     ws="websockets-sansio"))
+                                                     ws="websockets-sansio",
+                                                     ws_max_size=MAX_FRAME))
         self._thread = threading.Thread(target=self._serve, name="inspector", daemon=True)
 
     # ------------------------------------------------------------------ life
@@ -63,7 +82,8 @@ class InspectorServer:
             if not self._thread.is_alive() or time.monotonic() > deadline:
                 raise OSError(f"the inspector could not listen on {self.host}")
             time.sleep(0.02)
-        return self._server.servers[0].sockets[0].getsockname()[1]
+        self._gate.port = self._server.servers[0].sockets[0].getsockname()[1]
+        return self._gate.port
 
     def stop(self) -> None:
         self._server.should_exit = True
@@ -97,25 +117,41 @@ class InspectorServer:
 
     # ------------------------------------------------------------------ web
     async def _index(self, request) -> HTMLResponse:
-        return HTMLResponse(self._page)
+        return HTMLResponse(self._page, headers=_PAGE_HEADERS)
 
     async def _socket(self, socket: WebSocket) -> None:
+        if len(self._sockets) >= MAX_SOCKETS:
+            await socket.close(code=1013, reason="too many inspector pages open")
+            return
         await socket.accept()
         self._sockets.add(socket)
         with self._lock:
             state = self._state
         await self._send(socket, state)
+        budget = Budget()
         try:
             while True:
-                message = json.loads(await socket.receive_text())
-                if not isinstance(message, dict):
+                frame = await socket.receive()
+                if frame["type"] == "websocket.disconnect":
+                    break
+                if not budget.take():
+                    if budget.warn():
+                        await self._send(socket, _error(f"too many messages: at most "
+                                                        f"{RATE:g} a second"))
                     continue
-                if message.get("op") == "history":
+                message = parse_message(frame)
+                if isinstance(message, str):
+                    await self._send(socket, _error(message))
+                elif message["op"] == "history":
                     await self._send(socket, self._history_entry(message.get("index")))
                 else:
-                    self.commands.put(Command(message, socket))
-        except (WebSocketDisconnect, json.JSONDecodeError):
-            pass
+                    try:
+                        self.commands.put_nowait(Command(message, socket))
+                    except queue.Full:
+                        await self._send(socket, _error("the run is busy: too many "
+                                                        "commands waiting"))
+        except (WebSocketDisconnect, RuntimeError, OSError):
+            pass  # the browser went away
         finally:
             self._sockets.discard(socket)
 
@@ -131,7 +167,7 @@ class InspectorServer:
                 position = index - self._history[0]["index"]
                 if 0 <= position < len(self._history):
                     return {"type": "history", "snapshot": self._history[position]}
-        return {"type": "error", "text": f"no cycle {index} in the history"}
+        return _error(f"no cycle {index} in the history")
 
     def _send_all(self, message: dict[str, Any]) -> None:
         if self._loop is None:
@@ -145,3 +181,7 @@ class InspectorServer:
             await socket.send_text(json.dumps(message))
         except (RuntimeError, WebSocketDisconnect, OSError):
             pass  # the browser went away
+
+
+def _error(text: str) -> dict[str, Any]:
+    return {"type": "error", "text": text}

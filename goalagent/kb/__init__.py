@@ -2,10 +2,13 @@
 
 - ``engine.py``: the process's one SWI-Prolog (``get_engine()``): syntax checks with SWI's own
   reader (``check_clause``/``check_query`` -> variable names, ``PrologSyntaxError.offset``),
-  ``parse_term``, ``write``, the Python <-> Prolog term conversion (raw C interface) and
-  foreign predicates (Prolog calling Python).
+  ``parse_term``, ``write``; on ``calls.py`` (queries, errors, foreign predicates: Prolog
+  calling Python) and ``conversion.py`` (the Python <-> Prolog term conversion, raw C
+  interface).
 - ``mentalstate.py`` + ``mentalstate*.pl``: ``MentalState``, one agent's knowledge, beliefs,
-  goal bases, percepts and mailbox in two private Prolog modules.
+  goal bases, percepts and mailbox in two private Prolog modules, joined from one part per
+  job: ``prolog_modules.py`` (the modules, loaded and freed), ``conditions.py``,
+  ``beliefbase.py``, ``goalbases.py``, ``percepts_and_mail.py``, ``identity.py``.
 - ``interpreter.py`` + ``rules.pl``: the one rule interpreter; ``CompiledProgram`` compiles
   a program's rules and runs module passes in one call, asking its ``Requests`` for what
   only Python does.
@@ -29,6 +32,7 @@ Typical use::
 Errors are ``KBError`` (``PrologSyntaxError``, ``PrologRuntimeError`` with SWI's message).
 """
 
+from goalagent.kb.conditions import CompiledCondition
 from goalagent.kb.engine import (
     Engine,
     KBError,
@@ -36,7 +40,7 @@ from goalagent.kb.engine import (
     PrologSyntaxError,
     get_engine,
 )
-from goalagent.kb.mentalstate import CompiledCondition, MentalState
+from goalagent.kb.mentalstate import MentalState
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
 __all__ = [

@@ -1,65 +1,33 @@
-"""The one SWI-Prolog engine of the process: syntax checks, queries, error mapping, foreign
-predicates.
+"""The one SWI-Prolog engine of the process: start-up, syntax checks, parsing and writing
+terms, on top of the calls both ways (calls.py).
 
 pyswip loads and initialises ``libswipl`` (see clib.py, the only module that imports it);
 the engine then talks to the C foreign interface directly through ctypes (the string API
 costs 40-80 µs a call; this path a few µs). Terms crossing the seam are
-``goalagent.kb.terms`` values, converted in conversion.py (the engine's base class).
-Every query is opened, drained or cut, and closed inside one Python call, with
-``debug_on_error`` off and exceptions caught, so Prolog never enters the tracer.
+``goalagent.kb.terms`` values, converted in conversion.py (the base of calls.py's
+``PrologCalls``). Every query is opened, drained or cut, and closed inside one Python call,
+with ``debug_on_error`` off and exceptions caught, so Prolog never enters the tracer.
 """
 
 from __future__ import annotations
 
-import ctypes
 import threading
-from collections.abc import Callable, Sequence
-from ctypes import c_size_t, c_void_p
 from pathlib import Path
-from threading import get_ident
-from time import monotonic
 
+from goalagent.kb.calls import PrologCalls
 from goalagent.kb.clib import (
-    INT_BUF,
-    INT_REF,
-    Q_CATCH,
-    Q_PASS,
-    TEXT_FLAGS,
-    PL_call_predicate,
-    PL_clear_exception,
-    PL_cut_query,
     PL_discard_foreign_frame,
-    PL_erase,
-    PL_exception,
-    PL_get_int64,
-    PL_is_acyclic,
     PL_new_term_ref,
-    PL_new_term_refs,
-    PL_next_solution,
     PL_open_foreign_frame,
-    PL_open_query,
-    PL_predicate,
-    PL_put_atom,
-    PL_put_term,
-    PL_raise_exception,
     PL_record,
-    PL_recorded,
-    PL_register_foreign_in_module,
-    PL_thread_attach_engine,
-    PL_thread_self,
-    PL_unify,
-    PL_unregister_atom,
-    term_t,
-    text_of,
 )
-from goalagent.kb.conversion import Kept, Record, TermConversion
-from goalagent.kb.errors import Interrupted, KBError, PrologRuntimeError, PrologSyntaxError
-from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.kb.conversion import Kept, Record
+from goalagent.kb.errors import KBError, PrologRuntimeError, PrologSyntaxError
+from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = [
     "Engine",
     "Kept",
-    "define_foreign",
     "Record",
     "KBError",
     "PrologRuntimeError",
@@ -72,34 +40,14 @@ _PARSE_CACHE_MAX = 20_000
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
 _GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts, limits
 _CONFINE = Path(__file__).with_name("confine.pl")  # what agents' Prolog may call
-_PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
-
-# A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
-_FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, term_t, term_t)
 
 
-class Engine(TermConversion):
+class Engine(PrologCalls):
     """The process's SWI-Prolog: one per process (see :func:`get_engine`), one thread at a time."""
 
     def __init__(self) -> None:
         super().__init__()
-        self._thread = get_ident()
-        if PL_thread_self() == -1:  # made in another thread than SWI's first one
-            self._attach_thread()
-        self._preds: dict[tuple[str, int, str], int] = {}
         self._parsed: dict[str, Term] = {}
-        self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
-        self._python_errors: list[BaseException] = []  # raised inside foreign predicates
-        # The main thread's current stretch in Prolog (a query, or Prolog again after a
-        # callback into Python): its number and since when (None: in Python). The
-        # watchdog (goalagent.kb.watchdog) bounds stretches and interrupts them.
-        self.stretch = 0
-        self.stretch_since: float | None = None
-        self.abort_reason: str | None = None  # why the watchdog aborted the running query
-        self.depth = 0  # queries open (a callback into Python can open more)
-        # A stop a signal asked for while queries were open: raised when they are all closed
-        # (raising inside a callback would leave Prolog in between; see kb.watchdog).
-        self.pending_stop: BaseException | None = None
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
         for support in (_CONFINE, _SUPPORT, _GUARD):
@@ -111,8 +59,6 @@ class Engine(TermConversion):
             )
             if loaded is None:
                 raise KBError(f"could not load {support}")
-
-    # ------------------------------------------------------------------ public API
 
     def check_clause(self, text: str) -> tuple[str, ...]:
         """Checks one clause (no final '.') with SWI's reader; returns its variable names."""
@@ -164,180 +110,10 @@ class Engine(TermConversion):
         assert result is not None
         return str(result[2])
 
-    # ------------------------------------------------------------------ calling Prolog
-
     def unique_name(self, prefix: str) -> str:
         """A fresh name (for modules and compiled conditions): ``prefix`` + counter."""
         self._counter += 1
         return f"{prefix}{self._counter}"
-
-    def predicate(self, name: str, arity: int, module: str, *, cache: bool = True) -> int:
-        """A predicate handle for ``module:name/arity`` (cached unless the module is an
-        agent's: the caller keeps those, and they die with the module)."""
-        key = (name, arity, module)
-        handle = self._preds.get(key)
-        if handle is None:
-            if get_ident() != self._thread:  # SWI needs an engine in this thread
-                self._attach_thread()
-            handle = PL_predicate(name.encode(), arity, module.encode())
-            if cache:
-                self._preds[key] = handle
-        return handle
-
-    def forget_atom(self, name: str) -> None:
-        """Drops ``name`` from the atom cache (e.g. a destroyed module) so Prolog can GC it."""
-        handle = self._atoms.pop(name, None)
-        if handle is not None:
-            self._atom_names.pop(handle, None)
-            PL_unregister_atom(handle)
-
-    def call(self, name: str, *args: Term | None, module: str = "ga_kb", marks: bool = False,
-             read: Sequence[int] | None = None) -> list[Term | None] | None:
-        """Runs ``module:name(args)`` once; ``None`` args are fresh variables. Returns the
-        arguments after the first solution (only the ``None`` ones, or those listed in
-        ``read``, are read back from Prolog; the others are returned as given), or ``None``
-        when the goal fails."""
-        if read is None:
-            read = [i for i, arg in enumerate(args) if arg is None]
-        answers = self.solve(self.predicate(name, len(args), module), len(args),
-                             list(enumerate(args)), 1, marks, read)
-        if not answers:
-            return None
-        result: list[Term | None] = list(args)
-        for index, value in zip(read, answers[0], strict=True):
-            result[index] = value
-        return result
-
-    def call_once(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term]],
-                  number: int, keep: int) -> tuple[int, Record]:
-        """One call of a deterministic ``pred`` (the rule interpreter's, once per cycle):
-        the integer output ``number`` and output ``keep`` kept as a :class:`Record`. As
-        :meth:`solve`, with nothing else converted (a few C calls fewer per cycle)."""
-        if get_ident() != self._thread:
-            self._attach_thread()
-        fid = PL_open_foreign_frame()
-        outer_since = self._enter()
-        try:
-            base = PL_new_term_refs(arity)
-            for index, value in inputs:
-                if type(value) is Kept:
-                    PL_recorded(value.handle, base + index)
-                else:
-                    self._put(base + index, value, {})
-            if PL_call_predicate(None, Q_PASS, pred, base):
-                if not PL_get_int64(base + number, INT_REF):
-                    raise KBError("internal: the interpreter's outcome is not a number")
-                return INT_BUF.value, Record(self, PL_record(base + keep))
-            exception = PL_exception(0)
-            if not exception:
-                raise KBError("internal: the interpreter failed")
-            record = PL_record(exception)
-            PL_clear_exception()
-            raise self._error_from(record)
-        finally:
-            self._leave(outer_since)
-            PL_discard_foreign_frame(fid)
-            self._release()
-            self._stop_if_asked()
-
-    def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
-              limit: int | None, marks: bool = False,
-              outputs: Sequence[int] | None = None, keep: int | None = None) -> list[list[Term]]:
-        """All (or the first ``limit``) solutions of ``pred`` called with the given
-        ``(argument index, value)`` inputs; each solution lists the values of the
-        ``outputs`` arguments (default: all); output ``keep`` is not converted but kept as a
-        :class:`Record`. ``marks``: see :meth:`_get`."""
-        if get_ident() != self._thread:
-            self._attach_thread()
-        if outputs is None:
-            outputs = range(arity)
-        fid = PL_open_foreign_frame()
-        try:
-            base = PL_new_term_refs(arity) if arity else PL_new_term_ref()
-            shared: dict[str, int] = {}
-            try:
-                for index, value in inputs:
-                    if value is not None:
-                        self._put(base + index, value, shared)
-            except UnicodeEncodeError as error:
-                raise KBError(f"text Prolog cannot hold: {error.object!r}") from None
-            qid = PL_open_query(None, Q_CATCH, pred, base)
-            answers: list[list[Term]] = []
-            record = None
-            outer_since = self._enter()
-            try:
-                get = self._get
-                while limit is None or len(answers) < limit:
-                    if not PL_next_solution(qid):
-                        exception = PL_exception(qid)
-                        if exception:
-                            record = PL_record(exception)
-                        break
-                    seen: list[tuple[int, Var]] = []
-                    if keep is None:
-                        answers.append([get(base + i, seen, marks) for i in outputs])
-                    else:
-                        answers.append([Record(self, PL_record(base + i)) if i == keep
-                                        else get(base + i, seen, marks) for i in outputs])
-            except (RecursionError, ctypes.ArgumentError) as error:
-                if not _too_deep(error):
-                    raise
-                raise KBError("an answer is a cyclic or too deeply nested term") from None
-            finally:
-                PL_cut_query(qid)
-                self._leave(outer_since)
-            if record is not None:
-                raise self._error_from(record)
-            return answers
-        finally:
-            PL_discard_foreign_frame(fid)
-            self._release()
-            self._stop_if_asked()
-
-    # ------------------------------------------------------------------ stretches
-
-    def _release(self) -> None:
-        """Unregisters the call's transient atoms and erases the records Python dropped."""
-        while self._transient_atoms:
-            PL_unregister_atom(self._transient_atoms.pop())
-        while self._dead_records:
-            PL_erase(self._dead_records.pop())
-
-    def _enter(self) -> float | None:
-        """A query opens: a new stretch in Prolog (see goalagent.kb.watchdog); returns the
-        enclosing one's start, for :meth:`_leave`."""
-        outer_since = self.stretch_since
-        self.depth += 1
-        self.stretch += 1
-        self.stretch_since = monotonic()
-        return outer_since
-
-    def _leave(self, outer_since: float | None) -> None:
-        self.stretch_since = outer_since
-        self.depth -= 1
-
-    def _stop_if_asked(self) -> None:
-        """A signal that came while Prolog ran: once back in Python, the stop it asked for."""
-        if self.pending_stop is not None and self.depth == 0:
-            stop, self.pending_stop = self.pending_stop, None
-            raise stop
-
-    def _aborted(self) -> BaseException:
-        """The Python exception for a query the watchdog aborted: an interrupt (Ctrl-C,
-        SIGTERM) stops the run; a query that outlived its time limit twice is the error
-        of the agent that ran it."""
-        reason, self.abort_reason = self.abort_reason, None
-        if reason is None or reason.startswith("signal"):
-            return Interrupted(reason or "aborted")
-        return PrologRuntimeError(reason, Atom("$aborted"))
-
-    # ------------------------------------------------------------------ internals
-
-    def _attach_thread(self) -> None:
-        """Gives the calling thread a Prolog engine (pyswip is not thread-safe: one at a time)."""
-        if PL_thread_self() == -1 and PL_thread_attach_engine(None) < 0:
-            raise KBError("cannot attach a Prolog engine to this thread")
-        self._thread = get_ident()
 
     def _check(self, text: str, kind: str) -> tuple[str, ...]:
         """Reads ``text`` as a clause or query with SWI's reader (see check/3 in the .pl)."""
@@ -357,51 +133,6 @@ class Engine(TermConversion):
             message += " (leave out the final '.')"
         raise PrologSyntaxError(message, offset)
 
-    def _error_from(self, record: int) -> BaseException:
-        """The exception to raise for a recorded Prolog exception: the Python exception a
-        foreign predicate raised (see :func:`define_foreign`), or a PrologRuntimeError."""
-        error = self._runtime_error(record)
-        if error.term == "$aborted":
-            return self._aborted()
-        if error.term == _PYTHON_ERROR and self._python_errors:
-            python_error = self._python_errors[-1]
-            self._python_errors.clear()
-            return python_error
-        return error
-
-    def _recorded(self, record: int) -> Term:
-        """The Python value of a recorded term (the record stays)."""
-        if get_ident() != self._thread:
-            self._attach_thread()
-        fid = PL_open_foreign_frame()
-        try:
-            t = PL_new_term_ref()
-            PL_recorded(record, t)
-            return self._get(t, [], False)
-        finally:
-            PL_discard_foreign_frame(fid)
-
-    def _runtime_error(self, record: int) -> PrologRuntimeError:
-        """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""
-        fid = PL_open_foreign_frame()
-        try:
-            t = PL_new_term_ref()
-            PL_recorded(record, t)
-            PL_erase(record)
-            term = self._get(t, [], False)
-            pred = self.predicate("error_message", 2, "ga_kb")
-            base = PL_new_term_refs(2)
-            PL_put_term(base, t)
-            qid = PL_open_query(None, Q_CATCH, pred, base)
-            try:
-                ok = PL_next_solution(qid)
-                message = text_of(base + 1, TEXT_FLAGS) if ok else format_term(term)
-            finally:
-                PL_cut_query(qid)
-            return PrologRuntimeError(message, term)
-        finally:
-            PL_discard_foreign_frame(fid)
-
 
 def _copy(term: Term) -> Term:
     """A copy of ``term`` whose lists are fresh (cached parses must not be mutated)."""
@@ -410,53 +141,6 @@ def _copy(term: Term) -> Term:
     if isinstance(term, Struct):
         return Struct(term.name, tuple(_copy(arg) for arg in term.args))
     return term
-
-
-_TOO_DEEP_FOR_PYTHON = "cannot pass a cyclic term, or one nested over ~1,000 levels, to Python"
-
-
-def _too_deep(error: BaseException) -> bool:
-    """Python's recursion limit met converting a term (in Python, or in a ctypes call)."""
-    return isinstance(error, RecursionError) or (
-        isinstance(error, ctypes.ArgumentError) and "RecursionError" in str(error))
-
-
-def define_foreign(engine: Engine, module: str, name: str,
-                   respond: Callable[[Term], Term | None], *, stretch: bool = True) -> None:
-    """Defines ``module:name(+Request, -Reply)``: Prolog's call converts Request to a Python
-    term, calls ``respond`` and unifies Reply with its answer (None: leaves Reply unbound).
-    A Python exception in ``respond`` leaves Prolog as the exception ``'$ga_python'`` and is
-    raised again where Python called Prolog (:meth:`Engine.solve`). A call ends the running
-    stretch (goalagent.kb.watchdog) unless ``stretch`` is False (a quick look that must not)."""
-
-    def foreign(request: int, reply: int) -> int:
-        if stretch:
-            engine.stretch_since = None  # in Python now: not the watchdog's to time
-        try:
-            if not PL_is_acyclic(request):  # a cyclic list would be read for ever
-                raise KBError(_TOO_DEEP_FOR_PYTHON)
-            answer = respond(engine._get(request, [], False))
-            if answer is None:
-                return 1
-            t = PL_new_term_ref()
-            engine._put(t, answer, {})
-            return 1 if PL_unify(reply, t) else 0
-        except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
-            engine._python_errors.append(KBError(_TOO_DEEP_FOR_PYTHON) if _too_deep(error)
-                                         else error)
-            t = PL_new_term_ref()
-            PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
-            return PL_raise_exception(t)
-        finally:
-            if stretch:  # back to Prolog: a new stretch
-                engine.stretch += 1
-                engine.stretch_since = monotonic()
-
-    callback = _FOREIGN_2(foreign)
-    engine._foreign.append(callback)
-    if not PL_register_foreign_in_module(module.encode(), name.encode(), 2,
-                                         ctypes.cast(callback, c_void_p), 0):
-        raise KBError(f"cannot define the foreign predicate {module}:{name}/2")
 
 
 _engine: Engine | None = None

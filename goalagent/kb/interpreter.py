@@ -1,14 +1,11 @@
 """The Python side of the one rule interpreter (``rules.pl``): a program's rules compiled
-into Prolog, module passes run in one call, and what the interpreter asks of Python.
+into Prolog and module passes run in one call.
 
 Every rule becomes one clause shared by all agents that read it alike (its condition is
 compiled in each agent's belief module), every list of rules (a module, a nested block) a
-pass; :meth:`CompiledProgram.run` runs module passes in one Prolog call. Prolog asks Python
-(``'$ga_py'/2``) for what only Python can do -- environment actions, print/log, messages,
-module calls, the agent's random rule order -- and tells it problems (warnings) and, when
-someone listens, every step (events). Those requests are decoded here into the typed
-values of this module and answered by the agent's :class:`Requests`; the Prolog term
-shapes stay inside ``goalagent.kb``.
+pass; :meth:`CompiledProgram.run` runs module passes in one Prolog call, answering what the
+interpreter asks of Python with the agent's :class:`~goalagent.kb.interpreter_requests.Requests`
+(interpreter_requests.py). Rules are known by their ids (rule_registry.py).
 """
 
 from __future__ import annotations
@@ -16,44 +13,25 @@ from __future__ import annotations
 import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Protocol
 
 from goalagent import ast
-from goalagent.events import EventKind, ProblemKind
-from goalagent.kb.engine import Engine, KBError, Kept, Record, define_foreign
-from goalagent.kb.limits import limit_text
-from goalagent.kb.mentalstate import CompiledCondition, MentalState
+from goalagent.kb.conditions import CompiledCondition
+from goalagent.kb.engine import Engine, KBError, Kept, Record
+from goalagent.kb.interpreter_requests import (
+    MOODS,
+    Answerer,
+    Requests,
+    answering,
+    define_requests,
+)
+from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.rule_registry import RULES, RuleInfo, register_rule
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
-__all__ = ["CompiledProgram", "Firing", "JournalEntry", "ModuleCode", "Problem",
-           "Requests", "RuleInfo", "RunOutcome", "Step", "aborted_rule",
-           "listall_variables"]
+__all__ = ["CompiledProgram", "JournalEntry", "ModuleCode", "RunOutcome", "listall_variables"]
 
 _TRUE, _FALSE = Atom("true"), Atom("false")
-_RULES = "ga_rules"  # the Prolog module of every compiled rule and pass
-_MOODS = {":": "indicative", "!": "imperative", "?": "interrogative"}
-_MOOD_SIGNS = {name: sign for sign, name in _MOODS.items()}
 
-
-# ----------------------------------------------------------------------------- rules
-
-
-@dataclass(frozen=True, eq=False)
-class RuleInfo:
-    """A compiled rule: where it is and the names of the bindings its body sees (the
-    values of a firing, in this order): given ones its condition does not name, then the
-    condition's variables (a listall rule: the given ones, then its list)."""
-
-    id: int
-    module: str
-    rule: ast.Rule
-    names: tuple[str, ...]
-    recorded: frozenset[int] = frozenset()  # actions whose closed form the journal keeps
-
-
-# Rules by id (ids are shared by every agent that runs the same program text).
-_rules: list[RuleInfo] = []
-_rule_ids: dict[tuple[str, ast.Rule, tuple[str, ...]], int] = {}
 # Clause names of compiled rules and passes, shared by all agents: key -> name.
 _shared_clauses: dict[tuple, str] = {}
 # Per program object (while it lives): its directives and its modules' compiled passes, so
@@ -76,80 +54,6 @@ def listall_variables(rule: ast.Rule, given: Sequence[str] = ()) -> tuple[str, .
                         and name not in given and not ast.is_macro_local(name)):
                     names.append(name)
     return tuple(names)
-
-
-@dataclass(frozen=True)
-class Firing:
-    """One instantiation of a rule: the rule and the values of its bindings."""
-
-    rule: RuleInfo
-    values: tuple[Term, ...]
-
-    @property
-    def bindings(self) -> dict[str, Term]:
-        """The bindings by variable name."""
-        return dict(zip(self.rule.names, self.values, strict=False))
-
-
-@dataclass(frozen=True)
-class Problem:
-    """A problem met running rules (the agent words and warns it): ``firing`` and
-    ``action_index`` locate an action, ``rule`` a condition, ``spec_index`` an actionspec;
-    ``detail`` is the error's message, ``term`` the action concerned."""
-
-    kind: ProblemKind
-    detail: Term = ""
-    firing: Firing | None = None
-    action_index: int | None = None
-    rule: RuleInfo | None = None
-    spec_index: int | None = None
-    term: Term | None = None  # the action concerned
-
-
-@dataclass(frozen=True)
-class Step:
-    """One step of the interpreter, told only when the agent has listeners. ``bindings``:
-    per instantiation (RULE_TRIED) or the firing's (others); ``term``: the belief, goal or
-    action concerned; ``reason``: why an action was refused."""
-
-    kind: EventKind
-    rule: RuleInfo | None = None
-    bindings: tuple[dict[str, Term], ...] = ()
-    done: int = 0
-    terms: tuple[Term, ...] = ()
-    action_index: int | None = None
-    spec_index: int | None = None
-    term: Term | None = None
-    reason: str = ""
-
-
-class Requests(Protocol):
-    """What the interpreter asks of the agent while it runs the agent's rules."""
-
-    def shuffle(self, count: int) -> list[int]:
-        """A random order of ``count`` rules (the indices 0 .. count - 1)."""
-
-    def output(self, text: str, log: bool) -> None:
-        """``print/1`` (or ``log/1`` when ``log``) of ``text``."""
-
-    def act(self, firing: Firing, index: int, action: Term) -> bool:
-        """Send a closed user action to the environment; False when it refused."""
-
-    def send(self, firing: Firing, index: int, once: bool, mood: str, receiver: Term,
-             content: Term) -> bool:
-        """A message (``mood`` ``:``, ``!`` or ``?``); False when not sent (not enabled)."""
-
-    def call_module(self, firing: Firing, index: int, module: int, args: list[Term],
-                    entries: int, position: int) -> bool:
-        """Run the program's module ``module`` with ``args``; False when its parameters do
-        not match. ``entries`` firings and ``position`` actions precede this call in the
-        running call's journal."""
-
-    def problem(self, problem: Problem) -> None:
-        """A warning."""
-
-    def step(self, step: Step) -> None:
-        """An event, when the agent has listeners."""
 
 
 # ----------------------------------------------------------------------------- journal
@@ -199,7 +103,7 @@ class RunOutcome:
             self._entries = []
             for entry in self._record.value():  # type: ignore[union-attr]
                 rule_id, values, done, terms = entry.args
-                self._entries.append(JournalEntry(_rules[int(rule_id)], tuple(values),
+                self._entries.append(JournalEntry(RULES[int(rule_id)], tuple(values),
                                                   int(done), tuple(terms)))
         return self._entries
 
@@ -227,14 +131,13 @@ class CompiledProgram:
     def __init__(self, state: MentalState, program: ast.AgentProgram) -> None:
         self._state = state
         self._engine: Engine = state.engine
-        self._program = program
         self._specs = {(spec.name, spec.arity) for spec in program.actionspecs}
         self._modules = {(m.name, m.arity): index for index, m in enumerate(program.modules)}
         self._directives = state.directives
         self._codes: dict[int, ModuleCode] = {}
         self._kept: dict[tuple, Kept] = {}  # plans, recorded
-        self._answerer: _Answerer | None = None
-        _define_requests(self._engine)
+        self._answerer: Answerer | None = None
+        define_requests(self._engine)
         state.declare_actions(program.actionspecs)
         compiled = _compiled_programs.get(id(program))
         if compiled is not None and compiled[0]() is program and compiled[1] == self._directives:
@@ -298,7 +201,7 @@ class CompiledProgram:
                                            for a in rule.actions) + "])"
             recorded = frozenset(index for index, action in enumerate(rule.actions)
                                  if self._closed_by_precondition(action, names))
-        info = self._rule_info(module, rule, names, recorded)
+        info = register_rule(module, rule, names, recorded)
         key = ("rule", info.id, self._directives)
         name = _shared_clauses.get(key)
         if name is None:
@@ -321,22 +224,10 @@ class CompiledProgram:
             pos = err.pos or rule.pos
             raise KBError(f"{pos}: {err}", pos) from None
 
-    @staticmethod
-    def _rule_info(module: ast.Module, rule: ast.Rule, names: tuple[str, ...],
-                   recorded: frozenset[int]) -> RuleInfo:
-        """The rule's entry in the registry of rules (one id per module, rule and names)."""
-        key = (module.name, rule, names)
-        rule_id = _rule_ids.get(key)
-        if rule_id is None:
-            rule_id = len(_rules)
-            _rules.append(RuleInfo(rule_id, module.name, rule, names, recorded))
-            _rule_ids[key] = rule_id
-        return _rules[rule_id]
-
     def _action_text(self, action: ast.Action, bound: tuple[str, ...]) -> str:
         """An action as rules.pl performs it (see compile_rule/6)."""
         if isinstance(action, ast.SendAction):
-            return (f"send({'true' if action.once else 'false'}, {_MOODS[action.mood]}, "
+            return (f"send({'true' if action.once else 'false'}, {MOODS[action.mood]}, "
                     f"({action.receiver.text}\n), ({action.content.text}\n))")
         if action.builtin:
             if action.name == "exit-module":
@@ -388,134 +279,10 @@ class CompiledProgram:
         requests with ``requests``."""
         answerer = self._answerer
         if answerer is None or answerer.requests is not requests:
-            answerer = self._answerer = _Answerer(requests)
-        _answering.append(answerer)
+            answerer = self._answerer = Answerer(requests)
+        answering.append(answerer)
         try:
             outcome, journal = self._state.run(plan)
         finally:
-            _answering.pop()
+            answering.pop()
         return RunOutcome(outcome, journal)
-
-
-# ----------------------------------------------------------------------------- requests
-
-
-class _Answerer:
-    """Decodes the interpreter's requests for one :class:`Requests`."""
-
-    def __init__(self, requests: Requests) -> None:
-        self.requests = requests
-
-    def __call__(self, request: Term) -> Term | None:
-        assert isinstance(request, Struct)
-        name, args = request.name, request.args
-        requests = self.requests
-        if name == "event":
-            requests.step(_step(args[0]))  # type: ignore[arg-type]
-            return None
-        if name == "problem":
-            requests.problem(_problem(args[0]))  # type: ignore[arg-type]
-            return None
-        if name == "shuffle":
-            return requests.shuffle(int(args[0]))  # type: ignore[arg-type]
-        if name in ("print", "log"):
-            requests.output(str(args[0]), log=name == "log")
-            return None
-        if name == "act":
-            done = requests.act(_firing(args[0]), int(args[1]), args[2])  # type: ignore
-            return Atom("done" if done else "refused")
-        if name == "send":
-            firing, index, once, mood, receiver, content = args
-            sent = requests.send(_firing(firing), int(index), once == "true",  # type: ignore
-                                 _MOOD_SIGNS[str(mood)], receiver, content)
-            return _TRUE if sent else _FALSE
-        if name == "call":
-            firing, index, module, call_args, entries, position = args
-            called = requests.call_module(_firing(firing), int(index), int(module),  # type: ignore
-                                          list(call_args), int(entries),  # type: ignore
-                                          int(position))  # type: ignore[arg-type]
-            return _TRUE if called else _FALSE
-        raise KBError(f"internal: unknown request from the interpreter: {format_term(request)}")
-
-
-_answering: list[_Answerer] = []
-
-
-def _answer(request: Term) -> Term | None:
-    """The foreign predicate '$ga_py'/2: the innermost running call's answerer replies."""
-    if not _answering:
-        return None  # a mental-state call outside the interpreter has no one to tell
-    return _answering[-1](request)
-
-
-def _firing(term: Term) -> Firing:
-    """``f(RuleId, Values)`` as a :class:`Firing`."""
-    rule_id, values = term.args  # type: ignore[union-attr]
-    return Firing(_rules[int(rule_id)], tuple(values))  # type: ignore[arg-type]
-
-
-def _problem(term: Struct) -> Problem:
-    """A problem term of rules.pl (see problem/1)."""
-    name, args = term.name, term.args
-    if name == "condition":
-        return Problem(ProblemKind.CONDITION_ERROR, args[1], rule=_rules[int(args[0])])
-    if name == "warning":
-        return Problem(ProblemKind.PROLOG_WARNING, args[1], rule=_rules[int(args[0])])
-    if name == "precondition":
-        return Problem(ProblemKind.PRECONDITION_ERROR, args[1], spec_index=int(args[0]))
-    if name == "action":
-        return Problem(ProblemKind.ACTION_ERROR, args[2], firing=_firing(args[0]),
-                       action_index=int(args[1]))
-    if name == "limit":
-        return Problem(ProblemKind.LIMIT_EXCEEDED, limit_text(args[1]), rule=_rules[int(args[0])])
-    return Problem(ProblemKind.ACTION_NOT_CLOSED, firing=_firing(args[0]),
-                   action_index=int(args[1]), term=args[2])
-
-
-def aborted_rule(engine: Engine) -> RuleInfo | None:
-    """The rule a query the watchdog aborted was in (the innermost), if any; read once."""
-    result = engine.call("aborted_rule", None, module="ga_guard")
-    found = result[0] if result else None
-    return _rules[found] if isinstance(found, int) and 0 <= found < len(_rules) else None
-
-
-_CHANGES = {
-    ("belief", "added"): EventKind.BELIEF_ADDED,
-    ("belief", "deleted"): EventKind.BELIEF_DELETED,
-    ("goal", "adopted"): EventKind.GOAL_ADOPTED,
-    ("goal", "dropped"): EventKind.GOAL_DROPPED,
-    ("goal", "achieved"): EventKind.GOAL_ACHIEVED,
-}
-
-
-def _step(term: Struct) -> Step:
-    """An event term of rules.pl (see tell/1)."""
-    name, args = term.name, term.args
-    if name == "tried":
-        info = _rules[int(args[0])]
-        return Step(EventKind.RULE_TRIED, info,
-                    tuple(dict(zip(info.names, values, strict=False))
-                          for values in args[1]))  # type: ignore[union-attr]
-    if name == "fired":
-        info = _rules[int(args[0])]
-        return Step(EventKind.RULE_FIRED, info, (dict(zip(info.names, args[1],  # type: ignore
-                                                          strict=False)),),
-                    done=int(args[2]), terms=tuple(args[3]))  # type: ignore[arg-type]
-    if name == "refused":
-        firing = _firing(args[0])
-        return Step(EventKind.ACTION_REFUSED, firing.rule, (firing.bindings,),
-                    action_index=int(args[1]), reason=str(args[2]))  # type: ignore[arg-type]
-    if name == "precondition_failed":
-        return Step(EventKind.PRECONDITION_FAILED, spec_index=int(args[0]),  # type: ignore
-                    term=args[1])
-    return Step(_CHANGES[(name, str(args[0]))], term=args[1])
-
-
-_answered: set[int] = set()  # engines (by id) whose '$ga_py'/2 is defined
-
-
-def _define_requests(engine: Engine) -> None:
-    """Defines the interpreter's foreign predicate '$ga_py'/2 once per engine."""
-    if id(engine) not in _answered:
-        define_foreign(engine, "ga_kb", "$ga_py", _answer)
-        _answered.add(id(engine))

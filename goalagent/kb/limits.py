@@ -26,12 +26,16 @@ __all__ = ["Limits", "limit_text", "refused_precondition", "stopping_error"]
 class Limits:
     """An agent's bounds. ``max_query_seconds``: the longest stretch the main thread may
     spend in Prolog for it without returning to Python (a rule's condition, its actions'
-    Prolog part); ``sandbox``: its Prolog text may call only safe built-ins (guard.pl)."""
+    Prolog part); ``sandbox``: its Prolog text may call only safe built-ins (confine.pl);
+    ``runs_code`` False: loaded only to be checked (``goalagent check``), none of its code
+    runs -- its directives are checked but not run (declarations, operators and library
+    loads take effect) and its initial goals are declared, not adopted."""
 
     max_inferences: int = 10_000_000
     max_query_seconds: float = 20.0
     max_beliefs: int = 2_000_000
     sandbox: bool = False
+    runs_code: bool = True
 
     def __post_init__(self) -> None:
         if not 0 < self.max_inferences <= 2**62:

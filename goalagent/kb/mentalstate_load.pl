@@ -29,25 +29,27 @@ destroy(B, G) :-
     '$destroy_module'(B),
     '$destroy_module'(G).
 
-%!  load(+B, +G, +Items, +Sandbox, -Result) is det.
+%!  load(+B, +G, +Items, +Sandbox, +RunsCode, -Result) is det.
 %   Items: list of k(Text) (knowledge) and b(Text) (belief) clauses, loaded in order, each
 %   prepared by confine.pl (checked, calls known only at run time wrapped; Sandbox: true
-%   or false, kept for what the agent runs later). Result = ok or error(Index, Message)
+%   or false, kept for what the agent runs later). RunsCode = false (goalagent check): no
+%   directive runs but declarations, operators and library loads, so nothing the agent
+%   wrote is executed (the others are still checked). Result = ok or error(Index, Message)
 %   for the first clause that fails (0-based); nothing of a program with an error runs.
 
-load(B, G, Items, Sandbox, Result) :-
+load(B, G, Items, Sandbox, RunsCode, Result) :-
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
-    load_(Items, 0, B, G, c(B, Sandbox, []), Result).
+    load_(Items, 0, B, G, c(B, Sandbox, []), RunsCode, Result).
 
-load_([], _, _, _, _, ok).
-load_([Item|Items], I, B, G, Ctx, Result) :-
+load_([], _, _, _, _, _, ok).
+load_([Item|Items], I, B, G, Ctx, RunsCode, Result) :-
     Item =.. [Kind, Text],
     (   catch(( read_text(Text, B, Term, _),     % after earlier directives (operators)
-                load_term(Term, Kind, B, G, Ctx) ), E, true)
+                load_term(Term, Kind, B, G, Ctx, RunsCode) ), E, true)
     ->  (   var(E)
         ->  I1 is I + 1,
-            load_(Items, I1, B, G, Ctx, Result)
+            load_(Items, I1, B, G, Ctx, RunsCode, Result)
         ;   load_error(E, I, Text, Result)
         )
     ;   Result = error(I, "directive failed")
@@ -62,12 +64,12 @@ load_error(ga_refused(Why), I, _, error(I, Msg)) :- !,
 load_error(E, I, _, error(I, Msg)) :-
     error_message(E, Msg).
 
-load_term((:- Directive), Kind, B, G, Ctx) :- !,
-    directive(Directive, Kind, B, G, Ctx).
-load_term((Head --> Body), Kind, B, G, Ctx) :- !,
+load_term((:- Directive), Kind, B, G, Ctx, RunsCode) :- !,
+    directive(Directive, Kind, B, G, Ctx, RunsCode).
+load_term((Head --> Body), Kind, B, G, Ctx, RunsCode) :- !,
     dcg_translate_rule((Head --> Body), Clause),
-    load_term(Clause, Kind, B, G, Ctx).
-load_term(Clause0, Kind, B, G, Ctx) :-
+    load_term(Clause, Kind, B, G, Ctx, RunsCode).
+load_term(Clause0, Kind, B, G, Ctx, _) :-
     ga_confine:prepare_clause(Clause0, Ctx, Clause),
     clause_head(Clause, Head),
     make_own(B, Head),
@@ -86,19 +88,24 @@ load_term(Clause0, Kind, B, G, Ctx) :-
 clause_head((Head :- _), Head) :- !.
 clause_head(Head, Head).
 
-directive(Directive, Kind, B, G, Ctx) :-
+directive(Directive, Kind, B, G, Ctx, RunsCode) :-
     ga_confine:prepare_directive(Directive, Ctx, Prepared),
-    directive_(Prepared, Kind, B, G).
+    directive_(Prepared, Kind, B, G, RunsCode).
 
-directive_(dynamic(Spec), _, B, G) :- !,
+directive_(dynamic(Spec), _, B, G, _) :- !,
     dynamic(B:Spec),
     dynamic(G:Spec).
-directive_(discontiguous(_), _, _, _) :- !.
-directive_(op(Priority, Type, Names), _, B, G) :- !,
+directive_(discontiguous(_), _, _, _, _) :- !.
+directive_(op(Priority, Type, Names), _, B, G, _) :- !,
     forall(member(M, [B, G]),
            ( qualify_op_names(Names, M, Qualified),
              op(Priority, Type, Qualified) )).
-directive_(Directive, Kind, B, G) :-
+directive_(Directive, Kind, B, G, false) :- !,  % checked, not run; a library load (of
+    (   load_directive(Directive)               % SWI-Prolog's code, not the agent's, and
+    ->  directive_(Directive, Kind, B, G, true) % allowed by prepare_directive/3) is made
+    ;   true
+    ).
+directive_(Directive, Kind, B, G, true) :-
     B:'$ga_limits'(MaxInferences, _),           % a directive that runs away (:- p, p :- p)
     call_with_inference_limit(once(B:Directive), MaxInferences, Result),   % is the
     (   Result == inference_limit_exceeded      % program's located error

@@ -31,6 +31,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 
+from goalagent.kb.calls import define_foreign
 from goalagent.kb.clib import (
     PL_call,
     PL_chars_to_term,
@@ -40,7 +41,7 @@ from goalagent.kb.clib import (
     PL_thread_attach_engine,
     PL_thread_destroy_engine,
 )
-from goalagent.kb.engine import Engine, define_foreign, get_engine
+from goalagent.kb.engine import Engine, get_engine
 
 __all__ = ["TICK", "Watchdog", "watchdog"]
 

@@ -24,7 +24,6 @@ from goalagent.parser.agents import (
 )
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.goal_file import parse_agent, parse_agent_file
-from goalagent.parser.goal_sections import LIBRARY
 from goalagent.parser.mas_file import parse_mas, parse_mas_file
 from goalagent.parser.prolog_file import parse_prolog_file
 from goalagent.parser.source import Source
@@ -32,7 +31,6 @@ from goalagent.parser.test_file import parse_test, parse_test_file
 from goalagent.parser.variables import rename_variables, variable_occurrences
 
 __all__ = [
-    "LIBRARY",
     "GoalSyntaxError",
     "Source",
     "iter_rules",

@@ -8,11 +8,10 @@ from pathlib import Path
 from lark import Token, v_args
 
 from goalagent import ast
+from goalagent.extensions import prolog_library
 from goalagent.parser.builder_base import MOODS, BuilderBase, ParsedSection
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.mas_sections import reference_path
-
-LIBRARY = Path(__file__).resolve().parents[1] / "lib"  # Prolog libraries #import finds by name
 
 _MODULE_OPTIONS = {
     "exit": ("always", "never", "nogoals", "noaction"),
@@ -104,11 +103,12 @@ class GoalParts(BuilderBase):
         if suffix not in (".pl", ".mod2g", ".goal"):
             name += ".pl"
         path = Path(self.source.file).parent / name
-        if not path.exists() and (LIBRARY / name).exists():
-            path = LIBRARY / name  # a library shipped with goalagent, e.g. affordance.pl
+        if not path.exists():  # a library an application brings, e.g. robot's affordance.pl
+            path = prolog_library(name) or path
         if not path.exists():
             raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: no such file next to "
-                                     "this program nor in goalagent's Prolog libraries")
+                                     "this program nor among the installed extensions' "
+                                     "Prolog libraries")
         if path.suffix == ".pl":
             clauses = self._import_prolog_file(path)  # type: ignore[attr-defined]
             return ParsedSection("knowledge", clauses, pos)

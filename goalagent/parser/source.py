@@ -5,19 +5,18 @@ outside Prolog text, which a context-free lexer cannot tell; blanking keeps ever
 valid, so positions in errors and in the AST point into the original file. The same pass
 bounds bracket nesting (``MAX_NESTING``), so no later stage meets a text nested deeper than
 it can take; files are read only when they are regular files of a bounded size
-(:func:`read_bounded`), so ``/dev/zero``, a FIFO or a directory is refused at once.
+(``ondisk.read_bounded``), so ``/dev/zero``, a FIFO or a directory is refused at once.
 """
 
 from __future__ import annotations
 
 import bisect
-import os
 import re
-import stat
 from pathlib import Path
 
 from goalagent import ast
 from goalagent.parser.errors import GoalSyntaxError
+from ondisk import read_bounded
 
 MAX_NESTING = 200
 """Deepest nesting of ``( [ {`` accepted in a program (SWI's reader and Python's term
@@ -129,39 +128,6 @@ class Source:
         while k >= 0 and text[k] in " \t\r":
             k -= 1
         return k < 0 or text[k] in "\n{}]."
-
-
-def read_bounded(path: str | Path, limit: int) -> bytes:
-    """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes.
-
-    The file is opened without blocking (a FIFO would wait for a writer) and checked on the
-    open descriptor, so a device, FIFO, socket or directory is refused before anything is
-    read, and at most ``limit + 1`` bytes are ever read (a file growing meanwhile is caught).
-    Raises ``OSError`` (``FileNotFoundError`` for a missing file) with a readable message.
-    """
-    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
-    try:
-        info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode):
-            kind = ("a directory" if stat.S_ISDIR(info.st_mode) else
-                    "a FIFO" if stat.S_ISFIFO(info.st_mode) else
-                    "a device" if stat.S_ISCHR(info.st_mode) or stat.S_ISBLK(info.st_mode)
-                    else "not a regular file")
-            raise OSError(f"{kind}, not a regular file")
-        if info.st_size > limit:
-            raise OSError(f"{info.st_size} bytes: larger than the {limit} bytes accepted")
-        chunks, size = [], 0
-        while size <= limit:
-            chunk = os.read(fd, min(limit + 1 - size, 1 << 20))
-            if not chunk:
-                break
-            chunks.append(chunk)
-            size += len(chunk)
-        if size > limit:
-            raise OSError(f"grew past the {limit} bytes accepted while being read")
-        return b"".join(chunks)
-    finally:
-        os.close(fd)
 
 
 def read_program_file(path: str | Path, limit: int = MAX_PROGRAM_BYTES) -> str:

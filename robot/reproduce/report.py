@@ -1,43 +1,20 @@
 """A reproduction's outputs: the markdown page (its table of measured values beside the
 reference with the gap) and its figures (mean ± standard deviation over seeds, references as
-dashed lines), and the atomic file writing they share."""
+dashed lines)."""
 
 from __future__ import annotations
 
 import io
 import math
-import os
-import tempfile
 from collections.abc import Sequence
-from pathlib import Path
 
 import numpy as np
 
 from robot.reproduce.framework import Comparison, Figure, Reproduction, markdown_table
 
-_UMASK = os.umask(0)
-os.umask(_UMASK)
-
 REFERENCE_STYLES = ({"linestyle": "--", "color": "0.25"}, {"linestyle": ":", "color": "firebrick"},
                     {"linestyle": "-.", "color": "darkgreen"})
 """How reference lines look, in the order a panel lists them."""
-
-
-def write_atomically(path: Path, data: bytes) -> Path:
-    """A temporary file in the same folder, fsync, then os.replace: all or nothing. The file
-    gets the permissions a plainly created one would (mkstemp makes it owner-only)."""
-    fd, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        os.chmod(temporary, 0o666 & ~_UMASK)
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
 
 
 def number(value: float | None) -> str:

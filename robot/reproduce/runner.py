@@ -19,8 +19,9 @@ from pathlib import Path
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
+from ondisk import write_atomically
 from robot.reproduce.framework import Comparison, Reproduction, SeedResult
-from robot.reproduce.report import markdown, render_figure, write_atomically
+from robot.reproduce.report import markdown, render_figure
 
 PROGRESS_STEP = 0.01
 """A seed reports its progress to the bar at most once per this fraction of its run."""

@@ -11,13 +11,14 @@ moves at the same pace whatever the machine's speed.
 
 from __future__ import annotations
 
+import io
 import os
-import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
 from goalagent.eis.exceptions import ManagementException
 from goalagent.kb.terms import Atom
+from ondisk import write_atomically
 
 _TRUE = {"true", "yes", "on", "1"}
 _FALSE = {"false", "no", "off", "0"}
@@ -124,24 +125,18 @@ def check_known(env: str, params: Mapping[str, object], known: Mapping[str, str]
 
 
 def write_png(target: str | os.PathLike[str], draw: Callable[[object], None]) -> Path:
-    """Draw a matplotlib figure with ``draw`` and save it as PNG, atomically (temp + rename).
+    """Draw a matplotlib figure with ``draw`` and save it as PNG, atomically
+    (``ondisk.write_atomically``).
 
     matplotlib is imported only here, when a picture is asked for (Agg, no display needed).
     """
     from matplotlib.figure import Figure
 
-    target = Path(target)
     figure = Figure(figsize=(6, 6), dpi=80)
     draw(figure)
-    handle, temp = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent or ".")
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            figure.savefig(stream, format="png")
-        os.replace(temp, target)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
-    return target
+    picture = io.BytesIO()
+    figure.savefig(picture, format="png")
+    return write_atomically(target, picture.getvalue())
 
 
 class SnapshotWriter:

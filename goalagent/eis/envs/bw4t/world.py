@@ -97,7 +97,6 @@ class World:
         self._make_blocks()
         self.robots: list[Robot] = []
         self._spawn(bots, humans)
-        self.ticks = 0
 
     def new_id(self) -> int:
         """The next object id (one counter for everything, as in BW4T)."""
@@ -252,7 +251,6 @@ class World:
 
     def tick(self) -> None:
         """One step of simulated time: every robot moves (``AbstractRobot.move``), in order."""
-        self.ticks += 1
         for robot in self.robots:
             robot.move()
 

@@ -103,7 +103,6 @@ class Car:
     departed_at: int = 0
     departed_from: float = 0.0
     arrival_event: int | None = None
-    docked: bool = False
 
     @property
     def name(self) -> str:
