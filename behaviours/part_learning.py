@@ -200,10 +200,9 @@ class PairEpisode:
         success = self.session.success
         if self.functional is None and success is not None:
             self.verified(success.part, success.action, success.theta)
-        report = _pair_report(self.session.models, self.session.bounds, self.functional,
-                              self.session.trials[done:], (part, action), effect_name,
-                              self.delta, self.r1, self.r2)
-        return report
+        return _pair_report(self.session.models, self.session.bounds, self.functional,
+                            self.session.trials[done:], (part, action), effect_name,
+                            self.delta, self.r1, self.r2)
 
     def verified(self, part: str, action: str, theta: float) -> None:
         """(part, action) with θ opened the can: remember the can with its functional pair
