@@ -7,25 +7,17 @@ known objects (issue 32: o4 and o5 after o1 and o2 never finished)."""
 
 from __future__ import annotations
 
-import io
 import shutil
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
 from behaviours.learners.known_objects import KnownObjectDatabase
-from behaviours.part_learning import learn_by_transfer
-from behaviours.perception import make_perception
 from goalagent.eis import ActException, ManagementException, load_environment
 from goalagent.eis.terms import Action
-from goalagent.kb.terms import Atom
-from goalagent.mas import MultiAgentSystem
-from robot.affordance import affordances
+from robot.reproduce._ch5_agent import AgentRun, agent_run, algorithm6_n
 from sim.canfile import find_can
-from sim.world import GarbageWorld
 
-MAS = Path(__file__).resolve().parents[1] / "agents" / "garbage_disposal.mas2g"
 SLACK = 5
 """Exploratory actions the agent may take beyond Algorithm 6's N (issue 32)."""
 NEW_PULL_HANDLE = """\
@@ -46,61 +38,13 @@ handle:
 """
 
 
-@dataclass
-class Run:
-    """What one run of the agent did."""
-
-    actions: list[tuple[int, str]]  # (balls disposed of before it, action)
-    beliefs: dict[tuple[str, str], tuple[int, int, float]]
-    exploratory: int
-    disposed: int
-    terminated: bool
-    output: str
-
-    def learns(self) -> list[tuple[int, str]]:
-        return [(trial, text) for trial, text in self.actions if text.startswith("learn(")]
-
-
-def run(can: str, folder: Path, *, trials: int = 1, learning: str = "transfer",
-        seed: int = 0) -> Run:
-    """The agent on ``can`` with the known objects and models kept in ``folder``."""
-    params = {"can": can, "seed": seed, "trials": trials, "learning": Atom(learning),
-              "models": str(folder / "models.json"), "objects": str(folder / "objects.json")}
-    output = io.StringIO()
-    system = MultiAgentSystem.from_mas_file(MAS, env_params=params, seed=seed, output=output,
-                                            warn=lambda message: None)
-    actions: list[tuple[int, str]] = []
-
-    def record(agent) -> None:
-        done = int(agent.query("bel", "disposed(K)")[0]["K"])
-        if agent.last_report is not None:
-            actions.extend((done, text) for text in agent.last_report.actions)
-
-    try:
-        (agent,) = system.agents
-        system.run(max_cycles=150, after_cycle=record)
-        return Run(actions, {(a.obj, a.act): (a.tot, a.suc, a.rel) for a in affordances(agent)},
-                   int(agent.query("bel", "exploratory_actions(T)")[0]["T"]),
-                   int(agent.query("bel", "disposed(K)")[0]["K"]), agent.terminated,
-                   output.getvalue())
-    finally:
-        system.close()
-
-
-def algorithm6_n(can: str, objects: Path, scratch: Path, seed: int = 0) -> int:
-    """N of Algorithm 6 alone on ``can`` from the known objects in ``objects`` (a copy)."""
-    copy = scratch / f"alg6-{find_can(can).name}.json"
-    shutil.copy(objects, copy)
-    world = GarbageWorld(find_can(can), seed=seed)
-    try:
-        return learn_by_transfer(world, make_perception("truth"), KnownObjectDatabase(copy),
-                                 random_state=seed).actions
-    finally:
-        world.close()
+def run(can: str, folder: Path, *, trials: int = 1, learning: str = "transfer") -> AgentRun:
+    """The agent on ``can`` (seed 0, truth) with what ``folder`` holds of earlier cans."""
+    return agent_run(can, folder, trials=trials, learning=learning, max_cycles=150)
 
 
 @pytest.fixture(scope="module")
-def after_o1_o2(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Run, Run]:
+def after_o1_o2(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, AgentRun, AgentRun]:
     """o1 learned from nothing, then o2 by transfer: their runs and the folder they left."""
     folder = tmp_path_factory.mktemp("o1-o2")
     return folder, run("o1", folder), run("o2", folder)
@@ -114,10 +58,10 @@ def known_copy(folder: Path, tmp_path: Path) -> Path:
     return tmp_path
 
 
-def check_finished(result: Run, can: str, trials: int, bound: int) -> None:
+def check_finished(result: AgentRun, can: str, trials: int, bound: int) -> None:
     """All trials done, learning in the first only, within the bound, the can's own pair
     reliable and used in every later trial."""
-    assert result.terminated and result.disposed == trials, result.output
+    assert result.finished and result.disposed == trials, result.output
     assert {trial for trial, _ in result.learns()} == {0}
     assert result.exploratory <= bound, (result.exploratory, bound)
     part, action = find_can(can).functional
