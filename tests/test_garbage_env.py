@@ -198,3 +198,19 @@ def test_a_lid_that_does_not_close_is_reported(tmp_path: Path):
     assert float(stuck[len("lid_stuck("):-1]) > 0.1
     assert "disposed(0)" in percepts(env)
     env.kill()
+
+
+def test_a_lid_sliding_the_other_way_is_closed_too(tmp_path: Path):
+    """A closing skill that opens the can further (sweeping a right-sliding lid right) is not
+    tried again; the other way closes it."""
+    can = tmp_path / "right_slide.yaml"
+    can.write_text("name: right_slide\nmechanism: {type: slide_lid, direction: right, gear: 1.5}\n"
+                   "dimensions: {width: 0.26, depth: 0.30, height: 0.28}\nlid: {height: 0.02}\n")
+    env = environment(tmp_path, can=str(can))
+    act(env, "sweep_right", "lid", 0.1)
+    assert "opened" in percepts(env)
+    act(env, "close_lid")
+    seen = percepts(env)
+    assert "opened" not in seen and not any(p.startswith("lid_stuck") for p in seen)
+    assert env.world.opening() < 0.01
+    env.kill()

@@ -208,3 +208,18 @@ def test_the_count_of_balls_disposed_of_is_the_environment_s():
     agent.step()
     assert beliefs(agent, "disposed(K)") == [{"K": 1}]
     assert agent.terminated  # trials(1): finished
+
+
+def test_a_lid_that_will_not_close_is_tried_three_times_then_the_task_ends():
+    agent, io_ = robot({})
+    io_._percepts = [p for p in io_._percepts if p != Struct("holding", (Atom("ball"),))]
+    io_._percepts.append(Struct("in_can", (Atom("ball"),)))
+    agent.step()  # the ball is in: close the can
+    for _ in range(2):
+        io_.next = [Struct("lid_stuck", (0.05,))]  # what the last close_lid reported
+        agent.step()
+    assert io_.sent == ["close_lid"] * 3
+    io_.next = [Struct("lid_stuck", (0.05,))]
+    agent.step()
+    assert agent.terminated and io_.sent == ["close_lid"] * 3
+    assert agent.output.getvalue().split() == ["lid_stuck(0.05)"] * 3 + ["cannot_close"]

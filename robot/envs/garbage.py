@@ -42,7 +42,7 @@ CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm"
                   ("sweep_right", "lid"), ("sweep_left", "lid"))
 """What the robot tries, in order, to close a can: press the lid down, press a lifted handle
 down, push a pulled handle back in, slide a sliding lid back (until the can is closed)."""
-CLOSING_ROUNDS = 2
+CLOSING_ROUNDS = 3
 """How many times ``close_lid`` goes through the closing skills at most."""
 
 
@@ -189,14 +189,19 @@ class GarbageEnvironment(PythonEnvironment):
     def close_lid(self, entity: str) -> None:
         """Close the can; with the ball inside, that completes a trial and a new ball is
         put on the table (the scene is reset for the next trial). The closing skills are
-        tried in turn, a second round if the first left the can open (a geared lid may come
-        down in two presses); ``lid_stuck(W)`` says when they left an opening of W m."""
+        tried in turn, in rounds while the can is open (a geared lid may come down in two
+        presses); one that opened the can further (a sliding lid swept the wrong way) is not
+        tried again. ``lid_stuck(W)`` says when they left an opening of W m."""
+        wrong_way: set[tuple[str, str]] = set()
         for _ in range(CLOSING_ROUNDS):
             for skill, part in CLOSING_SKILLS:
-                if self.world.opening() < CLOSED:
+                before = self.world.opening()
+                if before < CLOSED:
                     break
-                if part in self.world.parts:
+                if part in self.world.parts and (skill, part) not in wrong_way:
                     perform_skill(self.world, skill, part, THETA_BOUNDS[skill][1])
+                    if self.world.opening() > before + CLOSED:
+                        wrong_way.add((skill, part))
         if self.world.opening() >= CLOSED:
             self._events.append(("lid_stuck", round(self.world.opening(), 4)))
         elif self.world.state().ball_in_can:
