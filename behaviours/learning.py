@@ -33,8 +33,8 @@ import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
 
+from behaviours.learners.effect_models import LinearEffectModel, ModelStore, check_bounds
 from behaviours.learners.theta_exploration import explore_theta
-from behaviours.models import LinearEffectModel, ModelStore, check_bounds
 
 if TYPE_CHECKING:
     from behaviours.perception import Perception

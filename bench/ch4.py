@@ -35,9 +35,7 @@ from rich.console import Console  # noqa: E402
 from rich.table import Table  # noqa: E402
 
 from behaviours.contact import PartContact  # noqa: E402
-from behaviours.learners.cacla import CACLA  # noqa: E402
 from behaviours.learners.exploration import ActiveExplorer  # noqa: E402
-from behaviours.learners.forward_model import ForwardModel  # noqa: E402
 from sim.world import GarbageWorld  # noqa: E402
 
 BUDGET = 300
@@ -78,22 +76,32 @@ def replay_seconds(can: str, part: str, actions: np.ndarray, seed: int) -> float
         world.close()
 
 
+class SyntheticLid:
+    """A 3-D held part without physics: the opening moves with the first action dimension."""
+
+    action_bounds = [(-0.01, 0.01)] * 3
+
+    def __init__(self) -> None:
+        self.state = 0.0
+        self.noise = np.random.RandomState(0)
+
+    def observe(self) -> float:
+        return self.state
+
+    def step(self, action: np.ndarray) -> float:
+        effect = float(action[0]) + 0.001 * self.noise.normal()
+        self.state = min(max(self.state + effect, 0.0), 0.08)
+        return self.state
+
+
 def learner_step_us(steps: int) -> float:
-    """Microseconds per step of the learners alone on synthetic 3-D transitions."""
-    rng = np.random.RandomState(0)
-    model = ForwardModel(action_bounds=[(-0.01, 0.01)] * 3, random_state=0).initialize(1)
-    cacla = CACLA(action_dims=3, random_state=0)
-    state = 0.0
+    """Microseconds per step of Algorithm 3's learners alone (forward model predict + update,
+    CACLA sample + actor/critic update, the check of each observed state) on a synthetic
+    3-D world: ``ActiveExplorer`` as the runs use it, with no physics behind it."""
+    explorer = ActiveExplorer(mode="active", n_max=steps, n_random=0, random_state=0,
+                              stop=False)
     start = time.process_time()
-    for _ in range(steps):
-        unit = cacla.sample([state])
-        inputs = np.concatenate([[state], unit * 0.01])[None, :]
-        predicted = model.predict(inputs)[0]
-        effect = 0.01 * unit[0] + 0.001 * rng.normal()
-        model.partial_fit(inputs, [effect])
-        nxt = min(max(state + effect, 0.0), 0.08)
-        cacla.partial_fit([[state]], [unit], [abs(effect - predicted)], [[nxt]])
-        state = nxt
+    explorer.explore(SyntheticLid())
     return 1e6 * (time.process_time() - start) / steps
 
 

@@ -11,6 +11,7 @@ counterpart of cycles.py's goalagent / floor rate ratio. Not a test:
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import subprocess
@@ -41,15 +42,21 @@ else:
 
 def instructions(what: str, count: int) -> int:
     """The instructions valgrind counts for a run of ``count`` cycles after the warm-up."""
+    return counted(_CHILD.format(bench=str(BENCH), warmup=WARMUP), what, str(count))
+
+
+def counted(code: str, *args: str) -> int:
+    """The instructions valgrind counts for ``python -c code args`` (hash seed fixed, so
+    two trees compare on the same dict and set orders)."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "callgrind.out"
         done = subprocess.run(
             ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", sys.executable,
-             "-c", _CHILD.format(bench=str(BENCH), warmup=WARMUP), what, str(count)],
-            capture_output=True, text=True, check=False)
+             "-c", code, *args], capture_output=True, text=True, check=False,
+            env={**os.environ, "PYTHONHASHSEED": "0"})
     found = re.search(r"Collected : (\d+)", done.stderr)
     if done.returncode != 0 or found is None:
-        raise SystemExit(f"valgrind run of {what} failed:\n{done.stderr[-2000:]}")
+        raise SystemExit(f"valgrind run of {' '.join(args)} failed:\n{done.stderr[-2000:]}")
     return int(found.group(1))
 
 

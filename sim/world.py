@@ -395,16 +395,17 @@ class GarbageWorld(RenderedWorld):
             g = m.geom(f"marker_{part}").id
             quat = np.zeros(4)
             mujoco.mju_mat2Quat(quat, d.geom_xmat[g])
-            parts[part] = PartState(_tup(d.geom_xpos[g]), _tup(quat), _tup(2 * m.geom_size[g]))
+            parts[part] = PartState(_float_tuple(d.geom_xpos[g]), _float_tuple(quat),
+                                    _float_tuple(2 * m.geom_size[g]))
         ball = d.xpos[self._ball_body]
         return WorldState(
             opening=self.opening(),
             lid_angle=float(d.joint(self.spec.lid_joint).qpos[0]),
             parts=parts,
-            ball_pos=_tup(ball),
+            ball_pos=_float_tuple(ball),
             holding_ball=bool(d.eq_active[self._grip_id]),
             ball_in_can=self._inside_can(ball),
-            effector_pos=_tup(self.effector_pos),
+            effector_pos=_float_tuple(self.effector_pos),
         )
 
     def _inside_can(self, p: np.ndarray) -> bool:
@@ -494,6 +495,6 @@ def _has_body(model: mujoco.MjModel, name: str) -> bool:
     return mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name) >= 0
 
 
-def _tup(a: np.ndarray) -> tuple[float, ...]:
+def _float_tuple(a: np.ndarray) -> tuple[float, ...]:
     """Plain-float tuple of a numpy vector (immutable, comparable, printable)."""
     return tuple(float(x) for x in a)

@@ -16,8 +16,8 @@ from pathlib import Path
 
 from typer.testing import CliRunner
 
+from behaviours.learners.effect_models import ModelStore, StoreError
 from behaviours.learners.persist import LearnerFileError, read_learner
-from behaviours.models import ModelStore, StoreError
 from goalagent.agent import AgentError, validate_program
 from goalagent.beliefs import read_belief_file
 from goalagent.cli import create_app

@@ -65,13 +65,19 @@ def test_save_and_load_round_trip_atomically(tmp_path: Path):
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "forward_model",
                  "params": {}, "state": {}}), "holds a 'forward_model'"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
-                 "params": {"undesired_effects": [0]}, "state": {}}), "corrupt: missing"),
+                 "params": {"undesired_effects": [0]}, "state": {}}),
+     r"state: must contain \['triples'\] properties"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
-                 "state": {"triples": [["1100", "010"]]}}), "corrupt: a triple must be"),
+                 "state": {"triples": [["1100", "010"]]}}),
+     r"state\.triples\[0\]: must contain at least 3 items"),
     (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
                  "params": {"undesired_effects": [0]},
-                 "state": {"triples": [["11x0", "010", 0]]}}), "corrupt: an object must be"),
+                 "state": {"triples": [["11x0", "010", 0]]}}),
+     r"state\.triples\[0\]\.object: must match pattern \^\[01\]\+\$, got '11x0'"),
+    (json.dumps({"format": "goalagent-learner", "version": 1, "kind": "affordance_table",
+                 "params": {"undesired_effects": [0.5]}, "state": {"triples": []}}),
+     r"params\.undesired_effects\[0\]: must be integer, got 0\.5"),
 ])
 def test_a_corrupt_file_is_a_clear_error(tmp_path: Path, content: str, message: str):
     path = tmp_path / "table.json"

@@ -181,3 +181,70 @@ def test_parameters_must_be_parameters() -> None:
         Numeral(True)
     with pytest.raises(TypeError):
         Identifier(3)  # type: ignore[arg-type]
+
+
+# A percept keeps the term it came from (one conversion; issue 25): checked against what the
+# parameters say, for any parameters, shorthand values and truth values.
+values = st.recursive(
+    st.one_of(names, st.booleans(), st.integers(), st.floats(allow_nan=False), parameters),
+    lambda inner: st.one_of(st.lists(inner, max_size=3), st.lists(inner, max_size=3).map(tuple)),
+    max_leaves=8,
+)
+
+
+def has_list(param: Parameter) -> bool:
+    if isinstance(param, ParameterList):
+        return True
+    return isinstance(param, Function) and any(has_list(item) for item in param.params)
+
+
+def expected_term(name: str, params: tuple[Parameter, ...]) -> object:
+    return Struct(name, tuple(to_term(p) for p in params)) if params else Atom(name)
+
+
+@QUICK
+@given(name=names, shorthand=st.lists(values, max_size=3))
+def test_a_percept_of_shorthand_is_its_parameters_and_their_term(name: str,
+                                                                  shorthand: list) -> None:
+    params = tuple(to_parameter(value) for value in shorthand)
+    percept = Percept.of(name, *shorthand)
+    assert percept == Percept(name, params) and percept.params == params
+    assert percept_to_term(percept) == expected_term(name, params)
+    assert hash(percept) == hash(Percept(name, params))
+
+
+@QUICK
+@given(name=names.filter(bool), params=st.lists(parameters, min_size=1, max_size=3).map(tuple))
+def test_a_percept_from_a_term_hands_on_that_very_term(name: str, params: tuple) -> None:
+    term = Struct(name, tuple(to_term(p) for p in params))
+    percept = percept_from_term(term)
+    if any(has_list(param) for param in params):  # copied: the environment may change its own
+        assert percept_to_term(percept) == term
+    else:
+        assert percept_to_term(percept) is term  # not rebuilt
+    assert percept.params == params and percept == Percept(name, params)
+
+
+def test_a_percept_term_is_made_canonical_once_and_bad_ones_are_refused() -> None:
+    tuples = percept_from_term(Struct("at", (Atom("a"), (1, 2))))
+    assert percept_to_term(tuples) == Struct("at", (Atom("a"), [1, 2]))
+    truth = percept_from_term(Struct("open", (True,)))  # a bool stays a truth value
+    assert truth.params == (TruthValue(True),)
+    assert percept_to_term(truth) == Struct("open", (Atom("true"),))
+    with pytest.raises(TranslationException, match="unbound variable X"):
+        percept_from_term(Struct("at", (Atom("a"), [Var("X")])))
+    with pytest.raises(TranslationException, match="cannot turn None"):
+        Percept.of("at", [1, None])
+
+
+def test_percepts_and_actions_are_values() -> None:
+    import pickle
+    from dataclasses import FrozenInstanceError
+
+    percept = percept_from_term(Struct("on", (Atom("a"), Atom("b"))))
+    with pytest.raises(FrozenInstanceError):
+        percept.name = "off"  # type: ignore[misc]
+    assert pickle.loads(pickle.dumps(percept)) == percept
+    assert repr(percept) == ("Percept(name='on', params=(Identifier(value='a', string=False), "
+                             "Identifier(value='b', string=False)))")
+    assert percept != Action("on", percept.params) and str(percept) == "on(a,b)"

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 from measured import goalagent_measured
 
+from behaviours.learners.effect_models import ModelStore, StoreError
 from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
 from behaviours.learners.persist import LearnerFileError, read_learner
-from behaviours.models import ModelStore, StoreError
 from goalagent.agent import Agent
 from goalagent.beliefs import load_beliefs, read_belief_file
 from goalagent.parser import GoalSyntaxError
@@ -126,7 +126,7 @@ def test_a_bad_model_record_is_named(tmp_path: Path):
             "effect": [0.0, 0.1], "fit_intercept": True}
     path.write_text(json.dumps({"format": "goalagent-effect-models", "version": 1,
                                 "models": [good, {**good, "theta": ["x", 1]}]}))
-    with pytest.raises(StoreError, match=r"bad record \(model 1\)"):
+    with pytest.raises(StoreError, match=r"models\[1\]\.theta\[0\]: must be number"):
         ModelStore(path)
 
 

@@ -165,6 +165,19 @@ def test_unicode_atoms_and_strings_cross_the_seam() -> None:
     assert result == [Atom("čaj ☕"), "čaj ☕"]
 
 
+def test_subclasses_tuples_and_bools_cross_as_the_term_they_stand_for() -> None:
+    class Name(Atom):
+        pass
+
+    class Text(str):
+        pass
+
+    result = engine.call("=", [Name("a"), Text("b"), (1, 2.5), True, Struct("f", (False,))],
+                         None, module="system")
+    assert result[1] == [Atom("a"), "b", [1, 2.5], Atom("true"), Struct("f", (Atom("false"),))]
+    assert [type(value) for value in result[1][:2]] == [Atom, str]
+
+
 def test_unrepresentable_python_values_are_clear_errors() -> None:
     with pytest.raises(KBError, match="not a Prolog term"):
         engine.call("atom", object(), module="system")  # type: ignore[arg-type]

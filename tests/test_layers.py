@@ -26,9 +26,10 @@ ALLOWED: dict[str, frozenset[str]] = {
     "robot": frozenset({"goalagent", "behaviours", "sim", "ondisk"}),  # the application, on top
 }
 LEARNERS = ("behaviours", "learners")
-LEARNER_LIBRARIES = frozenset({"numpy", "scipy", "sklearn", "ondisk"})
+LEARNER_LIBRARIES = frozenset({"numpy", "scipy", "sklearn", "ondisk", "fastjsonschema"})
 """Pure learners import only these, the standard library and other learners (ondisk: their
-stores are written atomically like every other file)."""
+stores are written atomically like every other file; fastjsonschema: their stores are checked
+against their JSON Schemas)."""
 
 
 def module_name(path: Path) -> str:

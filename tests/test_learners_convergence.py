@@ -91,11 +91,11 @@ def test_never_met_and_too_short_series_give_none() -> None:
 
 
 @pytest.mark.parametrize(("call", "message"), [
-    (lambda: holds([0.1, 0.2], "median"), "unknown convergence criterion 'median'"),
-    (lambda: holds([0.1, float("nan")], "thesis"), "finite"),
+    (lambda: holds([0.1, 0.2], "median"), "'criterion' parameter of holds must be a str among"),
+    (lambda: holds([0.1, float("nan")], "thesis"), "Input td_errors contains NaN"),
     (lambda: holds([[0.1, 0.2]], "thesis"), "1-D series"),
-    (lambda: holds([0.1], "sustained", window=0), "window must be a positive whole"),
-    (lambda: first_convergence([0.1], "thesis", tol=-1.0), "tol must be a positive"),
+    (lambda: holds([0.1], "sustained", window=0), "'window' parameter of holds must be an int"),
+    (lambda: first_convergence([0.1], "thesis", tol=-1.0), "'tol' parameter of holds must be"),
 ])
 def test_bad_input_is_refused_clearly(call, message: str) -> None:
     with pytest.raises(ValueError, match=message):

@@ -134,12 +134,14 @@ def test_sklearn_conventions() -> None:
 @pytest.mark.parametrize(
     ("call", "message"),
     [
-        (lambda m: m.partial_fit([[0.0, float("nan")]], [0.0]), "not a finite number"),
-        (lambda m: m.partial_fit([[0.0, 0.0]], [float("inf")]), "not a finite number"),
+        (lambda m: m.partial_fit([[0.0, float("nan")]], [0.0]), "Input X contains NaN"),
+        (lambda m: m.partial_fit([[0.0, 0.0]], [float("inf")]), "Input y contains infinity"),
         (lambda m: m.partial_fit([[0.0, 0.02]], [0.0]), "out of bounds"),
-        (lambda m: m.partial_fit([[0.0, 0.0, 0.0]], [0.0]), "must have 2 column"),
-        (lambda m: m.partial_fit([[0.0, 0.0], [0.1, 0.0]], [0.0]), "differ in length"),
-        (lambda m: m.partial_fit([["a", 0.0]], [0.0]), "must be numbers"),
+        (lambda m: m.partial_fit([[0.0, 0.0, 0.0]], [0.0]), "X has 3 features, but ForwardModel "
+                                                           "is expecting 2"),
+        (lambda m: m.partial_fit([[0.0, 0.0], [0.1, 0.0]], [0.0]), "inconsistent numbers"),
+        (lambda m: m.partial_fit([["a", 0.0]], [0.0]), "could not convert string to float"),
+        (lambda m: m.partial_fit([[0.0, 0.0]], [[0.0, 1.0]]), "2 effect column"),
         (lambda m: m.predict([[0.0, -0.011]]), "out of bounds"),
     ],
 )
@@ -156,11 +158,11 @@ def test_bad_input_is_refused_and_changes_nothing(call, message: str) -> None:
 def test_predict_before_any_data_is_a_clear_error() -> None:
     with pytest.raises(NotFittedError, match="seen no data yet"):
         ForwardModel().predict([[0.0, 0.0]])
-    with pytest.raises(ValueError, match="at least one state column"):
+    with pytest.raises(ValueError, match=r"1 feature\(s\) .* a minimum of 2 is required"):
         ForwardModel().partial_fit([[0.0]], [0.0])
     with pytest.raises(ValueError, match="lo < hi"):
         ForwardModel(action_bounds=[(0.01, -0.01)]).partial_fit([[0.0, 0.0]], [0.0])
-    with pytest.raises(ValueError, match="learning_rate must be a number in"):
+    with pytest.raises(ValueError, match="'learning_rate' parameter of ForwardModel must be"):
         ForwardModel(learning_rate=2).partial_fit([[0.0, 0.0]], [0.0])
 
 
@@ -189,7 +191,12 @@ def test_save_and_load_round_trip(tmp_path: Path) -> None:
          '"state": {}}', "holds a 'cacla'"),
         ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
          '"params": {"action_bounds": [[-0.01, 0.01]]}, "state": {"network": {"coefs": [[1]], '
-         '"intercepts": []}}}', "bad forward model"),
+         '"intercepts": []}}}', r"params: must contain \[.*'n_hidden'.*\] properties"),
+        ('{"format": "goalagent-learner", "version": 1, "kind": "forward_model", '
+         '"params": {"action_bounds": [[-0.01, 0.01]], "n_hidden": 1, "learning_rate": 0.3, '
+         '"init_scale": 0.3, "random_state": null}, "state": {"network": {"coefs": [[[1]], '
+         '[[1]]], "intercepts": [[0], [0]]}, "n_features_in": 3, "n_outputs": 1, '
+         '"n_samples_seen": 0}}', "bad forward model"),
     ],
 )
 def test_corrupt_files_give_clear_errors(tmp_path: Path, text: str, message: str) -> None:

@@ -88,7 +88,7 @@ def test_unreadable_files_are_clear_errors(tmp_path: Path):
         KnownObjectDatabase(path)
     path.write_text(json.dumps({"format": "goalagent-known-objects", "version": 1,
                                 "objects": [{"name": "o1", "parts": {"lid": [1, "x"]}}]}))
-    with pytest.raises(DatabaseError, match="bad record"):
+    with pytest.raises(DatabaseError, match=r"known.json': objects\[0\]: must contain"):
         KnownObjectDatabase(path)
 
 

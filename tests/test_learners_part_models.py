@@ -67,12 +67,14 @@ def test_partial_fit_equals_fit_on_everything():
 
 
 def test_bad_input_is_a_clear_value_error():
-    with pytest.raises(ValueError, match="one value per sample"):
+    with pytest.raises(ValueError, match="inconsistent numbers of samples"):
         PartActionModel().fit([0.1, 0.2], [0.1], [0.1])
-    with pytest.raises(ValueError, match="not a finite number"):
+    with pytest.raises(ValueError, match="Input theta contains NaN"):
         PartActionModel().fit([np.nan], [0.1], [0.1])
-    with pytest.raises(ValueError, match="zero samples"):
+    with pytest.raises(ValueError, match="at least one row"):
         PartActionModel().fit([], [], [])
+    with pytest.raises(ValueError, match="must have 1 column"):
+        PartActionModel().fit([[0.1, 0.2]], [0.1], [0.1])
     with pytest.raises(ValueError, match="not fitted"):
         PartActionModel().predict(0.1)
     with pytest.raises(ValueError, match="delta1"):

@@ -70,7 +70,7 @@ def test_baseline_that_finds_nothing_reports_no_functional_pair():
 
 def test_learner_parameters_are_checked():
     can = thesis_cans()["o1"]
-    for params, message in (({"n": 0}, "n must be"), ({"n_min": 1}, "n_min"),
+    for params, message in (({"n": 0}, "'n' parameter"), ({"n_min": 1}, "n_min"),
                             ({"settle_tol": -1.0}, "settle_tol"), ({"delta2": 0}, "delta2"),
                             ({"max_checks": 1.5}, "max_checks")):
         with pytest.raises(ValueError, match=message):
@@ -91,8 +91,12 @@ def test_part_similarity_groups_by_nearest_known_parts_and_flags_novel_ones():
         "lid", "lid", "handle"]
     assert similarity.group(PEDAL) is None  # far from every known part
     assert similarity.distance(LID, BODY) == pytest.approx(np.hypot(2.6, 0.0643))
-    with pytest.raises(ValueError, match="3 values"):
+    with pytest.raises(ValueError, match="X has 2 features, but PartSimilarity is expecting 3"):
         similarity.predict([(1.0, 2.0)])
+    with pytest.raises(ValueError, match="3 values each"):
+        PartSimilarity().fit([(1.0, 2.0)], ["lid"])
+    unweighted = PartSimilarity(weights=None, max_distance=None).fit([LID, PEDAL], ["a", "b"])
+    assert list(unweighted.predict([(0.0, 0.4, 1.0), (5.0, 5.0, 5.0)])) == ["a", "b"]
     with pytest.raises(ValueError, match="not fitted"):
         PartSimilarity().predict([LID])
 

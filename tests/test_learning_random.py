@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from sklearn.base import clone
 
+from behaviours.learners.effect_models import LinearEffectModel
 from behaviours.learning import (
     AffordanceEvidence,
     LearningModeUnavailable,
@@ -15,7 +16,6 @@ from behaviours.learning import (
     learn,
     verify_effect,
 )
-from behaviours.models import LinearEffectModel
 
 EXTEND = (0.0, 0.1)
 WIDE_NEGATIVE = (-0.1, 0.0)
@@ -101,7 +101,7 @@ def test_stop_follows_eq_5_19_on_recorded_samples(seed: int) -> None:
     """Recompute S_m with numpy's own least squares and find where |S_m - S_m-1| < tol."""
     tol = 2e-5
     result = run(noisy_flat(seed, sd=0.006), random_state=seed, settle_tol=tol, n_max=25)
-    theta, effect = result.model.theta_, result.model.effect_
+    theta, effect = result.model.theta_[:, 0], result.model.effect_  # one parameter θ
     rss = []
     for m in range(1, len(theta) + 1):
         slope, intercept = np.polyfit(theta[:m], effect[:m], 1) if m > 1 else (0.0, effect[0])

@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from behaviours.learners.effect_models import LinearEffectModel, ModelStore, StoreError
 from behaviours.learning import learn
-from behaviours.models import LinearEffectModel, ModelStore, StoreError
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -100,7 +100,7 @@ def test_default_key_is_object_and_action(tmp_path: Path) -> None:
 CRASH_SCRIPT = textwrap.dedent(
     """
     import os, sys
-    from behaviours.models import LinearEffectModel, ModelStore
+    from behaviours.learners.effect_models import LinearEffectModel, ModelStore
     store = ModelStore(sys.argv[1])
     def crash(fd):
         os._exit(3)  # the process dies after writing the temporary file, before the rename
@@ -149,12 +149,12 @@ def test_a_failed_write_cleans_up_and_keeps_the_old_file(tmp_path: Path) -> None
 @pytest.mark.parametrize(
     ("content", "message"),
     [
-        ("{not json", "cannot read model store"),
+        ("{not json", "cannot read effect-model store"),
         ('{"format": "other"}', "is not a goalagent effect-model store"),
         ('{"format": "goalagent-effect-models", "version": 9, "models": []}', "has version 9"),
         (
             '{"format": "goalagent-effect-models", "version": 1, "models": [{"key": ["a"]}]}',
-            "has a bad record",
+            r"effects.json': models\[0\]: must contain \['bounds', 'effect'",
         ),
     ],
 )

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from behaviours.learners.effect_models import ModelStore
 from behaviours.learning import (
     AffordanceBehaviours,
     AffordanceEvidence,
@@ -14,7 +15,6 @@ from behaviours.learning import (
     learn_in_world,
     verify_effect,
 )
-from behaviours.models import ModelStore
 from behaviours.perception import Observation
 from behaviours.skills import SkillError, perform_skill
 from sim.world import GarbageWorld

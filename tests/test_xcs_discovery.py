@@ -14,12 +14,12 @@ from behaviours.learners.xcs_discovery import (
     run_ga,
     two_point_crossover,
 )
-from behaviours.learners.xcs_params import DEFAULTS, Settings
+from behaviours.learners.xcs_params import Settings
 from behaviours.learners.xcs_population import condition_masks, condition_text, more_general
 
 
 def settings(n_actions: int = 2, **changes) -> Settings:
-    return Settings.resolve(n_actions, {**DEFAULTS, **changes})
+    return Settings.resolve("XCS", XCS(n_actions, **changes).get_params())
 
 
 def state(text: str) -> int:

@@ -111,8 +111,30 @@ def test_the_same_seed_gives_the_same_run():
 ])
 def test_invalid_parameters_are_value_errors_naming_the_argument(params, argument):
     n_actions = params.pop("n_actions", 2)
-    with pytest.raises(ValueError, match=rf"\b{argument} must be"):
-        XCS(n_actions, **params)
+    xcs = XCS(n_actions, **params)  # stored as given (scikit-learn), checked at first use
+    assert xcs.get_params()[argument] is {"n_actions": n_actions, **params}[argument]
+    with pytest.raises(ValueError, match=rf"'{argument}' parameter of XCS must be|"
+                                         rf"XCS: {argument} must be"):
+        xcs.act("01")
+
+
+def test_parameters_are_checked_once_and_again_after_set_params():
+    xcs = XCS(2, random_state=0)
+    xcs.act("01")
+    xcs.reward(0.0, done=True)
+    xcs.beta = 5.0  # not through set_params: the checked settings stay in force
+    xcs.act("01")
+    xcs.reward(0.0, done=True)
+    xcs.set_params(beta=5.0)
+    with pytest.raises(ValueError, match="'beta' parameter of XCS must be"):
+        xcs.act("01")
+    xcs.set_params(beta=0.5, N=3)
+    xcs.act("10")
+    xcs.reward(0.0, done=True)
+    assert xcs.micro_count <= 3 and xcs.time_ == 3  # the run went on under the new N
+    xcs.set_params(n_actions=1)
+    with pytest.raises(ValueError, match="n_actions cannot drop"):
+        xcs.act("01")
 
 
 @pytest.mark.parametrize(("state", "message"), [
@@ -171,7 +193,10 @@ def test_reward_without_act_and_act_without_reward_are_value_errors():
     ([cl("01", 0), cl("011", 1)], r"classifiers\[1\]\.condition has 3"),
     ([cl("01", 0), cl("01", 0)], r"classifiers\[1\] repeats"),
     ([cl("01", 0, numerosity=600)], "exceeds N"),
-    ([("01", 0, 1.0)], r"classifiers\[0\] must have 9 fields"),
+    ([("01", 0, 1.0)], r"classifiers\[0\]: must contain at least 9 items, got \['01', 0, 1.0\]"),
+    ([["01", 0, 10.0, 0.0, 0.01, 0, 1, 1.0, 0, "extra"]],
+     r"classifiers\[0\]: must contain less than or equal to 9"),
+    ([cl("01", 0, time_stamp=1.5)], r"classifiers\[0\]\.time_stamp: must be integer, got 1.5"),
     ("01", "classifiers must be a list"),
 ])
 def test_bad_hand_built_populations_are_value_errors(records, message):
@@ -247,17 +272,21 @@ def corrupt(document: dict, change) -> dict:
     (lambda d: d.update(format="something-else"), "not a goalagent learner file"),
     (lambda d: d.update(version=99), "has version 99"),
     (lambda d: d.update(kind="forward_model"), "holds a 'forward_model', not a 'xcs'"),
-    (lambda d: d["params"].pop("beta"), "params: expected exactly"),
-    (lambda d: d["params"].update(N=-1), "N must be"),
-    (lambda d: d["params"].update(n_actions="two"), "n_actions must be"),
+    (lambda d: d["params"].pop("beta"), r"params: must contain \['beta'\] properties"),
+    (lambda d: d["params"].update(colour=3), r"params: must not contain {'colour'} properties"),
+    (lambda d: d["params"].update(N=-1), "'N' parameter of XCS must be"),
+    (lambda d: d["params"].update(n_actions="two"), "'n_actions' parameter of XCS must be"),
     (lambda d: d["state"]["classifiers"][0].__setitem__(0, "01?#01"),
      r"classifiers\[0\]\.condition"),
     (lambda d: d["state"]["classifiers"][0].__setitem__(4, -1.0), r"classifiers\[0\]\.fitness"),
     (lambda d: d["state"].update(classifiers={}), "classifiers"),
-    (lambda d: d["state"].update(time=-5), "time must be"),
+    (lambda d: d["state"].update(time=-5), "state.time: must be bigger than or equal to 0, got -5"),
+    (lambda d: d["state"]["classifiers"][0].__setitem__(1, True), r"classifiers\[0\]\.action"),
+    (lambda d: d["state"]["classifiers"][0].__setitem__(2, float("nan")),
+     "NaN is not a JSON number"),
     (lambda d: d["state"].update(n_bits=7), "n_bits is 7"),
     (lambda d: d["state"]["random_generator"].update(bit_generator="Nope"),
-     "unknown bit generator"),
+     "state.random_generator.bit_generator: must be one of"),
     (lambda d: d["state"]["random_generator"].update(state="x"), "random_generator"),
 ])
 def test_corrupt_or_foreign_files_are_value_errors_naming_the_file(tmp_path, change, message):

@@ -109,9 +109,9 @@ def test_xcs_classifier_follows_scikit_learn_conventions():
 
 
 @pytest.mark.parametrize(("X", "y", "message"), [
-    ([[0, 1, 2]], [0], "0/1 features"), ([0, 1, 1], [0, 1, 1], "2-D"),
-    (np.zeros((3, 0)), [0, 1, 1], "non-empty"), ([["a", "b"]], [0], "0/1"),
-    ([[0, 1], [1, 0]], [0], "one label per row"),
+    ([[0, 1, 2]], [0], "0/1 features"), ([0, 1, 1], [0, 1, 1], "Expected 2D array"),
+    (np.zeros((3, 0)), [0, 1, 1], r"0 feature\(s\)"), ([["a", "b"]], [0], "numeric"),
+    ([[0, 1], [1, 0]], [0], "inconsistent numbers of samples"),
 ])
 def test_xcs_classifier_rejects_bad_data(X, y, message):
     with pytest.raises(ValueError, match=message):
@@ -119,14 +119,25 @@ def test_xcs_classifier_rejects_bad_data(X, y, message):
 
 
 def test_xcs_classifier_rejects_bad_parameters_and_unknown_labels():
-    with pytest.raises(ValueError, match="n_iter must be"):
+    with pytest.raises(ValueError, match="'n_iter' parameter of XCSClassifier must be"):
         XCSClassifier(n_iter=0).fit(MUX6_TABLE, np.zeros(64))
-    with pytest.raises(ValueError, match="beta must be"):
+    with pytest.raises(ValueError, match="'beta' parameter of XCSClassifier must be"):
         XCSClassifier(beta=2.0).fit(MUX6_TABLE, np.zeros(64))
     with pytest.raises(ValueError, match="classes must be given"):
         XCSClassifier().partial_fit(MUX6_TABLE, np.zeros(64))
     model = XCSClassifier().partial_fit(MUX6_TABLE, np.zeros(64), classes=[0, 1])
     with pytest.raises(ValueError, match="labels not in classes"):
         model.partial_fit(MUX6_TABLE, np.full(64, 7))
-    with pytest.raises(ValueError, match="features"):
+    with pytest.raises(ValueError, match="X has 5 features, but XCSClassifier is expecting 6"):
         model.predict(np.zeros((2, 5)))
+
+
+def test_xcs_classifier_binarizes_real_features_when_asked():
+    reals = np.where(MUX6_TABLE == 1, 0.7, -0.2)
+    targets = np.array([mux6(row) for row in MUX6_TABLE])
+    model = XCSClassifier(n_iter=5, random_state=2, binarize=0.0).fit(reals, targets)
+    bits = XCSClassifier(n_iter=5, random_state=2).fit(MUX6_TABLE, targets)
+    assert model.xcs_.classifiers() == bits.xcs_.classifiers()
+    assert np.array_equal(model.predict(reals), bits.predict(MUX6_TABLE))
+    with pytest.raises(ValueError, match="0/1 features"):
+        bits.predict(reals)

@@ -16,4 +16,9 @@ atomically) serve them all.
 Chapter 5 (part-based affordance models and transfer): ``part_models`` (ĝ, ĥ, 5.9–5.12),
 ``protocol`` (the object under test), ``baseline`` (Algorithm 4), ``similarity``
 (Algorithm 5), ``transfer`` (Algorithm 6), ``known_objects`` (the known-object database).
+
+Chapter 6 (the garbage disposal robot): ``effect_models`` (Ĥ(θ), eq. 6.7, and its store).
+
+``tags`` declares the domain limits scikit-learn has no tag for (binary inputs, bounded
+actions).
 """

@@ -83,15 +83,12 @@ class AffordanceTable:
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> AffordanceTable:
         """A table saved by ``save``; a file that is not one is a ``LearnerFileError``."""
-        params, state = read_learner(path, KIND)
+        params, state = read_learner(path, KIND)  # the schema checked every field
         try:
-            table = cls(tuple(_effect(e) for e in params["undesired_effects"]))
+            table = cls(tuple(params["undesired_effects"]))
             for row in state["triples"]:
-                if not isinstance(row, list) or len(row) != 3:
-                    raise ValueError(f"a triple must be [object, action, effect], got {row!r}")
                 table.update(*row)
-        except (KeyError, TypeError, ValueError) as error:
-            detail = f"missing {error}" if isinstance(error, KeyError) else str(error)
+        except ValueError as error:
             raise LearnerFileError(f"affordance table {str(path)!r} is corrupt: "
-                                   f"{detail}") from None
+                                   f"{error}") from None
         return table

@@ -14,10 +14,13 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from numbers import Integral, Real
+from typing import ClassVar
 
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
+from sklearn.utils._param_validation import Interval
 
 from behaviours.learners.part_models import (
     Bounds,
@@ -31,6 +34,7 @@ from behaviours.learners.part_models import (
     select_part_action,
 )
 from behaviours.learners.protocol import ObjectUnderTest, ObjectView, Trial
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT
 
 
 @dataclass(frozen=True)
@@ -47,19 +51,12 @@ class SessionParams:
 
     @classmethod
     def from_estimator(cls, est: BaseEstimator) -> SessionParams:
-        """Validate an estimator's parameters with clear ValueErrors."""
+        """An estimator's parameters, checked by its ``_parameter_constraints``."""
+        est._validate_params()  # type: ignore[attr-defined]
         p = est.get_params()
-        for name, least in (("n", 1), ("n_min", 2), ("max_checks", 1)):
-            value = p[name]
-            if isinstance(value, bool) or not isinstance(value, int) or value < least:
-                raise ValueError(f"{name} must be a whole number >= {least}, got {value!r}")
-        for name in ("settle_tol", "min_displacement", "delta2"):
-            value = p[name]
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
-                    0 < value < math.inf):
-                raise ValueError(f"{name} must be a positive finite number, got {value!r}")
-        return cls(p["n"], p["n_min"], float(p["settle_tol"]), float(p["min_displacement"]),
-                   OpeningGoal(p["goal"], p["delta1"]), float(p["delta2"]), p["max_checks"])
+        return cls(int(p["n"]), int(p["n_min"]), float(p["settle_tol"]),
+                   float(p["min_displacement"]), OpeningGoal(p["goal"], p["delta1"]),
+                   float(p["delta2"]), int(p["max_checks"]))
 
 
 class Session:
@@ -185,7 +182,18 @@ class PartBasedLearner(BaseEstimator):
     taken, ``n_actions_`` their number (N of Table 5.4, the goal-directed actions included),
     ``functional_`` the pair selected by 5.11 whose action (θ* of 5.12) achieved the goal
     (None if no check did), ``data_`` the data tuples 5.6.
+
+    It learns by acting on an object (``fit(obj)``), not from (X, y): scikit-learn's checks
+    that need ``fit(X, y)`` do not apply.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        "n": [POSITIVE_INT], "n_min": [Interval(Integral, 2, None, closed="left")],
+        "settle_tol": [POSITIVE], "min_displacement": [POSITIVE],
+        "goal": [Interval(Real, None, None, closed="neither")],
+        "delta1": [Interval(Real, 0.0, None, closed="left")], "delta2": [POSITIVE],
+        "max_checks": [POSITIVE_INT], "random_state": ["random_state"],
+    }
 
     def __init__(self, n: int = 5, n_min: int = 3, settle_tol: float = 1e-4,
                  min_displacement: float = 0.01, goal: float = 0.1, delta1: float = 0.03,

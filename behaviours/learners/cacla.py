@@ -17,11 +17,13 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.exceptions import NotFittedError
-from sklearn.utils import check_random_state
+from sklearn.utils import check_consistent_length, check_random_state
+from sklearn.utils._param_validation import validate_params
 
 from behaviours.learners.network import TanhNetwork
 from behaviours.learners.persist import (
@@ -30,11 +32,12 @@ from behaviours.learners.persist import (
     read_learner,
     write_learner,
 )
-from behaviours.learners.validation import as_rows, check_positive, check_rate
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT, RATE, as_rows
 
 __all__ = ["CACLA", "TDConvergence", "td_error"]
 
 KIND = "cacla"
+NOT_FITTED = "this %(name)s has no actor yet; call sample or partial_fit first"
 
 
 def td_error(reward: float, value: float, next_value: float, gamma: float) -> float:
@@ -54,7 +57,17 @@ class CACLA(BaseEstimator):
         critic_rate: β of eq. 4.9 (0.3).
         init_scale: initial weights uniform in [−init_scale, init_scale] (0.3).
         random_state: seeds the initial weights and the exploration noise.
+
+    CACLA learns from transitions (s, a, r, s'), not from (X, y), so scikit-learn's checks
+    that need a ``fit`` do not apply; its parameters follow scikit-learn (checked once, at
+    the first use).
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        "action_dims": [POSITIVE_INT], "n_hidden": [POSITIVE_INT], "sigma": [POSITIVE],
+        "gamma": [RATE], "actor_rate": [RATE], "critic_rate": [RATE],
+        "init_scale": [POSITIVE], "random_state": ["random_state"],
+    }
 
     def __init__(
         self,
@@ -78,27 +91,28 @@ class CACLA(BaseEstimator):
 
     # ------------------------------------------------------------------ set-up
     def _init(self, n_state: int) -> None:
-        """Draw actor and critic weights for states of width ``n_state`` (first use only)."""
+        """Check the parameters and draw actor and critic weights for states of width
+        ``n_state`` (first use only)."""
         if hasattr(self, "actor_"):
             return
-        dims = int(check_positive(self.action_dims, "action_dims", integer=True))
-        hidden = int(check_positive(self.n_hidden, "n_hidden", integer=True))
-        scale = float(check_positive(self.init_scale, "init_scale"))
-        check_positive(self.sigma, "sigma")
+        self._validate_params()
         self.rng_ = check_random_state(self.random_state)
-        self.actor_ = TanhNetwork.uniform(n_state, hidden, dims, scale, self.rng_)
-        self.critic_ = TanhNetwork.uniform(n_state, hidden, 1, scale, self.rng_)
+        self.actor_ = TanhNetwork.uniform(n_state, int(self.n_hidden), int(self.action_dims),
+                                          float(self.init_scale), self.rng_)
+        self.critic_ = TanhNetwork.uniform(n_state, int(self.n_hidden), 1,
+                                           float(self.init_scale), self.rng_)
         self.n_features_in_ = n_state
         self.td_errors_: list[float] = []
+
+    def _check_fitted(self) -> None:
+        """NotFittedError before the first use (scikit-learn's check_is_fitted needs a fit)."""
+        if not hasattr(self, "actor_"):
+            raise NotFittedError(NOT_FITTED % {"name": type(self).__name__})
 
     def _states(self, states: object, name: str = "states") -> np.ndarray:
         rows = as_rows(states, name, getattr(self, "n_features_in_", None))
         self._init(rows.shape[1])
         return rows
-
-    def _check_fitted(self) -> None:
-        if not hasattr(self, "actor_"):
-            raise NotFittedError("this CACLA has no actor yet; call sample or partial_fit first")
 
     # ------------------------------------------------------------------ policy and value
     def predict(self, states: object) -> np.ndarray:
@@ -113,7 +127,12 @@ class CACLA(BaseEstimator):
 
     def sample(self, state: object) -> np.ndarray:
         """An exploratory unit action a ~ N(Act(s), σ²) per dimension (4.5), clipped to [−1, 1]."""
-        row = self._states(np.atleast_1d(np.asarray(state, dtype=float))[None, :], "state")
+        return self._sample(self._states(np.atleast_1d(np.asarray(state, dtype=float))[None, :],
+                                         "state"))
+
+    def _sample(self, row: np.ndarray) -> np.ndarray:
+        """`sample` on one checked state row (Algorithm 3 calls it with rows it checked)."""
+        self._init(row.shape[1])
         mean = self.actor_.predict(row)[0]
         noise = self.rng_.normal(0.0, float(self.sigma), size=mean.shape)
         return np.clip(mean + noise, -1.0, 1.0)
@@ -123,20 +142,22 @@ class CACLA(BaseEstimator):
         self, states: object, actions: object, rewards: object, next_states: object
     ) -> CACLA:
         """Learn from transitions (s, a, r, s'), one row each, in order; appends δ to td_errors_."""
-        width = getattr(self, "n_features_in_", None)
-        s = as_rows(states, "states", width)
+        if not hasattr(self, "actor_"):
+            self._validate_params()  # before action_dims shapes the actions
+        s = as_rows(states, "states", getattr(self, "n_features_in_", None))
         s_next = as_rows(next_states, "next_states", s.shape[1])
-        dims = int(check_positive(self.action_dims, "action_dims", integer=True))
-        a = as_rows(actions, "actions", dims)
+        a = as_rows(actions, "actions", int(self.action_dims))
         r = as_rows(rewards, "rewards", 1)[:, 0]
-        if not (len(s) == len(s_next) == len(a) == len(r)):
-            raise ValueError("states, actions, rewards and next_states differ in length")
+        check_consistent_length(s, s_next, a, r)
         if np.any(np.abs(a) > 1.0):
             raise ValueError(f"actions must be unit actions in [-1, 1], got {a.tolist()}")
-        gamma = check_rate(self.gamma, "gamma")
-        zeta = check_rate(self.actor_rate, "actor_rate")
-        beta = check_rate(self.critic_rate, "critic_rate")
+        self._learn(s, a, r, s_next)
+        return self
+
+    def _learn(self, s: np.ndarray, a: np.ndarray, r: np.ndarray, s_next: np.ndarray) -> None:
+        """Eq. 4.7-4.9 on checked transitions (Algorithm 3 calls it with rows it checked)."""
         self._init(s.shape[1])
+        gamma, zeta, beta = float(self.gamma), float(self.actor_rate), float(self.critic_rate)
         for state, action, reward, nxt in zip(s, a, r, s_next, strict=True):
             value = self.critic_.predict(state[None, :])[0, 0]
             next_value = self.critic_.predict(nxt[None, :])[0, 0]
@@ -145,7 +166,6 @@ class CACLA(BaseEstimator):
                 self.actor_.nudge(state, action - self.actor_.predict(state[None, :])[0], zeta)
             self.critic_.nudge(state, np.array([delta]), beta)  # 4.9
             self.td_errors_.append(float(delta))
-        return self
 
     # ------------------------------------------------------------------ persistence
     def save(self, path: str | os.PathLike[str]) -> Path:
@@ -178,10 +198,12 @@ class CACLA(BaseEstimator):
 class TDConvergence:
     """Eq. 4.10–4.11: converged when |δ̄_{k+1} − δ̄_k| < ε, δ̄_k = mean |δ| of the last N."""
 
+    @validate_params({"window": [POSITIVE_INT], "tol": [POSITIVE]},
+                     prefer_skip_nested_validation=True)
     def __init__(self, window: int = 20, tol: float = 1e-4) -> None:
         """N = ``window`` (thesis: 20), ε = ``tol`` (thesis: 1e-4)."""
-        self.window = int(check_positive(window, "window", integer=True))
-        self.tol = float(check_positive(tol, "tol"))
+        self.window = int(window)
+        self.tol = float(tol)
         self.magnitudes: list[float] = []
         self.averages: list[float] = []
         """δ̄_k for every step k ≥ N (eq. 4.11)."""

@@ -24,8 +24,10 @@ Hand-written (a few numpy lines): no library offers these stopping rules.
 from __future__ import annotations
 
 import numpy as np
+from sklearn.utils import check_array
+from sklearn.utils._param_validation import StrOptions, validate_params
 
-from behaviours.learners.validation import check_positive
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT
 
 __all__ = ["CRITERIA", "VARIANTS", "averaged_magnitudes", "first_convergence", "holds"]
 
@@ -35,10 +37,12 @@ VARIANTS = CRITERIA[1:]
 """The criteria that depart from the thesis."""
 
 
+@validate_params({"td_errors": ["array-like"], "window": [POSITIVE_INT]},
+                 prefer_skip_nested_validation=True)
 def averaged_magnitudes(td_errors: object, window: int = 20) -> np.ndarray:
     """δ̄^k (4.11) for k = 1..n: the mean |δ| of the last ``window`` steps, NaN for k < N."""
     deltas = _series(td_errors)
-    size = int(check_positive(window, "window", integer=True))
+    size = int(window)
     averaged = np.full(deltas.size, np.nan)
     if deltas.size >= size:
         windows = np.lib.stride_tricks.sliding_window_view(np.abs(deltas), size)
@@ -46,14 +50,13 @@ def averaged_magnitudes(td_errors: object, window: int = 20) -> np.ndarray:
     return averaged
 
 
+@validate_params({"td_errors": ["array-like"], "criterion": [StrOptions(set(CRITERIA))],
+                  "window": [POSITIVE_INT], "tol": [POSITIVE]},
+                 prefer_skip_nested_validation=True)
 def holds(td_errors: object, criterion: str, window: int = 20,
           tol: float = 1e-4) -> np.ndarray:
     """For each step k = 1..n, whether ``criterion`` holds at k (a boolean array)."""
-    if criterion not in CRITERIA:
-        raise ValueError(f"unknown convergence criterion {criterion!r}; the criteria are "
-                         f"{', '.join(CRITERIA)}")
-    size = int(check_positive(window, "window", integer=True))
-    eps = float(check_positive(tol, "tol"))
+    size, eps = int(window), float(tol)
     averaged = averaged_magnitudes(td_errors, size)
     steps = np.arange(1, averaged.size + 1)
     if criterion == "window-to-window":
@@ -75,12 +78,11 @@ def first_convergence(td_errors: object, criterion: str, window: int = 20,
 
 
 def _series(td_errors: object) -> np.ndarray:
-    """A TD-error series as a finite 1-D float array, or a clear error."""
-    deltas = np.asarray(td_errors, dtype=float)
+    """A TD-error series as a finite 1-D float array (``check_array``), or a clear error."""
+    deltas = check_array(td_errors, ensure_2d=False, dtype=np.float64, input_name="td_errors",
+                         ensure_min_samples=0)
     if deltas.ndim != 1:
         raise ValueError(f"TD errors must be a 1-D series, got shape {deltas.shape}")
-    if not np.all(np.isfinite(deltas)):
-        raise ValueError("TD errors must be finite numbers")
     return deltas
 
 

@@ -17,15 +17,17 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+from numbers import Integral
+from typing import ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
+from sklearn.utils._param_validation import Interval, StrOptions
 
 from behaviours.learners.cacla import CACLA, TDConvergence
 from behaviours.learners.forward_model import ForwardModel
-from behaviours.learners.validation import ActionBounds, as_rows, check_positive
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT, RATE, ActionBounds, as_rows
 
 __all__ = ["EXPLORATION_MODES", "ActiveExplorer", "ContinuousWorld", "ExplorationHistory"]
 
@@ -83,7 +85,18 @@ class ActiveExplorer(BaseEstimator):
         random_state: seeds the networks, the exploration noise and the random actions.
         stop: end at the first step where (4.10) holds (Algorithm 3). False runs all n_max
             steps and still records that step: the same run up to it, and the whole curve.
+
+    It learns from a world it acts on (`explore`), not from (X, y): scikit-learn's checks
+    that need a ``fit`` do not apply.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        "mode": [StrOptions(set(EXPLORATION_MODES))], "n_max": [POSITIVE_INT],
+        "n_random": [Interval(Integral, 0, None, closed="left")], "window": [POSITIVE_INT],
+        "tol": [POSITIVE], "sigma": [POSITIVE], "gamma": [RATE], "alpha": [RATE],
+        "zeta": [RATE], "beta": [RATE], "n_hidden": [POSITIVE_INT], "init_scale": [POSITIVE],
+        "random_state": ["random_state"], "stop": ["boolean"],
+    }
 
     def __init__(
         self,
@@ -117,20 +130,11 @@ class ActiveExplorer(BaseEstimator):
         self.random_state = random_state
         self.stop = stop
 
-    def _check_params(self) -> None:
-        if self.mode not in EXPLORATION_MODES:
-            raise ValueError(f"unknown exploration mode {self.mode!r}; the modes are "
-                             f"{', '.join(EXPLORATION_MODES)}")
-        check_positive(self.n_max, "n_max", integer=True)
-        if isinstance(self.n_random, bool) or not isinstance(self.n_random, int) or (
-                self.n_random < 0):
-            raise ValueError(f"n_random must be a whole number >= 0, got {self.n_random!r}")
-
     def explore(self, world: ContinuousWorld) -> ActiveExplorer:
         """Run the loop on ``world``; sets forward_model_, cacla_, history_, converged_, and
         stopped_model_: F as Algorithm 3 returns it (at the step (4.10) held, else at n_max),
         which differs from forward_model_ only when ``stop`` is False."""
-        self._check_params()
+        self._validate_params()
         bounds = ActionBounds(world.action_bounds)
         rng = check_random_state(self.random_state)
         model = ForwardModel(action_bounds=bounds.as_list(), n_hidden=self.n_hidden,
@@ -145,23 +149,26 @@ class ActiveExplorer(BaseEstimator):
         converged_at = None
         for k in range(1, self.n_max + 1):
             state = _state(world.observe(), "the world's state")  # step 4: observe s_o^k
+            # the learners' own steps on rows built here from checked values: scikit-learn's
+            # validation of every row would cost more than the learning itself
             if self.mode == "active" and k > self.n_random:
-                unit = cacla.sample(state)  # 4.5
+                unit = cacla._sample(state[None, :])  # 4.5
             else:
                 unit = rng.uniform(-1.0, 1.0, size=bounds.dims)
             action = bounds.from_unit(unit)
             inputs = np.concatenate([state, action])[None, :]
             if k == 1:
                 model.initialize(state.size, state.size)
-            predicted = np.atleast_1d(model.predict(inputs)[0])  # 4.2
+            network_inputs = model._inputs(inputs)
+            predicted = model.network_.predict(network_inputs)[0]  # 4.2
             next_state = _state(world.step(action.copy()), "the world's next state")
             if next_state.shape != state.shape:
                 raise ValueError(f"the world's state changed shape from {state.shape} to "
                                  f"{next_state.shape}")
             effect = next_state - state  # 4.20
             reward = float(np.linalg.norm(effect - predicted))  # 4.3, 4.6
-            model.partial_fit(inputs, effect[None, :])  # 4.4
-            cacla.partial_fit(state[None, :], unit[None, :], [reward], next_state[None, :])
+            model._learn(network_inputs, effect[None, :])  # 4.4
+            cacla._learn(state[None, :], unit[None, :], np.array([reward]), next_state[None, :])
             delta = cacla.td_errors_[-1]
             stop = test.update(delta)  # (4.10)
             for key, value in (("states", state), ("actions", action), ("effects", effect),

@@ -13,12 +13,15 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
+from numbers import Integral, Real
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
-from sklearn.base import BaseEstimator, RegressorMixin
-from sklearn.exceptions import NotFittedError
-from sklearn.utils import check_random_state
+from sklearn.base import BaseEstimator, RegressorMixin, _fit_context
+from sklearn.utils import Tags, check_random_state
+from sklearn.utils._param_validation import Interval
+from sklearn.utils.validation import check_is_fitted, check_scalar, validate_data
 
 from behaviours.learners.network import TanhNetwork
 from behaviours.learners.persist import (
@@ -27,11 +30,14 @@ from behaviours.learners.persist import (
     read_learner,
     write_learner,
 )
-from behaviours.learners.validation import ActionBounds, as_rows, check_positive, check_rate
+from behaviours.learners.tags import with_domain
+from behaviours.learners.validation import ActionBounds, as_rows
 
 __all__ = ["ForwardModel"]
 
 KIND = "forward_model"
+NOT_FITTED = ("this %(name)s has seen no data yet; call partial_fit (or fit) before "
+              "predict")
 
 
 class ForwardModel(RegressorMixin, BaseEstimator):
@@ -43,7 +49,19 @@ class ForwardModel(RegressorMixin, BaseEstimator):
         learning_rate: α of eq. 4.4 (thesis: 0.3).
         init_scale: initial weights uniform in [−init_scale, init_scale] (thesis: 0.3).
         random_state: seeds the initial weights (drawn at the first ``partial_fit``).
+
+    Tags: ``bounded_actions`` (the last columns of X are refused outside ``action_bounds``),
+    multi-output effects, and a poor score on scikit-learn's test data: `fit` is one online
+    pass of Algorithm 3's per-sample updates, not a fit to convergence.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        "action_bounds": ["array-like"],
+        "n_hidden": [Interval(Integral, 1, None, closed="left")],
+        "learning_rate": [Interval(Real, 0.0, 1.0, closed="both")],
+        "init_scale": [Interval(Real, 0.0, None, closed="neither")],
+        "random_state": ["random_state"],
+    }
 
     def __init__(
         self,
@@ -59,55 +77,66 @@ class ForwardModel(RegressorMixin, BaseEstimator):
         self.init_scale = init_scale
         self.random_state = random_state
 
-    # ------------------------------------------------------------------ inputs
-    def _inputs(self, X: object, width: int | None) -> np.ndarray:
-        """Rows [state, action in [−1, 1]]: validated, actions checked against the bounds."""
-        bounds = ActionBounds(self.action_bounds)
-        rows = as_rows(X, "X (state and action columns)", width)
-        n_state = rows.shape[1] - bounds.dims
-        if n_state < 1:
-            raise ValueError(f"X needs at least one state column before the {bounds.dims} "
-                             f"action column(s), got {rows.shape[1]} column(s)")
-        unit = bounds.to_unit(rows[:, n_state:], "actions (the last columns of X)")
-        return np.hstack([rows[:, :n_state], unit])
+    def __sklearn_tags__(self) -> Tags:
+        tags = with_domain(super().__sklearn_tags__(), bounded_actions=True)
+        tags.target_tags.multi_output = True
+        tags.regressor_tags.poor_score = True
+        return tags
 
-    def _check_fitted(self) -> None:
-        if not hasattr(self, "network_"):
-            raise NotFittedError("this ForwardModel has seen no data yet; call partial_fit "
-                                 "(or fit) before predict")
+    # ------------------------------------------------------------------ inputs
+    def _inputs(self, X: np.ndarray) -> np.ndarray:
+        """Validated rows [state, action] as [state, action in [−1, 1]] (the actions checked
+        against the bounds)."""
+        bounds = ActionBounds(self.action_bounds)
+        n_state = X.shape[1] - bounds.dims
+        unit = bounds.to_unit(X[:, n_state:], "actions (the last columns of X)")
+        return np.hstack([X[:, :n_state], unit])
+
+    def _min_features(self) -> int:
+        """At least one state column before the action columns."""
+        return ActionBounds(self.action_bounds).dims + 1
 
     # ------------------------------------------------------------------ learning
+    @_fit_context(prefer_skip_nested_validation=True)
     def partial_fit(self, X: object, y: object) -> ForwardModel:
         """One backpropagation step (eq. 4.4) per row of (X, y), in order."""
-        width = getattr(self, "n_features_in_", None)
-        inputs = self._inputs(X, width)
-        targets = as_rows(y, "y (effects)", getattr(self, "n_outputs_", None))
-        if targets.shape[0] != inputs.shape[0]:
-            raise ValueError(f"X and y differ in length ({inputs.shape[0]} vs "
-                             f"{targets.shape[0]})")
-        rate = check_rate(self.learning_rate, "learning_rate")
-        if not hasattr(self, "network_"):
+        first = not hasattr(self, "network_")
+        X, y = validate_data(self, X, y, reset=first, dtype=np.float64, multi_output=True,
+                             y_numeric=True,
+                             ensure_min_features=self._min_features() if first else 1)
+        targets = y.reshape(y.shape[0], -1)
+        if not first and targets.shape[1] != self.n_outputs_:
+            raise ValueError(f"y has {targets.shape[1]} effect column(s), the model was "
+                             f"fitted with {self.n_outputs_}")
+        inputs = self._inputs(X)
+        if first:
             self._draw_weights(inputs.shape[1], targets.shape[1])
+        self._learn(inputs, targets)
+        return self
+
+    def _learn(self, inputs: np.ndarray, targets: np.ndarray) -> None:
+        """Eq. 4.3-4.4 row by row on network inputs (actions already in [−1, 1])."""
+        rate = float(self.learning_rate)
         for x, target in zip(inputs, targets, strict=True):
             error = target - self.network_.predict(x[None, :])[0]  # η_k, eq. 4.3
             self.network_.nudge(x, error, rate)
         self.n_samples_seen_ += inputs.shape[0]
-        return self
 
     def initialize(self, n_state: int, n_outputs: int = 1) -> ForwardModel:
         """Draw the initial weights before any data, so the untrained model can already
         predict (Algorithm 3 predicts ê before the first update); a no-op once weights exist."""
         if not hasattr(self, "network_"):
-            n_state = int(check_positive(n_state, "n_state", integer=True))
-            n_outputs = int(check_positive(n_outputs, "n_outputs", integer=True))
-            self._draw_weights(n_state + ActionBounds(self.action_bounds).dims, n_outputs)
+            self._validate_params()
+            n_state = check_scalar(n_state, "n_state", Integral, min_val=1)
+            n_outputs = check_scalar(n_outputs, "n_outputs", Integral, min_val=1)
+            self._draw_weights(int(n_state) + ActionBounds(self.action_bounds).dims,
+                               int(n_outputs))
         return self
 
     def _draw_weights(self, n_inputs: int, n_outputs: int) -> None:
         """Weights uniform in [−init_scale, init_scale] (§4.6.1) from ``random_state``."""
-        n_hidden = int(check_positive(self.n_hidden, "n_hidden", integer=True))
-        scale = float(check_positive(self.init_scale, "init_scale"))
-        self.network_ = TanhNetwork.uniform(n_inputs, n_hidden, n_outputs, scale,
+        self.network_ = TanhNetwork.uniform(n_inputs, int(self.n_hidden), n_outputs,
+                                            float(self.init_scale),
                                             check_random_state(self.random_state))
         self.n_features_in_ = n_inputs
         self.n_outputs_ = n_outputs
@@ -121,13 +150,14 @@ class ForwardModel(RegressorMixin, BaseEstimator):
 
     def predict(self, X: object) -> np.ndarray:
         """Predicted effects ê = F(s, a) (eq. 4.2); shape (n,) for a one-dimensional effect."""
-        self._check_fitted()
-        out = self.network_.predict(self._inputs(X, self.n_features_in_))
+        check_is_fitted(self, "network_", msg=NOT_FITTED)
+        X = validate_data(self, X, reset=False, dtype=np.float64)
+        out = self.network_.predict(self._inputs(X))
         return out[:, 0] if self.n_outputs_ == 1 else out
 
     def predict_effects(self, state: object, actions: object) -> np.ndarray:
         """F(s, a) for one state and many actions (the internal rehearsal of eq. 4.12)."""
-        self._check_fitted()
+        check_is_fitted(self, "network_", msg=NOT_FITTED)
         state_row = as_rows(np.atleast_1d(np.asarray(state, dtype=float))[None, :], "state")
         action_rows = as_rows(actions, "actions", ActionBounds(self.action_bounds).dims)
         return self.predict(np.hstack([np.repeat(state_row, len(action_rows), axis=0),
@@ -136,7 +166,7 @@ class ForwardModel(RegressorMixin, BaseEstimator):
     # ------------------------------------------------------------------ persistence
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write parameters and weights as versioned JSON, atomically."""
-        self._check_fitted()
+        check_is_fitted(self, "network_", msg=NOT_FITTED)
         state = {"network": self.network_.to_dict(), "n_features_in": self.n_features_in_,
                  "n_outputs": self.n_outputs_, "n_samples_seen": self.n_samples_seen_}
         return write_learner(path, KIND, json_params(self), state)

@@ -26,7 +26,7 @@ from behaviours.learners.part_models import (
     PartActionModel,
     check_bounds,
 )
-from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
+from behaviours.learners.persist import check_store, read_store, write_text_atomically
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
@@ -144,26 +144,17 @@ class KnownObjectDatabase:
             self._load()
 
     def _load(self) -> None:
-        """Read every object from the file, or raise DatabaseError naming the file."""
-        where = str(self.path)
-        try:
-            data = read_json(self.path, "known-object database")
-        except StoreFileError as exc:
-            raise DatabaseError(str(exc)) from None
-        if not isinstance(data, dict) or data.get("format") != DATABASE_FORMAT:
-            raise DatabaseError(f"{where!r} is not a goalagent known-object database")
-        if data.get("version") != DATABASE_VERSION:
-            raise DatabaseError(f"known-object database {where!r} has version "
-                                f"{data.get('version')!r}; this goalagent reads version "
-                                f"{DATABASE_VERSION}")
-        records = data.get("objects")
-        if not isinstance(records, list):
-            raise DatabaseError(f"known-object database {where!r} has no list of objects")
-        for index, record in enumerate(records):
+        """Read every object from the file, checked by
+        ``schemas/known_objects.schema.json``, or raise DatabaseError naming the file and
+        where in it."""
+        what = "known-object database"
+        data = read_store(self.path, what, DATABASE_FORMAT, DATABASE_VERSION, DatabaseError)
+        check_store(data, "known_objects", self.path, what, DatabaseError)
+        for index, record in enumerate(data["objects"]):
             try:
                 known = KnownObject.from_record(record)
             except (KeyError, TypeError, ValueError, AttributeError) as exc:
-                raise DatabaseError(f"known-object database {where!r} has a bad record (object "
+                raise DatabaseError(f"{what} {str(self.path)!r} has a bad record (object "
                                     f"{index}): {exc!r}") from None
             self._objects[known.name] = known
 

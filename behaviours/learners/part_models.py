@@ -14,10 +14,16 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.linear_model import LinearRegression
+from sklearn.utils import check_consistent_length
+from sklearn.utils._param_validation import validate_params
+from sklearn.utils.validation import check_is_fitted
+
+from behaviours.learners.validation import POSITIVE, as_rows, check_bounds
 
 Pair = tuple[str, str]
 """(part, action type)."""
@@ -39,27 +45,9 @@ class DataTuple:
     object_effect: float  # e_o = s'_o - s_o (eq. 5.3)
 
 
-def check_bounds(bounds: object, what: str = "bounds") -> Bounds:
-    """``bounds`` as finite floats (lo, hi) with lo < hi, or a ValueError naming ``what``."""
-    try:
-        low, high = (float(b) for b in bounds)  # type: ignore[union-attr]
-    except (TypeError, ValueError):
-        raise ValueError(f"{what} must be a (low, high) pair of numbers, got {bounds!r}") from None
-    if not (math.isfinite(low) and math.isfinite(high) and low < high):
-        raise ValueError(f"{what} must be finite with low < high, got ({low}, {high})")
-    return low, high
-
-
 def _column(values: object, name: str) -> np.ndarray:
-    """``values`` as a finite 1-D float array (a scalar is one sample)."""
-    array = np.atleast_1d(np.asarray(values, dtype=float))
-    if array.ndim == 2 and array.shape[1] == 1:
-        array = array[:, 0]
-    if array.ndim != 1:
-        raise ValueError(f"{name} must be one number per sample, got shape {array.shape}")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} contains a value that is not a finite number")
-    return array
+    """``values`` as a finite 1-D float array (``check_array``; a scalar is one sample)."""
+    return as_rows(values, name, 1)[:, 0]
 
 
 def _line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -80,11 +68,10 @@ class PartActionModel(BaseEstimator):
     """ĝ(θ) = b + c·θ (5.16) and ĥ(e_ψ) = d + e·e_ψ (5.17) of one (part, action) pair.
 
     ``partial_fit`` adds samples and refits both lines on everything seen; ``settled`` is the
-    accuracy test 5.19 on both residual sums of squares.
+    accuracy test 5.19 on both residual sums of squares. It has no parameters, and learns
+    from (θ, e_ψ, e_o) triples rather than (X, y): scikit-learn's checks that need
+    ``fit(X, y)`` do not apply.
     """
-
-    def __init__(self) -> None:
-        pass
 
     def fit(self, theta: object, displacement: object, effect: object) -> PartActionModel:
         """Fit on exactly these samples, forgetting earlier ones."""
@@ -101,16 +88,12 @@ class PartActionModel(BaseEstimator):
         """Add samples (θ, e_ψ, e_o) and refit ĝ and ĥ on all of them."""
         columns = [_column(theta, "theta"), _column(displacement, "displacement"),
                    _column(effect, "effect")]
-        if len({c.size for c in columns}) != 1:
-            raise ValueError("theta, displacement and effect must have one value per sample, "
-                             f"got {[c.size for c in columns]}")
+        check_consistent_length(*columns)
         if not hasattr(self, "theta_"):
             self._forget()
         self.theta_ = np.concatenate([self.theta_, columns[0]])
         self.displacement_ = np.concatenate([self.displacement_, columns[1]])
         self.effect_ = np.concatenate([self.effect_, columns[2]])
-        if self.theta_.size == 0:
-            raise ValueError("cannot fit a part model on zero samples")
         self.g_intercept_, self.g_slope_, g_rss = _line(self.theta_, self.displacement_)
         self.h_intercept_, self.h_slope_, h_rss = _line(self.displacement_, self.effect_)
         self.g_rss_history_.append(g_rss)
@@ -119,8 +102,7 @@ class PartActionModel(BaseEstimator):
         return self
 
     def _check_fitted(self) -> None:
-        if not hasattr(self, "g_slope_"):
-            raise ValueError("this PartActionModel is not fitted yet; call fit first")
+        check_is_fitted(self, "g_slope_")
 
     def predict_displacement(self, theta: object) -> np.ndarray:
         """ĝ(θ): the predicted displacement of the part (eq. 5.7)."""
@@ -205,6 +187,8 @@ class Selection:
         return self.part, self.action
 
 
+@validate_params({"model": [PartActionModel], "displacement": [Real], "bounds": "no_validation",
+                  "delta2": [POSITIVE]}, prefer_skip_nested_validation=True)
 def select_parameter(
     model: PartActionModel, displacement: float, bounds: Bounds, delta2: float
 ) -> float | None:
@@ -215,8 +199,6 @@ def select_parameter(
     The open lower end is approached to within a thousandth of the range.
     """
     low, high = check_bounds(bounds)
-    if not (isinstance(delta2, (int, float)) and delta2 > 0):
-        raise ValueError(f"delta2 must be a positive number, got {delta2!r}")
     b, c = model.g_intercept_, model.g_slope_
     floor = low + (high - low) * 1e-3
     if c == 0.0:

@@ -15,11 +15,13 @@ import os
 import stat
 from pathlib import Path
 
+from behaviours.learners.schemas import SchemaError, check
 from ondisk import write_atomically
 
 __all__ = [
     "FORMAT", "MAX_STORE_BYTES", "VERSION", "LearnerFileError", "StoreFileError",
-    "json_params", "read_json", "read_learner", "write_learner", "write_text_atomically",
+    "check_store", "json_params", "read_json", "read_learner", "read_store", "write_learner",
+    "write_text_atomically",
 ]
 
 FORMAT = "goalagent-learner"
@@ -38,7 +40,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
     The file is opened without blocking and checked on the open descriptor, so a device,
     FIFO or directory is refused before anything is read, and at most MAX_STORE_BYTES + 1
     bytes are read. Malformed JSON (also nesting too deep, or a number too long to convert)
-    is a StoreFileError at ``file:line:col``."""
+    is a StoreFileError at ``file:line:col``; ``NaN`` and ``Infinity`` are refused too."""
     where = str(path)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -56,7 +58,7 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
         if len(data) > MAX_STORE_BYTES:
             raise StoreFileError(f"cannot read {what} {where!r}: it grew past the "
                                  f"{MAX_STORE_BYTES} bytes accepted")
-        return json.loads(data.decode("utf-8"))
+        return json.loads(data.decode("utf-8"), parse_constant=_not_a_json_number)
     except json.JSONDecodeError as exc:
         raise StoreFileError(f"cannot read {what} {where}:{exc.lineno}:{exc.colno}: not JSON: "
                              f"{exc.msg}") from None
@@ -70,6 +72,11 @@ def read_json(path: str | os.PathLike[str], what: str) -> object:
             raise
         reason = getattr(exc, "strerror", None) or exc
         raise StoreFileError(f"cannot read {what} {where!r}: {reason}") from None
+
+
+def _not_a_json_number(name: str) -> object:
+    """``NaN``, ``Infinity`` and ``-Infinity``, which Python's json reads, are not JSON."""
+    raise ValueError(f"{name} is not a JSON number")
 
 
 class LearnerFileError(ValueError):
@@ -90,25 +97,43 @@ def write_text_atomically(path: str | os.PathLike[str], text: str) -> Path:
     return write_atomically(path, text)
 
 
-def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
-    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file."""
-    source = Path(path)
+def read_store(path: str | os.PathLike[str], what: str, format_: str, version: int,
+               error: type[ValueError]) -> dict:
+    """The JSON object of a versioned store (``read_json``) whose ``format`` and ``version``
+    identify it as a ``what`` this goalagent reads, or ``error`` naming the file."""
+    where = str(path)
     try:
-        data = read_json(source, "learner file")
+        data = read_json(path, what)
     except StoreFileError as exc:
-        raise LearnerFileError(str(exc)) from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise LearnerFileError(f"{str(source)!r} is not a goalagent learner file")
-    if data.get("version") != VERSION:
-        raise LearnerFileError(f"learner file {str(source)!r} has version "
-                               f"{data.get('version')!r}; this goalagent reads version {VERSION}")
+        raise error(str(exc)) from None
+    if not isinstance(data, dict) or data.get("format") != format_:
+        raise error(f"{where!r} is not a goalagent {what}")
+    if data.get("version") != version:
+        raise error(f"{what} {where!r} has version {data.get('version')!r}; this goalagent "
+                    f"reads version {version}")
+    return data
+
+
+def check_store(data: dict, schema: str, path: str | os.PathLike[str], what: str,
+                error: type[ValueError]) -> None:
+    """``data`` checked against ``schemas/SCHEMA.schema.json``, or ``error`` naming the file
+    and the path of the first bad field."""
+    try:
+        check(data, schema)
+    except SchemaError as exc:
+        raise error(f"{what} {str(path)!r}: {exc}") from None
+
+
+def read_learner(path: str | os.PathLike[str], kind: str) -> tuple[dict, dict]:
+    """(params, state) of a saved learner of ``kind``, or LearnerFileError naming the file:
+    the format, version and kind identify the file, then the kind's JSON Schema
+    (``schemas/KIND.schema.json``) checks every field, naming the first bad one."""
+    data = read_store(path, "learner file", FORMAT, VERSION, LearnerFileError)
     if data.get("kind") != kind:
-        raise LearnerFileError(f"learner file {str(source)!r} holds a {data.get('kind')!r}, "
+        raise LearnerFileError(f"learner file {str(path)!r} holds a {data.get('kind')!r}, "
                                f"not a {kind!r}")
-    params, state = data.get("params"), data.get("state")
-    if not isinstance(params, dict) or not isinstance(state, dict):
-        raise LearnerFileError(f"learner file {str(source)!r} lacks its params or state")
-    return params, state
+    check_store(data, kind, path, "learner file", LearnerFileError)
+    return data["params"], data["state"]
 
 
 def json_params(estimator: object) -> dict:

@@ -14,14 +14,18 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
-from sklearn.base import BaseEstimator
+from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
 from sklearn.neighbors import KNeighborsClassifier
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import check_is_fitted, validate_data
 
 from behaviours.learners.known_objects import KnownObject
 from behaviours.learners.part_models import OpeningGoal, Selection, select_part_action
 from behaviours.learners.protocol import ObjectView
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT, as_rows
 
 DEFAULT_WEIGHTS = (1000.0, 1.0, 1.0)
 """Weights putting (area, rectangleness, squareness) on like ranges before distances.
@@ -31,55 +35,58 @@ per-mille (standardising by the spread instead over-weights squareness, ~1 for e
 """
 
 
-class PartSimilarity(BaseEstimator):
+class PartSimilarity(ClassifierMixin, BaseEstimator):
     """k-nearest-neighbour groups of parts over weighted Table 5.1 descriptors.
 
     ``fit(X, y)``: X one descriptor per known part, y its group (the part's name). Neighbours
-    vote weighted by inverse distance, so one close part outvotes two far ones.
+    vote weighted by inverse distance, so one close part outvotes two far ones. ``weights``
+    scale the descriptor's values before distances (None: unweighted); a part farther than
+    ``max_distance`` from every known part is novel, predicted None (None: no part is novel).
     """
 
-    def __init__(self, n_neighbors: int = 3, weights: Sequence[float] = DEFAULT_WEIGHTS,
-                 max_distance: float = 1.0) -> None:
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        "n_neighbors": [POSITIVE_INT], "weights": ["array-like", None],
+        "max_distance": [POSITIVE, None],
+    }
+
+    def __init__(self, n_neighbors: int = 3, weights: Sequence[float] | None = DEFAULT_WEIGHTS,
+                 max_distance: float | None = 1.0) -> None:
         self.n_neighbors = n_neighbors
         self.weights = weights
         self.max_distance = max_distance
 
-    def _weigh(self, X: object) -> np.ndarray:
-        """Descriptors as a weighted (n, d) array, or a clear ValueError."""
-        array = np.atleast_2d(np.asarray(X, dtype=float))
+    def _weigh(self, X: np.ndarray) -> np.ndarray:
+        """Validated descriptors times the weights (a weight per value, or a clear error)."""
+        if self.weights is None:
+            return X
         weights = np.asarray(self.weights, dtype=float)
-        if array.ndim != 2 or array.shape[1] != weights.size:
-            raise ValueError(f"descriptors must have {weights.size} values each, got shape "
-                             f"{array.shape}")
-        if not np.all(np.isfinite(array)):
-            raise ValueError("a descriptor contains a value that is not a finite number")
-        return array * weights
+        if weights.shape != (X.shape[1],):
+            raise ValueError(f"descriptors must have {weights.size} values each (one per "
+                             f"weight), got {X.shape[1]}")
+        return X * weights
 
+    @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X: object, y: Sequence[str]) -> PartSimilarity:
         """Remember the known parts' descriptors and groups."""
-        if isinstance(self.n_neighbors, bool) or not isinstance(self.n_neighbors, int) or (
-                self.n_neighbors < 1):
-            raise ValueError(f"n_neighbors must be a whole number >= 1, got {self.n_neighbors!r}")
-        if not (isinstance(self.max_distance, (int, float)) and self.max_distance > 0):
-            raise ValueError(f"max_distance must be a positive number, got {self.max_distance!r}")
+        X, y = validate_data(self, X, y, dtype=np.float64)
+        check_classification_targets(y)
         points = self._weigh(X)
-        labels = np.asarray(list(y), dtype=object)
-        if points.shape[0] == 0 or labels.size != points.shape[0]:
-            raise ValueError(f"need one group per descriptor and at least one part, got "
-                             f"{points.shape[0]} descriptors and {labels.size} groups")
         self.classifier_ = KNeighborsClassifier(
             n_neighbors=min(self.n_neighbors, points.shape[0]), weights="distance"
-        ).fit(points, labels)
+        ).fit(points, y)
+        self.classes_ = self.classifier_.classes_
         self.n_parts_ = points.shape[0]
         return self
 
     def predict(self, X: object) -> np.ndarray:
         """The group of each descriptor, or None where the part is novel."""
-        if not hasattr(self, "classifier_"):
-            raise ValueError("this PartSimilarity is not fitted yet; call fit first")
-        points = self._weigh(X)
+        check_is_fitted(self, "classifier_")
+        points = self._weigh(validate_data(self, X, reset=False, dtype=np.float64))
+        groups = self.classifier_.predict(points)
+        if self.max_distance is None:
+            return groups
+        groups = groups.astype(object)  # to hold None
         distances, _ = self.classifier_.kneighbors(points, n_neighbors=1)
-        groups = self.classifier_.predict(points).astype(object)
         groups[distances[:, 0] > self.max_distance] = None
         return groups
 
@@ -89,7 +96,9 @@ class PartSimilarity(BaseEstimator):
 
     def distance(self, a: object, b: object) -> float:
         """Weighted Euclidean distance between two descriptors."""
-        return float(np.linalg.norm(self._weigh(a)[0] - self._weigh(b)[0]))
+        first, second = (self._weigh(as_rows(np.atleast_1d(np.asarray(v, dtype=float))[None, :],
+                                             "descriptor")) for v in (a, b))
+        return float(np.linalg.norm(first[0] - second[0]))
 
 
 def fit_similarity(objects: Iterable[KnownObject], **params: object) -> PartSimilarity | None:

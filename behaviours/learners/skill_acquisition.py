@@ -13,10 +13,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from sklearn.utils._param_validation import validate_params
 
 from behaviours.learners.exploration import ContinuousWorld
 from behaviours.learners.forward_model import ForwardModel
-from behaviours.learners.validation import ActionBounds, as_rows, check_positive
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT, ActionBounds, as_rows
 
 __all__ = ["SkillSequence", "SkillStep", "acquire_skills", "candidate_actions", "goal_action"]
 
@@ -42,9 +43,11 @@ class SkillSequence:
     terminated: bool
 
 
+@validate_params({"bounds": [ActionBounds], "n_grid": [POSITIVE_INT]},
+                 prefer_skip_nested_validation=True)
 def candidate_actions(bounds: ActionBounds, n_grid: int = 11) -> np.ndarray:
     """A_M: an even grid of ``n_grid`` values per dimension over the bounds (M = n_grid^d)."""
-    n = int(check_positive(n_grid, "n_grid", integer=True))
+    n = int(n_grid)
     axes = [np.linspace(lo, hi, n) for lo, hi in zip(bounds.low, bounds.high, strict=True)]
     return np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1)
 
@@ -60,6 +63,9 @@ def goal_action(
     return candidates[best].copy(), float(predicted[best])
 
 
+@validate_params({"model": [ForwardModel], "world": "no_validation", "n_grid": [POSITIVE_INT],
+                  "tau": [POSITIVE], "max_steps": [POSITIVE_INT]},
+                 prefer_skip_nested_validation=True)
 def acquire_skills(
     model: ForwardModel,
     world: ContinuousWorld,
@@ -70,8 +76,7 @@ def acquire_skills(
 ) -> tuple[SkillSequence, SkillSequence]:
     """Run both phases on ``world`` from its current state: (SK*, SK_*)."""
     bounds = ActionBounds(world.action_bounds)
-    tau = float(check_positive(tau, "tau"))
-    limit = int(check_positive(max_steps, "max_steps", integer=True))
+    tau, limit = float(tau), int(max_steps)
     candidates = candidate_actions(bounds, n_grid)
     sequences = []
     for phase in PHASES:

@@ -17,7 +17,7 @@ import numpy as np
 
 from behaviours.learners.exploration import ActiveExplorer
 from behaviours.learners.forward_model import ForwardModel
-from behaviours.learners.validation import ActionBounds, check_positive
+from behaviours.learners.validation import ActionBounds
 
 __all__ = ["ThetaExploration", "ThetaWorld", "explore_theta"]
 
@@ -81,7 +81,6 @@ def explore_theta(
     random_state: int | np.random.RandomState | None = None,
 ) -> ThetaExploration:
     """Algorithm 3 over θ from ``state`` (thesis defaults otherwise); verdict from F."""
-    check_positive(n_max, "n_max", integer=True)
     world = ThetaWorld(effect, bounds, state)
     explorer = ActiveExplorer(mode="active", n_max=n_max, n_random=n_random,
                               random_state=random_state).explore(world)

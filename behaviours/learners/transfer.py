@@ -26,6 +26,7 @@ of line 18 is the largest allowed, where a difference in displacement shows best
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from typing import ClassVar
 
 import numpy as np
 
@@ -40,6 +41,7 @@ from behaviours.learners.similarity import (
     rank_sources,
     similar_part,
 )
+from behaviours.learners.validation import POSITIVE, POSITIVE_INT
 
 BRANCHES = ("direct", "gradient", "other_action", "other_part", "fallback", "no_source",
             "failed")
@@ -78,6 +80,13 @@ class TransferLearner(PartBasedLearner):
     ``branch_``. ``functional_`` is the pair of the first action that reached the goal.
     """
 
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        **PartBasedLearner._parameter_constraints,
+        "database": "no_validation",  # any iterable of KnownObject: checked in fit
+        "consistency_tol": [POSITIVE], "n_neighbors": [POSITIVE_INT],
+        "max_distance": [POSITIVE, None], "weights": ["array-like", None],
+    }
+
     def __init__(self, database: Iterable[KnownObject] = (), n: int = 5, n_min: int = 3,
                  settle_tol: float = 1e-4, min_displacement: float = 0.01, goal: float = 0.1,
                  delta1: float = 0.03, delta2: float = 0.002, max_checks: int = 3,
@@ -95,9 +104,6 @@ class TransferLearner(PartBasedLearner):
 
     def fit(self, obj: object) -> TransferLearner:
         """Run Algorithm 5 and then Algorithm 6 (or Algorithm 4 without a source) on ``obj``."""
-        if not (isinstance(self.consistency_tol, (int, float)) and self.consistency_tol > 0):
-            raise ValueError(f"consistency_tol must be a positive number, got "
-                             f"{self.consistency_tol!r}")
         session = self._start(obj)  # type: ignore[arg-type]
         known = list(self.database)
         if not all(isinstance(k, KnownObject) for k in known):

@@ -1,53 +1,56 @@
-"""Input checks shared by the continuous learners: finite arrays, shapes, action bounds.
+"""Input checks shared by the continuous learners: rows of finite numbers, action bounds.
 
-Every check raises ``ValueError`` with a message naming the argument, so a caller (an
-environment, a CLI) can show it as is.
+``as_rows`` is scikit-learn's ``check_array`` with the continuous learners' shapes (a number is
+one sample of one value, a 1-D array one value per sample), so every refusal is scikit-learn's
+ValueError naming the argument. ``ActionBounds`` checks a learner's action space (lo < hi per
+dimension, a domain rule no scikit-learn constraint states) and maps actions to [−1, 1].
+Parameters of functions are checked by scikit-learn's ``validate_params`` where they are
+defined; ``POSITIVE_INT`` and ``POSITIVE`` are the constraints they share.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from numbers import Integral, Real
 
 import numpy as np
+from sklearn.utils import check_array
+from sklearn.utils._param_validation import Interval
 
-__all__ = ["ActionBounds", "as_rows", "check_positive", "check_rate"]
+__all__ = ["POSITIVE", "POSITIVE_INT", "RATE", "ActionBounds", "as_rows", "check_bounds"]
+
+POSITIVE_INT = Interval(Integral, 1, None, closed="left")
+POSITIVE = Interval(Real, 0.0, None, closed="neither")
+"""A finite number > 0 (scikit-learn's intervals refuse NaN, and inf when open-ended)."""
+RATE = Interval(Real, 0.0, 1.0, closed="both")
+"""A step size or discount in [0, 1]."""
 
 
 def as_rows(values: object, name: str, width: int | None = None) -> np.ndarray:
-    """``values`` as a finite 2-D float array (a 1-D input is one column; a scalar one cell)."""
-    try:
-        array = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numbers, got {values!r}") from None
-    if array.ndim == 0:
-        array = array.reshape(1, 1)
-    elif array.ndim == 1:
-        array = array[:, None]
-    if array.ndim != 2 or array.shape[0] == 0:
-        raise ValueError(f"{name} must be a non-empty 2-D array of rows, got shape {array.shape}")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} contains a value that is not a finite number (NaN or inf)")
+    """``values`` as a finite 2-D float array (a 1-D input is one column; a scalar one cell),
+    checked by ``check_array``; ``width`` columns if given."""
+    array = check_array(values, ensure_2d=False, dtype=np.float64, input_name=name,
+                        ensure_min_samples=0)
+    if array.ndim < 2:
+        array = array.reshape(-1, 1)
+    if array.shape[0] == 0:
+        raise ValueError(f"{name} must hold at least one row, got shape {array.shape}")
     if width is not None and array.shape[1] != width:
         raise ValueError(f"{name} must have {width} column(s), got {array.shape[1]}")
     return array
 
 
-def check_rate(value: object, name: str) -> float:
-    """A step size or discount in [0, 1]."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value <= 1:
-        raise ValueError(f"{name} must be a number in [0, 1], got {value!r}")
-    return float(value)
-
-
-def check_positive(value: object, name: str, *, integer: bool = False) -> float:
-    """A positive (whole, if ``integer``) number."""
-    kinds = (int, np.integer) if integer else (int, float, np.integer, np.floating)
-    if isinstance(value, bool) or not isinstance(value, kinds) or not (
-            math.isfinite(value) and value > 0):
-        what = "a positive whole number" if integer else "a positive number"
-        raise ValueError(f"{name} must be {what}, got {value!r}")
-    return value  # type: ignore[return-value]
+def check_bounds(bounds: object, what: str = "bounds") -> tuple[float, float]:
+    """``bounds`` as finite floats (lo, hi) with lo < hi, or a ValueError naming ``what``:
+    one action parameter's range (the domain rule no scikit-learn constraint states)."""
+    try:
+        low, high = (float(b) for b in bounds)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be a (low, high) pair of numbers, got {bounds!r}") from None
+    if not (math.isfinite(low) and math.isfinite(high) and low < high):
+        raise ValueError(f"{what} must be finite with low < high, got ({low}, {high})")
+    return low, high
 
 
 class ActionBounds:

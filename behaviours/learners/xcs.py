@@ -14,20 +14,13 @@ per classifier and are slow (bench/xcs.py measures all three against this one).
 
 The algorithm follows Butz & Wilson, "An algorithmic description of XCS" (2001); the modules
 behind it: `xcs_population` (the classifiers as numpy arrays, vectorised matching),
-`xcs_discovery` (covering, GA, subsumption, deletion), `xcs_params`, `xcs_persistence`.
+`xcs_discovery` (the match set and covering, GA, subsumption, deletion), `xcs_choice` (the
+action chosen), `xcs_update` (UPDATE SET, eq. 7.1-7.7), `xcs_inputs` (a step's arguments
+checked), `xcs_params` (the parameters' scikit-learn constraints), `xcs_persistence`.
 """
 
 from .xcs_agent import XCS
+from .xcs_classifier import XCSClassifier
 from .xcs_population import Classifier
 
-__all__ = ["XCS", "Classifier", "XCSClassifier"]  # noqa: F822 (XCSClassifier: __getattr__)
-
-
-def __getattr__(name: str) -> object:
-    """`XCSClassifier` on first use: importing scikit-learn costs a second or more, which an
-    agent that only uses `XCS` should not pay."""
-    if name == "XCSClassifier":
-        from .xcs_classifier import XCSClassifier
-
-        return XCSClassifier
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["XCS", "Classifier", "XCSClassifier"]

@@ -10,30 +10,36 @@ nothing; explore steps choose at random among the advocated actions, or, with
 
 `allowed` is Algorithm 2's action filter (eq. 3.10): both the choice and max PA in eq. 7.2 range
 over the allowed actions only, and covering makes sure every allowed action is advocated.
+
+The learner's parameters are checked by scikit-learn (``_parameter_constraints``), once; the
+arguments of each step (the state, ``explore``, ``allowed``, ``r``, ``done``) are checked by
+hand, because scikit-learn's validators cost a fifth of a multiplexer trial each.
 """
 
 from __future__ import annotations
 
-import math
 import numbers
 import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from os import PathLike
-from typing import NamedTuple
+from typing import ClassVar
 
 import numpy as np
+from sklearn.base import BaseEstimator
+from sklearn.utils import Tags
+from sklearn.utils.validation import check_scalar
 
 from . import xcs_persistence
-from .xcs_discovery import action_set_subsumption, cover, delete_from_population, run_ga
-from .xcs_params import DEFAULTS, Settings, check_parameters, make_generator
+from .tags import with_domain
+from .xcs_choice import best_action, explore_action
+from .xcs_discovery import action_set_subsumption, match_set, run_ga
+from .xcs_inputs import check_reward, permitted_actions, state_bits
+from .xcs_params import CONSTRAINTS, Settings, make_generator
 from .xcs_population import (
-    ERROR,
-    EXPERIENCE,
     FITNESS,
     NUMEROSITY,
     PREDICTION,
-    SET_SIZE,
     TIME_STAMP,
     Classifier,
     Population,
@@ -41,29 +47,11 @@ from .xcs_population import (
     int_to_words,
     words_for,
 )
+from .xcs_update import UpdateConstants, update_set
 
-MAX_COVERING_ROUNDS = 1000
-"""Covering repeats while deletion keeps removing advocates it just made; with N >= the number
-of actions it ends after a few rounds, this bound only turns a pathology into an error."""
 STATE_CACHE_SIZE = 1 << 16
-_sum, _all = np.add.reduce, np.logical_and.reduce
-"""The ufunc reductions themselves: ndarray.sum/.all add a Python-level call per use."""
-
-
-class _Constants(NamedTuple):
-    """The update's constants as 0-d arrays: numpy converts a Python float on every array
-    operation, which costs as much as a small operation itself."""
-
-    one: np.ndarray
-    beta: np.ndarray
-    epsilon_0: np.ndarray
-    accuracy_scale: np.ndarray
-    """c = alpha ** (-1 / nu) / epsilon_0 of eq. 7.6 written as (error * c) ** -nu."""
-    accuracy_floor: np.ndarray
-    """c * epsilon_0: errors are clamped to it, so that an error of 0 raises no warning."""
-    minus_nu: np.ndarray
-    fitness_kept: np.ndarray
-    """1 - beta_f (eq. 7.5)."""
+_all = np.logical_and.reduce
+"""The ufunc reduction itself: ndarray.all adds a Python-level call per use."""
 
 
 @dataclass(slots=True)
@@ -80,14 +68,25 @@ class _Step:
     reward: float = 0.0
 
 
-class XCS:
+class XCS(BaseEstimator):
     """Wilson's XCS over binary states and ``n_actions`` integer actions (see module doc).
 
     Parameters keep the names of Butz & Wilson (2001) and thesis Table 7.1; ``beta_p``,
-    ``beta_e``, ``beta_f`` (eq. 7.1, 7.4, 7.5) default to ``beta``. The state length is fixed
-    by the first state seen. Learned state: ``population_`` (the classifiers), ``time_`` (the
-    number of explore steps, the GA's clock), ``n_bits_``.
+    ``beta_e``, ``beta_f`` (eq. 7.1, 7.4, 7.5) default to ``beta``. They are stored as given
+    and checked (``_parameter_constraints``) once, at the learner's first use; `set_params`
+    on a started learner takes effect at its next step (``random_state`` only seeds a learner
+    that has not started). The state length is fixed by the first state seen. Learned state:
+    ``population_`` (the classifiers), ``time_`` (the number of explore steps, the GA's
+    clock), ``n_bits_``.
+
+    XCS learns from rewards, step by step (`act`, `reward`), not from (X, y): it has no `fit`,
+    so scikit-learn's estimator checks that need one do not apply; `XCSClassifier` is its
+    face for those.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = CONSTRAINTS
+    _settings: Settings | None = None
+    """The checked parameters; None until the first use (and after `set_params`)."""
 
     def __init__(self, n_actions: int, *, N: int = 400, beta: float = 0.2,
                  beta_p: float | None = None, beta_e: float | None = None,
@@ -109,27 +108,43 @@ class XCS:
         self.action_set_subsumption = action_set_subsumption
         self.consistent_actions = consistent_actions
         self.random_state = random_state
-        values = self.get_params()
-        check_parameters("XCS", n_actions, values)
-        self._settings = Settings.resolve(int(n_actions), values)
-        self._rng = make_generator(random_state)
-        settings = self._settings
-        scale = settings.alpha ** (-1.0 / settings.nu) / settings.epsilon_0
-        self._constants = _Constants(*(np.array(value) for value in (
-            1.0, settings.beta, settings.epsilon_0, scale, scale * settings.epsilon_0,
-            -settings.nu, 1.0 - settings.beta_f)))
-        self._all_actions = np.arange(int(n_actions))
-        self._action_values = [np.array(action) for action in range(int(n_actions))]  # 0-d
-        self.population_: Population | None = None
-        self.n_bits_: int | None = None
-        self.time_ = 0
-        self._pending: _Step | None = None
-        self._previous: _Step | None = None
-        self._states: dict[object, tuple[np.ndarray, int]] = {}
 
-    def get_params(self, deep: bool = True) -> dict[str, object]:
-        """The constructor's parameters as given (scikit-learn's convention)."""
-        return {"n_actions": self.n_actions, **{name: getattr(self, name) for name in DEFAULTS}}
+    def __sklearn_tags__(self) -> Tags:
+        return with_domain(super().__sklearn_tags__(), binary=True)
+
+    def set_params(self, **params: object) -> XCS:
+        """scikit-learn's `set_params`; the new values are checked at the next use."""
+        super().set_params(**params)
+        self.__dict__.pop("_settings", None)
+        return self
+
+    def _start(self) -> Settings:
+        """Check the parameters and derive the hot path's constants from them; on the first
+        use also create the learned state (an empty population, the clock, the generator)."""
+        self._validate_params()
+        settings = Settings.resolve(type(self).__name__, self.get_params(deep=False))
+        if self.__dict__.get("population_") is not None and np.any(
+                self.population_.action[:self.population_.size] >= settings.n_actions):
+            raise ValueError(f"{type(self).__name__}: n_actions cannot drop below the "
+                             f"actions of the learned population; clone a new learner")
+        self._constants = UpdateConstants.of(settings)
+        self._all_actions = np.arange(settings.n_actions)
+        self._action_values = [np.array(action) for action in range(settings.n_actions)]
+        if "time_" not in self.__dict__:
+            self._rng = make_generator(self.random_state)
+            self.population_: Population | None = None
+            self.n_bits_: int | None = None
+            self.time_ = 0
+            self._pending: _Step | None = None
+            self._previous: _Step | None = None
+            self._states: dict[object, tuple[np.ndarray, int]] = {}
+        self._settings = settings
+        return settings
+
+    def _ready(self) -> Settings:
+        """The checked parameters, checking them first if this is the first use."""
+        settings = self._settings
+        return settings if settings is not None else self._start()
 
     # -- the agent-facing interface ------------------------------------------------------------
 
@@ -141,9 +156,12 @@ class XCS:
         while [A]-1 still matches); exploit: the best by eq. 3.9. ``allowed`` (action indices)
         restricts the choice, eq. 7.2's max and covering to those actions.
         """
+        if self._settings is None:  # (written out: a call costs ~1% of a trial)
+            self._start()
         if explore is not True and explore is not False and not isinstance(explore, np.bool_):
             raise ValueError(f"explore must be True or False, got {explore!r}")
-        permitted = self._all_actions if allowed is None else self._permitted(allowed)
+        permitted = (self._all_actions if allowed is None
+                     else permitted_actions(allowed, self._all_actions.size))
         words, number = self._encode(state)
         if self._pending is not None and self._pending.explore:
             raise ValueError("act: the previous explore action has not been rewarded; "
@@ -153,17 +171,22 @@ class XCS:
         previous = self._compact_keeping(previous if explore else None)
         if explore:
             self.time_ += 1
-        match, actions = self._match_set(words, number, permitted)
+        match, actions = match_set(self.population_, words, number, permitted,
+                                   permitted is self._all_actions, self._settings, self._rng,
+                                   self.time_)
         kills = self.population_.kills  # before [A]-1's GA can delete from [A]
         values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
         if not explore or previous is not None:  # (a single explore step needs none)
             prediction = self._prediction_array(match, actions)
             values = (prediction if allowed is None else prediction[permitted]).tolist()
         if explore:
-            action = self._explore_action(permitted, previous, words)
+            kept = previous if self._settings.consistent_actions else None
+            action = explore_action(permitted, self._rng, self.population_, words,
+                                    None if kept is None else kept.rows,
+                                    -1 if kept is None else kept.action)
             action_set = match[actions == self._action_values[action]]
         else:
-            action = self._best_action(values, permitted)
+            action = best_action(values, permitted, self._rng)
             action_set = match[:0]  # exploit steps learn nothing
         if previous is not None:
             self._reinforce(previous, previous.reward
@@ -173,12 +196,9 @@ class XCS:
 
     def reward(self, r: float, done: bool) -> None:
         """The reward of the action `act` just returned; ``done`` ends the trial."""
-        if type(r) is not float and (not isinstance(r, numbers.Real) or isinstance(r, bool)):
-            raise ValueError(f"r must be a finite number, got {r!r}")
-        if not math.isfinite(r):
-            raise ValueError(f"r must be a finite number, got {r!r}")
-        if done is not True and done is not False and not isinstance(done, np.bool_):
-            raise ValueError(f"done must be True or False, got {done!r}")
+        if self._settings is None:
+            self._start()
+        check_reward(r, done)
         step, self._pending = self._pending, None
         if step is None:
             raise ValueError("reward: no action to reward; call act(state) first")
@@ -193,45 +213,50 @@ class XCS:
     def end_trial(self) -> None:
         """End a trial cut short (a step limit) without a terminal reward: the last action
         set stays unreinforced, as in Butz & Wilson, and the next `act` starts a new trial."""
+        self._ready()
         self._pending = None
         self._previous = None
 
     def prediction_array(self, state: object) -> np.ndarray:
         """Eq. 3.8 for every action on ``state``: NaN where no classifier advocates it.
         A query: nothing is covered or learned."""
+        self._ready()
         if self.population_ is None:
             self._encode(state, fix_length=False)
-            return np.full(int(self.n_actions), np.nan)
+            return np.full(self._settings.n_actions, np.nan)
         words, _ = self._encode(state)
         match = self.population_.match(words)
         return self._prediction_array(match, self.population_.action[match])
 
     def classifiers(self) -> list[Classifier]:
         """Every macro-classifier as a `Classifier` record."""
+        self._ready()
         return [] if self.population_ is None else self.population_.records()
 
     @property
     def macro_count(self) -> int:
         """Number of macro-classifiers (distinct condition-action pairs) in the population."""
+        self._ready()
         return 0 if self.population_ is None else self.population_.macro_count
 
     @property
     def micro_count(self) -> int:
         """Sum of numerosities (what N bounds)."""
+        self._ready()
         return 0 if self.population_ is None else self.population_.micro_count
 
     def set_classifiers(self, classifiers: Iterable[Classifier | tuple], *,
                         time: int | None = None) -> None:
         """Replace the population (e.g. a hand-built one); ``time`` sets the GA clock
         (default: the latest time stamp, or the current clock if later)."""
-        records = xcs_persistence.check_records(classifiers, int(self.n_actions), int(self.N))
-        if time is not None and (isinstance(time, bool) or not isinstance(time, int | np.integer)
-                                 or time < 0):
-            raise ValueError(f"time must be an integer >= 0, got {time!r}")
+        settings = self._ready()
+        records = xcs_persistence.check_records(classifiers, settings.n_actions, settings.N)
+        if time is not None:
+            check_scalar(time, "time", numbers.Integral, min_val=0)
         n_bits = len(records[0].condition) if records else self.n_bits_
         population = None
         if n_bits is not None:
-            population = Population(n_bits, int(self.N) + int(self.n_actions) + 2)
+            population = Population(n_bits, settings.N + settings.n_actions + 2)
             xcs_persistence.fill(population, records)
         self.population_, self.n_bits_ = population, n_bits
         self._states.clear()
@@ -241,6 +266,7 @@ class XCS:
 
     def save(self, path: str | PathLike[str]) -> None:
         """Write parameters, population, clock and random state to ``path`` atomically."""
+        self._ready()
         xcs_persistence.save(self, path)
 
     @classmethod
@@ -250,21 +276,6 @@ class XCS:
 
     # -- performance component -----------------------------------------------------------------
 
-    def _permitted(self, allowed: Iterable[int] | None) -> np.ndarray:
-        if allowed is None:
-            return self._all_actions
-        if isinstance(allowed, str | bytes) or not isinstance(allowed, Iterable):
-            raise ValueError(f"allowed must be a set of action indices, got {allowed!r}")
-        actions = list(allowed)
-        for action in actions:
-            if (isinstance(action, bool) or not isinstance(action, int | np.integer)
-                    or not 0 <= action < self._all_actions.size):
-                raise ValueError(f"allowed: {action!r} is not an action index "
-                                 f"0..{self._all_actions.size - 1}")
-        if not actions:
-            raise ValueError("allowed must hold at least one action")
-        return np.unique(np.array(actions, np.int64))
-
     def _encode(self, state: object, fix_length: bool = True) -> tuple[np.ndarray, int]:
         """Packed words and the integer (bit i = position i) of a state, checked against the
         state length."""
@@ -273,10 +284,11 @@ class XCS:
             encoded = self._states.get(key)
             if encoded is not None:
                 return encoded
-        bits = self._state_bits(state)
+        bits = state_bits(state)
         if self.n_bits_ is None and fix_length:
             self.n_bits_ = bits.size
-            self.population_ = Population(bits.size, int(self.N) + int(self.n_actions) + 2)
+            settings = self._settings
+            self.population_ = Population(bits.size, settings.N + settings.n_actions + 2)
         if self.n_bits_ is not None and bits.size != self.n_bits_:
             raise ValueError(f"state must have {self.n_bits_} bits, got {bits.size}: "
                              f"{reprlib.repr(state)}")
@@ -289,44 +301,6 @@ class XCS:
             self._states[key] = encoded
         return encoded
 
-    @staticmethod
-    def _state_bits(state: object) -> np.ndarray:
-        if isinstance(state, str):
-            bits = np.frombuffer(state.encode("utf-8"), np.uint8) - np.uint8(48)
-        else:
-            try:
-                array = np.asarray(state)
-            except (TypeError, ValueError):
-                array = np.asarray([None])
-            if array.ndim != 1 or array.dtype.kind not in "biuf":
-                raise ValueError(f"state must be a string or sequence of 0/1, got "
-                                 f"{reprlib.repr(state)}")
-            bits = array.astype(np.uint8) if np.isin(array, (0, 1)).all() else np.array([2])
-        if bits.size == 0 or bits.max() > 1:
-            raise ValueError(f"state must be a non-empty string or sequence of 0/1 bits, got "
-                             f"{reprlib.repr(state)}")
-        return bits
-
-    def _match_set(self, words: np.ndarray, state: int,
-                   permitted: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """[M] (rows) and their actions, after covering every permitted action that no
-        matching classifier advocates."""
-        population, settings = self.population_, self._settings
-        for _ in range(MAX_COVERING_ROUNDS):
-            match = population.match(words)
-            actions = population.action[match]
-            if (permitted is self._all_actions
-                    and len(set(actions.tolist())) == settings.n_actions):
-                return match, actions  # (the set: cheaper than a count on small sets)
-            advocates = np.bincount(actions, minlength=settings.n_actions)
-            missing = permitted[advocates[permitted] == 0]
-            if missing.size == 0:
-                return match, actions
-            for action in missing:
-                cover(population, state, int(action), settings, self._rng, self.time_)
-                delete_from_population(population, settings, self._rng)
-        raise RuntimeError("XCS: covering kept being undone by deletion; N is too small")
-
     def _prediction_array(self, match: np.ndarray, actions: np.ndarray) -> np.ndarray:
         """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates;
         fitness is always > 0, so a zero weight means no advocate)."""
@@ -338,31 +312,6 @@ class XCS:
         if _all(weights):
             return weighted / weights
         return np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
-
-    def _best_action(self, values: list[float], permitted: np.ndarray) -> int:
-        """Eq. 3.9 over the permitted actions (``values``: their predictions), ties broken at
-        random."""
-        best = max(values)
-        ties = [index for index, value in enumerate(values) if value == best]
-        index = ties[0] if len(ties) == 1 else ties[int(self._rng.random() * len(ties))]
-        return int(permitted[index])
-
-    def _explore_action(self, permitted: np.ndarray, previous: _Step | None,
-                        words: np.ndarray) -> int:
-        """A random permitted action (all are advocated after covering); with consistent
-        actions (App. A) the previous action is kept with probability equal to the share (by
-        numerosity) of [A]-1 that still matches: always when all of it matches, never when
-        none does."""
-        if (self._settings.consistent_actions and previous is not None
-                and previous.action in permitted):
-            population = self.population_
-            rows = previous.rows[population.alive(previous.rows)]
-            numerosity = population.numerosity[rows]
-            if rows.size:
-                share = numerosity[population.matches(rows, words)].sum() / numerosity.sum()
-                if share >= 1.0 or self._rng.random() < share:
-                    return previous.action
-        return int(permitted[int(self._rng.random() * permitted.size)])
 
     # -- reinforcement component ---------------------------------------------------------------
 
@@ -379,7 +328,7 @@ class XCS:
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
         set_size = float(sum(stats[NUMEROSITY].tolist()))  # whole numbers: exact in any order
-        self._update_set(stats, set_size, payoff)
+        update_set(stats, set_size, payoff, settings, self._constants)
         population.stats[:, rows] = stats
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
@@ -389,41 +338,6 @@ class XCS:
         if waited > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
-
-    def _update_set(self, stats: np.ndarray, set_size: float, payoff: float) -> None:
-        """On an action set's columns of `Population.stats`, in place: eq. 7.1 (prediction), 7.4
-        (error, against the updated prediction as in Butz & Wilson), the action-set size
-        estimate, then fitness by eq. 7.5-7.7. Prediction, error and set size average over a
-        classifier's first 1/beta updates (Wilson's MAM technique)."""
-        settings, constant = self._settings, self._constants
-        experience = stats[EXPERIENCE]
-        experience += constant.one
-        rate = constant.one / experience
-        numerosity = stats[NUMEROSITY]
-        prediction, error, estimate = stats[PREDICTION], stats[ERROR], stats[SET_SIZE]
-        if settings.beta_p == settings.beta_e == settings.beta:
-            np.maximum(rate, constant.beta, out=rate)
-            rate_p = rate_e = rate
-        else:
-            rate_p = np.maximum(rate, settings.beta_p)
-            rate_e = np.maximum(rate, settings.beta_e)
-            np.maximum(rate, settings.beta, out=rate)
-        prediction += rate_p * (payoff - prediction)
-        miss = np.abs(payoff - prediction)
-        miss -= error
-        error += rate_e * miss
-        estimate += rate * (set_size - estimate)
-        # eq. 7.6 as (error * c) ** -nu with c = alpha ** (-1 / nu) / epsilon_0, clamped so
-        # that an error of 0 raises no warning; below epsilon_0 the accuracy is 1
-        accuracy = error * constant.accuracy_scale
-        np.maximum(accuracy, constant.accuracy_floor, out=accuracy)
-        accuracy **= constant.minus_nu
-        accuracy[error < constant.epsilon_0] = constant.one
-        accuracy *= numerosity
-        accuracy *= settings.beta_f / _sum(accuracy)  # beta_f * kappa', eq. 7.7
-        fitness = stats[FITNESS]
-        fitness *= constant.fitness_kept
-        fitness += accuracy  # eq. 7.5
 
     def _compact_keeping(self, previous: _Step | None) -> _Step | None:
         """Drop dead slots once they are half the population; remap [A]-1 if one is held."""

@@ -4,28 +4,51 @@ Each training sample is one explore problem: XCS acts on the sample's bits, and 
 ``reward`` when the action is the sample's class and 0 otherwise (Wilson's multiplexer
 protocol). Prediction is exploitation: the class whose prediction array entry (eq. 3.8) is
 highest.
+
+Features must be bits (the ``binary`` input tag) unless ``binarize`` gives a threshold, as in
+scikit-learn's ``BernoulliNB``: a feature above it is 1, otherwise 0.
 """
 
 from __future__ import annotations
 
-import numpy as np
-from sklearn.base import BaseEstimator, ClassifierMixin
-from sklearn.utils.validation import check_is_fitted
+from numbers import Integral, Real
+from typing import ClassVar
 
+import numpy as np
+from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
+from sklearn.utils import Tags
+from sklearn.utils._param_validation import Interval
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from .tags import with_domain
 from .xcs_agent import XCS
-from .xcs_params import check_random_state, make_generator
+from .xcs_params import CONSTRAINTS, make_generator
 
 PREDICT_CHUNK = 4096
 """Rows matched at once in `predict` (bounds the rows x classifiers match matrix)."""
+XCS_PARAMETERS = ("N", "beta", "beta_p", "beta_e", "beta_f", "alpha", "epsilon_0", "nu",
+                  "theta_ga", "chi", "mu", "theta_del", "delta", "theta_sub", "p_hash",
+                  "prediction_init", "error_init", "fitness_init", "ga_subsumption",
+                  "action_set_subsumption")
+"""The parameters passed on to the `XCS` inside."""
 
 
 class XCSClassifier(ClassifierMixin, BaseEstimator):
     """XCS trained online on (X, y) with X binary; parameters as `XCS` (no ``gamma`` or
     ``consistent_actions``: every problem is one step), plus ``n_iter`` passes over the data
-    in random order per `fit` and the ``reward`` for a correct class.
+    in random order per `fit`, the ``reward`` for a correct class and ``binarize``.
 
     Learned: ``xcs_`` (the `XCS`), ``classes_``, ``n_features_in_``.
     """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {
+        **{name: CONSTRAINTS[name] for name in XCS_PARAMETERS},
+        "n_iter": [Interval(Integral, 1, None, closed="left")],
+        "reward": [Interval(Real, None, None, closed="neither")],
+        "binarize": [None, Interval(Real, None, None, closed="neither")],
+        "random_state": CONSTRAINTS["random_state"],
+    }
 
     def __init__(self, *, N: int = 400, beta: float = 0.2, beta_p: float | None = None,
                  beta_e: float | None = None, beta_f: float | None = None, alpha: float = 0.1,
@@ -34,7 +57,8 @@ class XCSClassifier(ClassifierMixin, BaseEstimator):
                  theta_sub: int = 20, p_hash: float = 0.33, prediction_init: float = 10.0,
                  error_init: float = 0.0, fitness_init: float = 0.01,
                  ga_subsumption: bool = True, action_set_subsumption: bool = False,
-                 n_iter: int = 50, reward: float = 1000.0, random_state: object = None) -> None:
+                 n_iter: int = 50, reward: float = 1000.0, random_state: object = None,
+                 binarize: float | None = None) -> None:
         self.N, self.beta, self.beta_p, self.beta_e, self.beta_f = N, beta, beta_p, beta_e, beta_f
         self.alpha, self.epsilon_0, self.nu, self.theta_ga = alpha, epsilon_0, nu, theta_ga
         self.chi, self.mu, self.theta_del, self.delta = chi, mu, theta_del, delta
@@ -46,31 +70,31 @@ class XCSClassifier(ClassifierMixin, BaseEstimator):
         self.n_iter = n_iter
         self.reward = reward
         self.random_state = random_state
+        self.binarize = binarize
 
+    def __sklearn_tags__(self) -> Tags:
+        return with_domain(super().__sklearn_tags__(), binary=self.binarize is None)
+
+    @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X: object, y: object) -> XCSClassifier:
         """Learn from scratch: ``n_iter`` passes over the samples, each in a random order."""
-        X, y = self._check_data(X, y)
-        if (isinstance(self.n_iter, bool) or not isinstance(self.n_iter, int | np.integer)
-                or self.n_iter < 1):
-            raise ValueError(f"XCSClassifier: n_iter must be an integer >= 1, got "
-                             f"{self.n_iter!r}")
-        self._start(np.unique(y), X.shape[1])
-        for _ in range(int(self.n_iter)):
+        X, y = self._check_data(X, y, reset=True)
+        self._start(np.unique(y))
+        for _ in range(self.n_iter):
             self._learn(X, y, self._order_rng.permutation(X.shape[0]))
         return self
 
+    @_fit_context(prefer_skip_nested_validation=True)
     def partial_fit(self, X: object, y: object, classes: object = None) -> XCSClassifier:
         """One pass over the samples in the given order; ``classes`` is required on the first
         call (all the labels that will ever be seen)."""
-        X, y = self._check_data(X, y)
-        if not hasattr(self, "xcs_"):
-            if classes is None:
-                raise ValueError("XCSClassifier: classes must be given on the first "
-                                 "partial_fit call")
-            self._start(np.unique(np.asarray(classes)), X.shape[1])
-        elif X.shape[1] != self.n_features_in_:
-            raise ValueError(f"X has {X.shape[1]} features, the classifier was fitted with "
-                             f"{self.n_features_in_}")
+        first = not hasattr(self, "xcs_")
+        if first and classes is None:
+            raise ValueError("XCSClassifier: classes must be given on the first "
+                             "partial_fit call")
+        X, y = self._check_data(X, y, reset=first)
+        if first:
+            self._start(np.unique(np.asarray(classes)))
         unknown = np.setdiff1d(y, self.classes_)
         if unknown.size:
             raise ValueError(f"y holds labels not in classes: {unknown[:5].tolist()}")
@@ -80,31 +104,17 @@ class XCSClassifier(ClassifierMixin, BaseEstimator):
     def predict(self, X: object) -> np.ndarray:
         """The class with the highest system prediction for each row (the most frequent
         training class where no classifier matches)."""
-        X = self._check_features(X)
+        check_is_fitted(self, "xcs_")
+        X = self._bits(validate_data(self, X, reset=False))
         return self.classes_[self._best_actions(X)]
 
     # -- helpers -------------------------------------------------------------------------------
 
-    def _xcs_parameters(self) -> dict[str, object]:
-        names = ("N", "beta", "beta_p", "beta_e", "beta_f", "alpha", "epsilon_0", "nu",
-                 "theta_ga", "chi", "mu", "theta_del", "delta", "theta_sub", "p_hash",
-                 "prediction_init", "error_init", "fitness_init", "ga_subsumption",
-                 "action_set_subsumption")
-        return {name: getattr(self, name) for name in names}
-
-    def _start(self, classes: np.ndarray, n_features: int) -> None:
-        check_random_state("XCSClassifier", self.random_state)
-        if not isinstance(self.reward, int | float) or isinstance(self.reward, bool) \
-                or not np.isfinite(self.reward):
-            raise ValueError(f"XCSClassifier: reward must be a finite number, got "
-                             f"{self.reward!r}")
-        if classes.size < 1:
-            raise ValueError("XCSClassifier: y holds no labels")
+    def _start(self, classes: np.ndarray) -> None:
         seeds = make_generator(self.random_state).integers(0, 2**63 - 1, size=2)
         self.classes_ = classes
-        self.n_features_in_ = n_features
         self.xcs_ = XCS(int(classes.size), gamma=0.0, random_state=int(seeds[0]),
-                        **self._xcs_parameters())
+                        **{name: getattr(self, name) for name in XCS_PARAMETERS})
         self._order_rng = np.random.default_rng(int(seeds[1]))
         self._class_counts = np.zeros(classes.size, np.int64)
 
@@ -143,30 +153,17 @@ class XCSClassifier(ClassifierMixin, BaseEstimator):
             actions[start:start + chunk.shape[0]] = best
         return actions
 
-    def _check_features(self, X: object) -> np.ndarray:
-        check_is_fitted(self, "xcs_")
-        X = self._binary_matrix(X)
-        if X.shape[1] != self.n_features_in_:
-            raise ValueError(f"X has {X.shape[1]} features, the classifier was fitted with "
-                             f"{self.n_features_in_}")
-        return X
+    def _bits(self, X: np.ndarray) -> np.ndarray:
+        """Validated features as 0/1 bytes: thresholded by ``binarize``, or checked to be
+        bits already."""
+        if self.binarize is not None:
+            return (X > self.binarize).astype(np.uint8)
+        if not np.isin(X, (0, 1)).all():
+            raise ValueError("X must hold 0/1 features (or set binarize to a threshold), got "
+                             f"values such as {X[~np.isin(X, (0, 1))][:3].tolist()}")
+        return X.astype(np.uint8)
 
-    @staticmethod
-    def _binary_matrix(X: object) -> np.ndarray:
-        try:
-            array = np.asarray(X)
-        except (TypeError, ValueError):
-            raise ValueError("X must be a 2-D array of 0/1 features") from None
-        if array.ndim != 2 or array.shape[0] == 0 or array.shape[1] == 0 \
-                or array.dtype.kind not in "biuf" or not np.isin(array, (0, 1)).all():
-            raise ValueError(f"X must be a non-empty 2-D array of 0/1 features, got shape "
-                             f"{array.shape} and dtype {array.dtype}")
-        return array.astype(np.uint8)
-
-    def _check_data(self, X: object, y: object) -> tuple[np.ndarray, np.ndarray]:
-        X = self._binary_matrix(X)
-        y = np.asarray(y)
-        if y.ndim != 1 or y.shape[0] != X.shape[0]:
-            raise ValueError(f"y must be 1-D with one label per row of X ({X.shape[0]}), got "
-                             f"shape {y.shape}")
-        return X, y
+    def _check_data(self, X: object, y: object, *, reset: bool) -> tuple[np.ndarray, np.ndarray]:
+        X, y = validate_data(self, X, y, reset=reset)
+        check_classification_targets(y)
+        return self._bits(X), y

@@ -1,11 +1,12 @@
-"""Rule discovery in XCS: covering, the niche GA, subsumption and deletion.
+"""Rule discovery in XCS: the match set and its covering, the niche GA, subsumption and
+deletion.
 
 Follows Butz & Wilson, "An algorithmic description of XCS" (2001), procedure by procedure
-(GENERATE COVERING CLASSIFIER, RUN GA, SELECT OFFSPRING, APPLY CROSSOVER, APPLY MUTATION,
-DOES SUBSUME, DO ACTION SET SUBSUMPTION, INSERT IN / DELETE FROM POPULATION). Two choices
-where implementations differ, taken from Butz's XCSJava: an offspring starts from its parent's
-fitness per micro-classifier (F / numerosity), and the most general subsumer of an action set
-is drawn uniformly among equally general candidates.
+(GENERATE MATCH SET, GENERATE COVERING CLASSIFIER, RUN GA, SELECT OFFSPRING, APPLY CROSSOVER,
+APPLY MUTATION, DOES SUBSUME, DO ACTION SET SUBSUMPTION, INSERT IN / DELETE FROM POPULATION).
+Two choices where implementations differ, taken from Butz's XCSJava: an offspring starts from
+its parent's fitness per micro-classifier (F / numerosity), and the most general subsumer of an
+action set is drawn uniformly among equally general candidates.
 """
 
 from __future__ import annotations
@@ -18,6 +19,9 @@ import numpy as np
 from .xcs_params import Settings
 from .xcs_population import Population, bits_to_int, more_general
 
+MAX_COVERING_ROUNDS = 1000
+"""Covering repeats while deletion keeps removing advocates it just made; with N >= the number
+of actions it ends after a few rounds, this bound only turns a pathology into an error."""
 OFFSPRING_FITNESS_FACTOR = 0.1
 """B&W: an offspring's fitness is a tenth of its parents' (it has not proven itself yet)."""
 
@@ -31,6 +35,27 @@ def cover(population: Population, state: int, action: int, settings: Settings,
                           prediction=settings.prediction_init, error=settings.error_init,
                           fitness=settings.fitness_init, experience=0, numerosity=1,
                           action_set_size=1.0, time_stamp=time)
+
+
+def match_set(population: Population, words: np.ndarray, state: int, permitted: np.ndarray,
+              all_permitted: bool, settings: Settings, rng: np.random.Generator,
+              time: int) -> tuple[np.ndarray, np.ndarray]:
+    """GENERATE MATCH SET: [M] (rows) for the packed state ``words`` and their actions, after
+    covering every permitted action that no matching classifier advocates (``all_permitted``:
+    ``permitted`` is every action)."""
+    for _ in range(MAX_COVERING_ROUNDS):
+        match = population.match(words)
+        actions = population.action[match]
+        if all_permitted and len(set(actions.tolist())) == settings.n_actions:
+            return match, actions  # (the set: cheaper than a count on small sets)
+        advocates = np.bincount(actions, minlength=settings.n_actions)
+        missing = permitted[advocates[permitted] == 0]
+        if missing.size == 0:
+            return match, actions
+        for action in missing:
+            cover(population, state, int(action), settings, rng, time)
+            delete_from_population(population, settings, rng)
+    raise RuntimeError("XCS: covering kept being undone by deletion; N is too small")
 
 
 def delete_from_population(population: Population, settings: Settings,

@@ -1,85 +1,47 @@
-"""Checking XCS parameters: each bad value is a ValueError that names the argument."""
+"""XCS's parameters: their scikit-learn constraints, and the checked values for the hot path.
+
+Each bad value is scikit-learn's ``InvalidParameterError`` (a ValueError) naming the parameter
+and the learner; the one constraint between two parameters (N >= n_actions, so that covering
+fits) is checked by `Settings.resolve`.
+"""
 
 from __future__ import annotations
 
-import math
-import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
+from numbers import Integral, Real
 
 import numpy as np
+from sklearn.utils._param_validation import Interval
 
-DEFAULTS: dict[str, object] = {
-    "N": 400, "beta": 0.2, "beta_p": None, "beta_e": None, "beta_f": None, "gamma": 0.71,
-    "alpha": 0.1, "epsilon_0": 10.0, "nu": 5.0, "theta_ga": 25, "chi": 0.8, "mu": 0.04,
-    "theta_del": 20, "delta": 0.1, "theta_sub": 20, "p_hash": 0.33, "prediction_init": 10.0,
-    "error_init": 0.0, "fitness_init": 0.01, "ga_subsumption": True,
-    "action_set_subsumption": False, "consistent_actions": False, "random_state": None,
+_RATE = Interval(Real, 0.0, 1.0, closed="right")
+_PROBABILITY = Interval(Real, 0.0, 1.0, closed="both")
+_POSITIVE = Interval(Real, 0.0, None, closed="neither")
+_NON_NEGATIVE = Interval(Real, 0.0, None, closed="left")
+RANDOM_STATE = [None, Interval(Integral, 0, None, closed="left"), np.random.Generator,
+                np.random.RandomState]
+"""None, a seed >= 0, or a numpy Generator or RandomState (a Generator is used as it is)."""
+
+CONSTRAINTS: dict[str, list] = {
+    "n_actions": [Interval(Integral, 1, None, closed="left")],
+    "N": [Interval(Integral, 1, None, closed="left")],
+    "beta": [_RATE], "alpha": [_RATE],
+    "beta_p": [_RATE, None], "beta_e": [_RATE, None], "beta_f": [_RATE, None],
+    "gamma": [_PROBABILITY], "chi": [_PROBABILITY], "mu": [_PROBABILITY],
+    "delta": [_PROBABILITY], "p_hash": [_PROBABILITY],
+    "epsilon_0": [_POSITIVE], "nu": [_POSITIVE], "fitness_init": [_POSITIVE],
+    "theta_ga": [_NON_NEGATIVE], "theta_del": [_NON_NEGATIVE], "theta_sub": [_NON_NEGATIVE],
+    "error_init": [_NON_NEGATIVE],
+    "prediction_init": [Interval(Real, None, None, closed="neither")],  # any finite number
+    "ga_subsumption": ["boolean"], "action_set_subsumption": ["boolean"],
+    "consistent_actions": ["boolean"],
+    "random_state": RANDOM_STATE,
 }
-"""The learner's keyword parameters and their defaults (Wilson's multiplexer settings)."""
+"""`XCS._parameter_constraints` (thesis Table 7.1's ranges: rates in (0, 1], probabilities in
+[0, 1], thresholds >= 0)."""
 
-_RATES = ("beta", "alpha")
-_OPTIONAL_RATES = ("beta_p", "beta_e", "beta_f")
-_PROBABILITIES = ("gamma", "chi", "mu", "delta", "p_hash")
-_POSITIVE = ("epsilon_0", "nu", "fitness_init")
-_NON_NEGATIVE = ("theta_ga", "theta_del", "theta_sub", "error_init")
 _FLAGS = ("ga_subsumption", "action_set_subsumption", "consistent_actions")
-
-
-def _is_real(value: object) -> bool:
-    return (isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
-            and math.isfinite(float(value)))
-
-
-def _is_integer(value: object) -> bool:
-    return isinstance(value, numbers.Integral) and not isinstance(value, bool | np.bool_)
-
-
-def _fail(owner: str, name: str, requirement: str, value: object) -> ValueError:
-    return ValueError(f"{owner}: {name} must be {requirement}, got {value!r}")
-
-
-def check_parameters(owner: str, n_actions: object, values: Mapping[str, object]) -> None:
-    """Raise ValueError naming the first bad argument among ``n_actions`` and ``values``."""
-    if not _is_integer(n_actions) or int(n_actions) < 1:
-        raise _fail(owner, "n_actions", "an integer >= 1", n_actions)
-    size = values["N"]
-    if not _is_integer(size) or int(size) < int(n_actions):
-        raise _fail(owner, "N", f"an integer >= n_actions ({n_actions}) so covering fits", size)
-    for name in _RATES + _OPTIONAL_RATES:
-        value = values[name]
-        if value is None and name in _OPTIONAL_RATES:
-            continue
-        if not _is_real(value) or not 0.0 < float(value) <= 1.0:
-            raise _fail(owner, name, "a number in (0, 1]", value)
-    for name in _PROBABILITIES:
-        value = values[name]
-        if not _is_real(value) or not 0.0 <= float(value) <= 1.0:
-            raise _fail(owner, name, "a number in [0, 1]", value)
-    for name in _POSITIVE:
-        value = values[name]
-        if not _is_real(value) or float(value) <= 0.0:
-            raise _fail(owner, name, "a finite number > 0", value)
-    for name in _NON_NEGATIVE:
-        value = values[name]
-        if not _is_real(value) or float(value) < 0.0:
-            raise _fail(owner, name, "a finite number >= 0", value)
-    if not _is_real(values["prediction_init"]):
-        raise _fail(owner, "prediction_init", "a finite number", values["prediction_init"])
-    for name in _FLAGS:
-        if not isinstance(values[name], bool | np.bool_):
-            raise _fail(owner, name, "True or False", values[name])
-    check_random_state(owner, values["random_state"])
-
-
-def check_random_state(owner: str, random_state: object) -> None:
-    """Accept None, a non-negative int, a numpy Generator or a numpy RandomState."""
-    if random_state is None or isinstance(random_state,
-                                          np.random.Generator | np.random.RandomState):
-        return
-    if not _is_integer(random_state) or int(random_state) < 0:
-        raise _fail(owner, "random_state",
-                    "None, an integer >= 0 or a numpy Generator", random_state)
+_OPTIONAL_RATES = ("beta_p", "beta_e", "beta_f")
 
 
 def make_generator(random_state: object) -> np.random.Generator:
@@ -89,7 +51,6 @@ def make_generator(random_state: object) -> np.random.Generator:
     if isinstance(random_state, np.random.RandomState):
         return np.random.default_rng(random_state.randint(0, 2**32 - 1, size=4))
     return np.random.default_rng(None if random_state is None else int(random_state))
-
 
 
 @dataclass(frozen=True)
@@ -122,8 +83,13 @@ class Settings:
     consistent_actions: bool
 
     @classmethod
-    def resolve(cls, n_actions: int, values: Mapping[str, object]) -> Settings:
-        """Settings from parameters already passed through `check_parameters`."""
+    def resolve(cls, owner: str, values: Mapping[str, object]) -> Settings:
+        """Settings from parameters that passed `CONSTRAINTS`; N < n_actions is a ValueError
+        (covering needs room for one classifier per action)."""
+        n_actions, size = int(values["n_actions"]), int(values["N"])
+        if size < n_actions:
+            raise ValueError(f"{owner}: N must be an integer >= n_actions ({n_actions}) so "
+                             f"covering fits, got {values['N']!r}")
         beta = float(values["beta"])
         numbers_ = {name: float(values[name]) for name in (
             "gamma", "alpha", "epsilon_0", "nu", "theta_ga", "chi", "mu", "theta_del", "delta",
@@ -131,5 +97,4 @@ class Settings:
         rates = {name: beta if values[name] is None else float(values[name])
                  for name in _OPTIONAL_RATES}
         flags = {name: bool(values[name]) for name in _FLAGS}
-        return cls(n_actions=int(n_actions), N=int(values["N"]), beta=beta,
-                   **rates, **numbers_, **flags)
+        return cls(n_actions=n_actions, N=size, beta=beta, **rates, **numbers_, **flags)

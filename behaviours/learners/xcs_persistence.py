@@ -3,8 +3,10 @@
 Its state holds the state length, the GA clock, the numpy bit generator's state (so a loaded
 learner draws the same random numbers the saved one would have) and every macro-classifier as
 ``[condition, action, prediction, error, fitness, experience, numerosity, action_set_size,
-time_stamp]``. Anything else — not JSON, another format, version or kind, a field out of range —
-is a ValueError (`LearnerFileError`) naming the file and the field.
+time_stamp]``. The JSON Schema ``schemas/xcs.schema.json`` states every field; what it cannot
+(an action against n_actions, conditions of one length, no repeated classifier, numerosities
+within N, n_bits against the conditions) is checked here. Anything wrong is a ValueError
+(`LearnerFileError`) naming the file and the field.
 """
 
 from __future__ import annotations
@@ -17,28 +19,19 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .persist import LearnerFileError, json_params, read_learner, write_learner
-from .xcs_params import DEFAULTS
+from .schemas import check
 from .xcs_population import Classifier, Population, condition_masks
 
 if TYPE_CHECKING:
     from .xcs_agent import XCS
 
 KIND = "xcs"
-BIT_GENERATORS = ("PCG64", "PCG64DXSM", "MT19937", "Philox", "SFC64")
-
-
-def _is_integer(value: object) -> bool:
-    return isinstance(value, int | np.integer) and not isinstance(value, bool)
-
-
-def _is_number(value: object) -> bool:
-    return (isinstance(value, int | float | np.integer | np.floating)
-            and not isinstance(value, bool) and math.isfinite(value))
 
 
 def check_records(classifiers: Iterable[Classifier | tuple], n_actions: int,
                   size_limit: int) -> list[Classifier]:
-    """Classifier records checked field by field; errors name ``classifiers[i].field``."""
+    """Classifier records checked against the schema's ``classifier`` and each other; errors
+    name ``classifiers[i].field``."""
     if isinstance(classifiers, str | bytes | dict) or not isinstance(classifiers, Iterable):
         raise ValueError(f"classifiers must be a list of classifier records, got "
                          f"{type(classifiers).__name__}")
@@ -46,14 +39,17 @@ def check_records(classifiers: Iterable[Classifier | tuple], n_actions: int,
     seen: dict[tuple[str, int], int] = {}
     for index, raw in enumerate(classifiers):
         where = f"classifiers[{index}]"
-        if isinstance(raw, str | bytes) or not isinstance(raw, Iterable):
-            raise ValueError(f"{where} must be a record of {len(Classifier._fields)} fields")
-        fields = list(raw)
-        if len(fields) != len(Classifier._fields):
-            raise ValueError(f"{where} must have {len(Classifier._fields)} fields "
-                             f"({', '.join(Classifier._fields)}), got {len(fields)}")
+        fields = [field.item() if isinstance(field, np.generic) else field
+                  for field in raw] if isinstance(raw, tuple | list) else raw
+        check(fields, KIND, at=("classifiers", index), definition="classifier")
         record = Classifier(*fields)
-        _check_record(record, where, n_actions)
+        for name in ("prediction", "error", "fitness", "action_set_size"):
+            if not math.isfinite(getattr(record, name)):  # (files hold no NaN: read_json)
+                raise ValueError(f"{where}.{name} must be a finite number, got "
+                                 f"{getattr(record, name)!r}")
+        if record.action >= n_actions:
+            raise ValueError(f"{where}.action must be an action index 0..{n_actions - 1}, "
+                             f"got {record.action!r}")
         if records and len(record.condition) != len(records[0].condition):
             raise ValueError(f"{where}.condition has {len(record.condition)} positions, "
                              f"classifiers[0] has {len(records[0].condition)}")
@@ -67,27 +63,6 @@ def check_records(classifiers: Iterable[Classifier | tuple], n_actions: int,
     if total > size_limit:
         raise ValueError(f"classifiers: total numerosity {total} exceeds N ({size_limit})")
     return records
-
-
-def _check_record(record: Classifier, where: str, n_actions: int) -> None:
-    condition = record.condition
-    if not isinstance(condition, str) or not condition or set(condition) - set("01#"):
-        raise ValueError(f"{where}.condition must be a non-empty string over 0, 1, #, "
-                         f"got {condition!r}")
-    if not _is_integer(record.action) or not 0 <= record.action < n_actions:
-        raise ValueError(f"{where}.action must be an integer in 0..{n_actions - 1}, "
-                         f"got {record.action!r}")
-    checks = (("prediction", _is_number(record.prediction)),
-              ("error", _is_number(record.error) and record.error >= 0),
-              ("fitness", _is_number(record.fitness) and record.fitness > 0),
-              ("experience", _is_integer(record.experience) and record.experience >= 0),
-              ("numerosity", _is_integer(record.numerosity) and record.numerosity >= 1),
-              ("action_set_size", _is_number(record.action_set_size)
-               and record.action_set_size >= 0),
-              ("time_stamp", _is_integer(record.time_stamp) and record.time_stamp >= 0))
-    for field, good in checks:
-        if not good:
-            raise ValueError(f"{where}.{field} is out of range: {getattr(record, field)!r}")
 
 
 def fill(population: Population, records: list[Classifier]) -> None:
@@ -119,35 +94,24 @@ def load(cls: type[XCS], path: str | os.PathLike[str]) -> XCS:
 
 
 def _restore(cls: type[XCS], params: dict, state: dict) -> XCS:
-    expected = {"n_actions", *DEFAULTS}
-    if set(params) != expected:
-        raise ValueError("params: expected exactly " + ", ".join(sorted(expected)))
+    """The learner from a file that passed the schema."""
     xcs = cls(**params)
-    classifiers = state.get("classifiers")
-    if not isinstance(classifiers, list):
-        raise ValueError("classifiers: expected a list")
-    n_bits = state.get("n_bits")
-    if n_bits is not None and (not _is_integer(n_bits) or n_bits < 1):
-        raise ValueError(f"n_bits must be null or an integer >= 1, got {n_bits!r}")
-    records = check_records(classifiers, int(xcs.n_actions), int(xcs.N))
+    settings = xcs._ready()  # the parameters' own constraints
+    records = check_records(state["classifiers"], settings.n_actions, settings.N)
+    n_bits = state["n_bits"]
     if records and len(records[0].condition) != n_bits:
         raise ValueError(f"n_bits is {n_bits!r} but conditions have {len(records[0].condition)}")
-    time = state.get("time")
-    if not _is_integer(time) or time < 0:
-        raise ValueError(f"time must be an integer >= 0, got {time!r}")
-    xcs.set_classifiers(records, time=time)
+    xcs.set_classifiers(records, time=state["time"])
     if n_bits is not None and xcs.n_bits_ is None:
         xcs.n_bits_ = n_bits
-        xcs.population_ = Population(n_bits, int(xcs.N) + int(xcs.n_actions) + 2)
-    xcs._rng = _generator(state.get("random_generator"))
+        xcs.population_ = Population(n_bits, settings.N + settings.n_actions + 2)
+    xcs._rng = _generator(state["random_generator"])
     return xcs
 
 
-def _generator(state: object) -> np.random.Generator:
-    name = state.get("bit_generator") if isinstance(state, dict) else None
-    if name not in BIT_GENERATORS:
-        raise ValueError(f"random_generator: unknown bit generator {name!r}")
-    bit_generator = getattr(np.random, name)()
+def _generator(state: dict) -> np.random.Generator:
+    """numpy's generator in the saved state (the schema checked the bit generator's name)."""
+    bit_generator = getattr(np.random, state["bit_generator"])()
     try:
         bit_generator.state = state
     except (TypeError, ValueError, KeyError) as error:

@@ -134,7 +134,7 @@ class PrologCalls(TermConversion):
                 if type(value) is Kept:
                     PL_recorded(value.handle, base + index)
                 else:
-                    self._put(base + index, value, {})
+                    self._put_term(base + index, value, {})
             if PL_call_predicate(None, Q_PASS, pred, base):
                 if not PL_get_int64(base + number, INT_REF):
                     raise KBError("internal: the interpreter's outcome is not a number")
@@ -157,7 +157,7 @@ class PrologCalls(TermConversion):
         """All (or the first ``limit``) solutions of ``pred`` called with the given
         ``(argument index, value)`` inputs; each solution lists the values of the
         ``outputs`` arguments (default: all); output ``keep`` is not converted but kept as a
-        :class:`Record`. ``marks``: see :meth:`_get`."""
+        :class:`Record`. ``marks``: see :meth:`_get_term`."""
         if get_ident() != self._thread:
             self._attach_thread()
         if outputs is None:
@@ -169,7 +169,7 @@ class PrologCalls(TermConversion):
             try:
                 for index, value in inputs:
                     if value is not None:
-                        self._put(base + index, value, shared)
+                        self._put_term(base + index, value, shared)
             except UnicodeEncodeError as error:
                 raise KBError(f"text Prolog cannot hold: {error.object!r}") from None
             qid = PL_open_query(None, Q_CATCH, pred, base)
@@ -177,7 +177,7 @@ class PrologCalls(TermConversion):
             record = None
             outer_since = self._enter()
             try:
-                get = self._get
+                get = self._get_term
                 while limit is None or len(answers) < limit:
                     if not PL_next_solution(qid):
                         exception = PL_exception(qid)
@@ -270,7 +270,7 @@ class PrologCalls(TermConversion):
         try:
             t = PL_new_term_ref()
             PL_recorded(record, t)
-            return self._get(t, [], False)
+            return self._get_term(t, [], False)
         finally:
             PL_discard_foreign_frame(fid)
 
@@ -281,7 +281,7 @@ class PrologCalls(TermConversion):
             t = PL_new_term_ref()
             PL_recorded(record, t)
             PL_erase(record)
-            term = self._get(t, [], False)
+            term = self._get_term(t, [], False)
             pred = self.predicate("error_message", 2, "ga_kb")
             base = PL_new_term_refs(2)
             PL_put_term(base, t)
@@ -319,11 +319,11 @@ def define_foreign(engine: PrologCalls, module: str, name: str,
         try:
             if not PL_is_acyclic(request):  # a cyclic list would be read for ever
                 raise KBError(_TOO_DEEP_FOR_PYTHON)
-            answer = respond(engine._get(request, [], False))
+            answer = respond(engine._get_term(request, [], False))
             if answer is None:
                 return 1
             t = PL_new_term_ref()
-            engine._put(t, answer, {})
+            engine._put_term(t, answer, {})
             return 1 if PL_unify(reply, t) else 0
         except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
             engine._python_errors.append(KBError(_TOO_DEEP_FOR_PYTHON) if _too_deep(error)

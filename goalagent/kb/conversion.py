@@ -8,7 +8,9 @@ few C calls each and keep atom and functor handles cached (pyswip's string API c
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from fractions import Fraction
+from typing import Any
 
 from goalagent.kb.clib import (
     ATOM_BUF,
@@ -123,6 +125,16 @@ class TermConversion:
         self._transient_atoms: list[int] = []  # uncached atoms: unregistered after the call
         self._dead_records: list[int] = []  # records of collected Record objects, to erase
         self._counter = 0
+        self._putters: dict[type, Callable[[int, Any, dict[str, int]], None]] = {
+            Atom: self._put_atom, Struct: self._put_compound, int: self._put_integer,
+            list: self._put_list, tuple: self._put_list, Kept: self._put_kept,
+            Var: self._put_variable, float: self._put_float, bool: self._put_bool,
+            str: self._put_string}
+        self._getters: dict[int, Callable[[int, list[tuple[int, Var]], bool], Term]] = {
+            PL_ATOM: self._get_atom, PL_TERM: self._get_compound, PL_INTEGER: self._get_integer,
+            PL_LIST_PAIR: self._get_list, PL_NIL: self._get_nil, PL_STRING: self._get_string,
+            PL_FLOAT: self._get_float, PL_VARIABLE: self._get_variable,
+            PL_RATIONAL: self._get_rational}
 
     def _atom_handle(self, name: str) -> int:
         """The atom_t for ``name`` (cached and kept registered while the cache has room)."""
@@ -146,124 +158,159 @@ class TermConversion:
             self._functors[key] = handle
         return handle
 
-    def _put(self, t: int, value: Term, shared: dict[str, int]) -> None:
+    # ------------------------------------------------------------------ Python -> Prolog
+    # One function per kind of Python value, chosen by its exact type in ``_putters`` (a
+    # table rather than a chain of tests: a compound puts each argument with one lookup).
+
+    def _put_term(self, t: int, value: Term, shared: dict[str, int]) -> None:
         """Stores the Python term ``value`` in term ref ``t``; ``shared`` maps Var names."""
-        kind = type(value)
-        if kind is Atom:
-            handle = self._atoms.get(value)
-            PL_put_atom(t, handle if handle is not None else self._atom_handle(value))
-        elif kind is Struct:
-            arity = len(value.args)
-            if arity == 0:
-                data = format_term(value).encode("utf-8")
-                PL_put_term_from_chars(t, REP_UTF8, len(data), data)
-                return
-            args = PL_new_term_refs(arity)
-            put = self._put
-            for i, arg in enumerate(value.args):
-                put(args + i, arg, shared)
-            functor = self._functors.get((value.name, arity))
-            PL_cons_functor_v(t, functor or self._functor(value.name, arity), args)
-        elif kind is int:
-            if INT64_MIN <= value <= INT64_MAX:
-                PL_put_int64(t, value)
-            else:  # hexadecimal: no digit limit, linear (Python's str(int) has neither)
-                data = format(value, "#x").encode()
-                PL_put_term_from_chars(t, REP_UTF8, len(data), data)
-        elif kind is list or kind is tuple:
-            PL_put_nil(t)
-            if value:
-                head = PL_new_term_ref()
-                put = self._put
-                for item in reversed(value):
-                    put(head, item, shared)
-                    PL_cons_list(t, head, t)
-        elif kind is Kept:
-            PL_recorded(value.handle, t)  # type: ignore[union-attr]
-        elif kind is Var:
-            existing = shared.get(value.name) if value.name != "_" else None
-            if existing is None:
-                PL_put_variable(t)
-                if value.name != "_":
-                    shared[value.name] = PL_copy_term_ref(t)
-            else:
-                PL_put_term(t, existing)
-        elif kind is float:
-            PL_put_float(t, value)
-        elif kind is bool:
-            PL_put_atom(t, self._atom_handle("true" if value else "false"))
-        elif isinstance(value, Atom):
-            self._put(t, Atom(str(value)), shared)
+        self._putters.get(type(value), self._put_subclass)(t, value, shared)
+
+    def _put_atom(self, t: int, value: Atom, shared: dict[str, int]) -> None:
+        handle = self._atoms.get(value)
+        PL_put_atom(t, handle if handle is not None else self._atom_handle(value))
+
+    def _put_compound(self, t: int, value: Struct, shared: dict[str, int]) -> None:
+        arity = len(value.args)
+        if arity == 0:  # name(): no C call builds it, the reader does
+            data = format_term(value).encode("utf-8")
+            PL_put_term_from_chars(t, REP_UTF8, len(data), data)
+            return
+        args = PL_new_term_refs(arity)
+        putters, other = self._putters, self._put_subclass
+        for i, arg in enumerate(value.args):
+            putters.get(type(arg), other)(args + i, arg, shared)
+        functor = self._functors.get((value.name, arity))
+        PL_cons_functor_v(t, functor or self._functor(value.name, arity), args)
+
+    def _put_integer(self, t: int, value: int, shared: dict[str, int]) -> None:
+        if INT64_MIN <= value <= INT64_MAX:
+            PL_put_int64(t, value)
+        else:  # hexadecimal: no digit limit, linear (Python's str(int) has neither)
+            data = format(value, "#x").encode()
+            PL_put_term_from_chars(t, REP_UTF8, len(data), data)
+
+    def _put_list(self, t: int, value: list[Term] | tuple[Term, ...],
+                  shared: dict[str, int]) -> None:
+        PL_put_nil(t)
+        if value:
+            head = PL_new_term_ref()
+            putters, other = self._putters, self._put_subclass
+            for item in reversed(value):
+                putters.get(type(item), other)(head, item, shared)
+                PL_cons_list(t, head, t)
+
+    def _put_kept(self, t: int, value: Kept, shared: dict[str, int]) -> None:
+        PL_recorded(value.handle, t)
+
+    def _put_variable(self, t: int, value: Var, shared: dict[str, int]) -> None:
+        existing = shared.get(value.name) if value.name != "_" else None
+        if existing is None:
+            PL_put_variable(t)
+            if value.name != "_":
+                shared[value.name] = PL_copy_term_ref(t)
+        else:
+            PL_put_term(t, existing)
+
+    def _put_float(self, t: int, value: float, shared: dict[str, int]) -> None:
+        PL_put_float(t, value)
+
+    def _put_bool(self, t: int, value: bool, shared: dict[str, int]) -> None:
+        PL_put_atom(t, self._atom_handle("true" if value else "false"))
+
+    def _put_string(self, t: int, value: str, shared: dict[str, int]) -> None:
+        data = value.encode("utf-8")
+        PL_put_chars(t, PUT_STRING, len(data), data)
+
+    def _put_subclass(self, t: int, value: object, shared: dict[str, int]) -> None:
+        """A value of no type of the table: a subclass of Atom or str, or not a term."""
+        if isinstance(value, Atom):
+            self._put_atom(t, Atom(str(value)), shared)
         elif isinstance(value, str):
-            data = value.encode("utf-8")
-            PL_put_chars(t, PUT_STRING, len(data), data)
+            self._put_string(t, value, shared)
         else:
             raise KBError(f"not a Prolog term: {value!r}")
 
-    def _get(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
-        """The Python term in term ref ``t``; ``seen`` keeps unbound variables' identities;
-        with ``marks``, ``'$ga_var'(Name)`` becomes ``Var(Name)`` (see parse/2)."""
-        kind = PL_term_type(t)
-        if kind == PL_ATOM:
-            PL_get_atom(t, ATOM_REF)
-            handle = ATOM_BUF.value
-            return self._atom_names.get(handle) or self._atom_name(handle)
-        if kind == PL_TERM:
-            PL_get_name_arity(t, ATOM_REF, SIZE_REF)
-            handle = ATOM_BUF.value
-            arity = SIZE_BUF.value
-            name = self._functor_names.get(handle)
-            if name is None:
-                name = str(self._atom_names.get(handle) or self._atom_name(handle))
-                self._functor_names[handle] = name
-            arg = PL_new_term_ref()
-            args = []
-            get = self._get
-            for i in range(1, arity + 1):
-                PL_get_arg(i, t, arg)
-                args.append(get(arg, seen, marks))
-            if marks and name == VAR_MARK and arity == 1:
-                return Var(str(args[0]))
-            return Struct(name, tuple(args))
-        if kind == PL_INTEGER:
-            if PL_get_int64(t, INT_REF):
-                return INT_BUF.value
-            try:
-                return decimal_int(text_of(t, CVT_INTEGER))
-            except ValueError as error:
-                raise KBError(str(error)) from None
-        if kind == PL_LIST_PAIR:
-            items: list[Term] = []
-            rest = PL_copy_term_ref(t)
-            head = PL_new_term_ref()
-            get = self._get
-            while PL_get_list(rest, head, rest):
-                items.append(get(head, seen, marks))
-            if PL_term_type(rest) == PL_NIL:
-                return items
-            tail = get(rest, seen, marks)
-            for item in reversed(items):
-                tail = Struct("[|]", (item, tail))
-            return tail
-        if kind == PL_NIL:
-            return []
-        if kind == PL_STRING:
-            return text_of(t, TEXT_FLAGS)
-        if kind == PL_FLOAT:
-            PL_get_float(t, FLOAT_REF)
-            return FLOAT_BUF.value
-        if kind == PL_VARIABLE:
-            for ref, var in seen:
-                if PL_compare(ref, t) == 0:
-                    return var
-            self._counter += 1
-            var = Var("_" if marks else f"_G{self._counter}")
-            seen.append((PL_copy_term_ref(t), var))
-            return var
-        if kind == PL_RATIONAL:
-            numerator, denominator = text_of(t, CVT_WRITEQ | REP_UTF8).split("r")
-            return float(Fraction(int(numerator), int(denominator)))
-        return Atom(text_of(t, CVT_WRITEQ | REP_UTF8))  # blobs (streams, clause refs), dicts
+    # ------------------------------------------------------------------ Prolog -> Python
+    # One function per kind of Prolog term (PL_term_type), chosen in ``_getters``; ``seen``
+    # keeps unbound variables' identities; with ``marks``, ``'$ga_var'(Name)`` becomes
+    # ``Var(Name)`` (see parse/2).
+
+    def _get_term(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        """The Python term in term ref ``t``."""
+        return self._getters.get(PL_term_type(t), self._get_other)(t, seen, marks)
+
+    def _get_atom(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        PL_get_atom(t, ATOM_REF)
+        handle = ATOM_BUF.value
+        return self._atom_names.get(handle) or self._atom_name(handle)
+
+    def _get_compound(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        PL_get_name_arity(t, ATOM_REF, SIZE_REF)
+        handle = ATOM_BUF.value
+        arity = SIZE_BUF.value
+        name = self._functor_names.get(handle)
+        if name is None:
+            name = str(self._atom_names.get(handle) or self._atom_name(handle))
+            self._functor_names[handle] = name
+        arg = PL_new_term_ref()
+        args = []
+        getters, other = self._getters, self._get_other
+        for i in range(1, arity + 1):
+            PL_get_arg(i, t, arg)
+            args.append(getters.get(PL_term_type(arg), other)(arg, seen, marks))
+        if marks and name == VAR_MARK and arity == 1:
+            return Var(str(args[0]))
+        return Struct(name, tuple(args))
+
+    def _get_integer(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        if PL_get_int64(t, INT_REF):
+            return INT_BUF.value
+        try:
+            return decimal_int(text_of(t, CVT_INTEGER))
+        except ValueError as error:
+            raise KBError(str(error)) from None
+
+    def _get_list(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        items: list[Term] = []
+        rest = PL_copy_term_ref(t)
+        head = PL_new_term_ref()
+        getters, other = self._getters, self._get_other
+        while PL_get_list(rest, head, rest):
+            items.append(getters.get(PL_term_type(head), other)(head, seen, marks))
+        if PL_term_type(rest) == PL_NIL:
+            return items
+        tail = self._get_term(rest, seen, marks)  # a partial list: [a, b | T]
+        for item in reversed(items):
+            tail = Struct("[|]", (item, tail))
+        return tail
+
+    def _get_nil(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        return []
+
+    def _get_string(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        return text_of(t, TEXT_FLAGS)
+
+    def _get_float(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        PL_get_float(t, FLOAT_REF)
+        return FLOAT_BUF.value
+
+    def _get_variable(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        for ref, var in seen:
+            if PL_compare(ref, t) == 0:
+                return var
+        self._counter += 1
+        var = Var("_" if marks else f"_G{self._counter}")
+        seen.append((PL_copy_term_ref(t), var))
+        return var
+
+    def _get_rational(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        numerator, denominator = text_of(t, CVT_WRITEQ | REP_UTF8).split("r")
+        return float(Fraction(int(numerator), int(denominator)))
+
+    def _get_other(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+        """Blobs (streams, clause refs) and dicts: their quoted text, as an atom."""
+        return Atom(text_of(t, CVT_WRITEQ | REP_UTF8))
 
     def _atom_name(self, handle: int) -> Atom:
         """The name of atom ``handle`` (cache miss path); caching registers the atom."""

@@ -90,7 +90,7 @@ class Engine(PrologCalls):
         fid = PL_open_foreign_frame()
         try:
             t = PL_new_term_ref()
-            self._put(t, term, {})
+            self._put_term(t, term, {})
             return Kept(self, PL_record(t))
         finally:
             PL_discard_foreign_frame(fid)

@@ -13,9 +13,9 @@ import contextlib
 from collections.abc import Iterable
 from pathlib import Path
 
+from behaviours.learners.effect_models import ModelStore
 from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
 from behaviours.learning import ACTIVE_N_MAX, LEARNING_MODES, AffordanceBehaviours
-from behaviours.models import ModelStore
 from behaviours.perception import Observation, make_perception
 from behaviours.skills import (
     THETA_BOUNDS,

@@ -1,85 +1,97 @@
 """Learned effect models Ĥ(θ) (thesis eq. 6.7/5.16) and their on-disk store.
 
-``LinearEffectModel`` is a scikit-learn regressor e = b + c·θ over one action parameter that
-also tracks the residual sum of squares after every (partial) fit, so a learner can tell when
-the regression has settled (eq. 5.18/5.19). ``ModelStore`` keeps one model per key, normally
-(can, part, action), oldest first, in a JSON file that is replaced atomically on every change,
-so a crash never leaves a half-written store and models survive the process.
+``LinearEffectModel`` is a scikit-learn regressor e = b + c·θ (θ: the action parameters, one
+in the thesis's uses) that also tracks the residual sum of squares after every (partial) fit,
+so a learner can tell when the regression has settled (eq. 5.18/5.19). ``ModelStore`` keeps
+one model per key, normally (can, part, action), oldest first, in a JSON file that is replaced
+atomically on every change, so a crash never leaves a half-written store and models survive
+the process.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import os
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from numbers import Real
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
-from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.base import BaseEstimator, RegressorMixin, _fit_context
 from sklearn.linear_model import LinearRegression
+from sklearn.utils.validation import check_is_fitted, validate_data
 
-from behaviours.learners.persist import StoreFileError, read_json, write_text_atomically
+from behaviours.learners.persist import check_store, read_store, write_text_atomically
+from behaviours.learners.validation import check_bounds
 
 STORE_FORMAT = "goalagent-effect-models"
 STORE_VERSION = 1
 
 
-def _column(values: object, name: str) -> np.ndarray:
-    """``values`` as a finite 1-D float array (accepts a scalar, shape (n,) or (n, 1))."""
-    array = np.atleast_1d(np.asarray(values, dtype=float))
-    if array.ndim == 2 and array.shape[1] == 1:
-        array = array[:, 0]
-    if array.ndim != 1:
-        raise ValueError(f"{name} must be one action parameter per sample, got shape {array.shape}")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} contains a value that is not a finite number")
-    return array
-
-
 class LinearEffectModel(RegressorMixin, BaseEstimator):
-    """Ĥ(θ) = b + c·θ by least squares (thesis 5.16, 6.7), refit on all samples seen so far."""
+    """Ĥ(θ) = b + c·θ by least squares (thesis 5.16, 6.7), refit on all samples seen so far.
+
+    X holds the action parameters θ, one row per sample; a number or a 1-D array is one
+    parameter per sample, as the behaviours call it (so scikit-learn's checks that a 1-D X
+    is refused are expected to fail). Learned: ``coef_`` c (one slope per parameter) and
+    ``intercept_`` b, the samples ``theta_`` (n, parameters) and ``effect_``, ``rss_`` and
+    ``rss_history_``. `maximum` and the store take one-parameter models.
+    """
+
+    _parameter_constraints: ClassVar[dict[str, list]] = {"fit_intercept": ["boolean"]}
 
     def __init__(self, fit_intercept: bool = True) -> None:
         self.fit_intercept = fit_intercept
 
-    def fit(self, theta: object, effect: object) -> LinearEffectModel:
-        """Fit on exactly these samples, forgetting earlier ones."""
-        self.theta_ = np.empty(0)
-        self.effect_ = np.empty(0)
-        self.rss_history_: list[float] = []
-        return self.partial_fit(theta, effect)
+    @_fit_context(prefer_skip_nested_validation=True)
+    def fit(self, X: object, y: object) -> LinearEffectModel:
+        """Fit on exactly these samples (X: θ, y: the effects), forgetting earlier ones."""
+        for name in ("theta_", "effect_", "rss_history_", "n_features_in_"):
+            self.__dict__.pop(name, None)
+        return self.partial_fit(X, y)
 
-    def partial_fit(self, theta: object, effect: object) -> LinearEffectModel:
-        """Add samples and refit on all of them; appends the new RSS S_m (eq. 5.18)."""
-        theta_new = _column(theta, "theta")
-        effect_new = _column(effect, "effect")
-        if theta_new.shape != effect_new.shape:
-            raise ValueError(
-                f"theta and effect differ in length ({theta_new.size} vs {effect_new.size})"
-            )
-        if not hasattr(self, "theta_"):
-            self.theta_, self.effect_, self.rss_history_ = np.empty(0), np.empty(0), []
-        self.theta_ = np.concatenate([self.theta_, theta_new])
-        self.effect_ = np.concatenate([self.effect_, effect_new])
-        if self.theta_.size == 0:
-            raise ValueError("cannot fit an effect model on zero samples")
+    @_fit_context(prefer_skip_nested_validation=True)
+    def partial_fit(self, X: object, y: object) -> LinearEffectModel:
+        """Add samples (X: θ, y: the effects) and refit on all of them; appends the new RSS
+        S_m (eq. 5.18)."""
+        first = not hasattr(self, "theta_")
+        y = [y] if isinstance(y, Real) else y  # one number: one sample
+        X, y = validate_data(self, self._one_column(X), y, reset=first, dtype=np.float64,
+                             y_numeric=True)
+        if first:
+            self.theta_, self.effect_ = np.empty((0, X.shape[1])), np.empty(0)
+            self.rss_history_: list[float] = []
+        self.theta_ = np.concatenate([self.theta_, X])
+        self.effect_ = np.concatenate([self.effect_, y])
         regression = LinearRegression(fit_intercept=self.fit_intercept)
-        regression.fit(self.theta_[:, None], self.effect_)
-        self.coef_ = float(regression.coef_[0])
+        regression.fit(self.theta_, self.effect_)
+        self.coef_ = regression.coef_.copy()
         self.intercept_ = float(regression.intercept_)
-        residuals = self.effect_ - self.predict(self.theta_)
+        residuals = self.effect_ - self._line(self.theta_)
         self.rss_ = float(residuals @ residuals)
         self.rss_history_.append(self.rss_)
-        self.n_samples_ = int(self.theta_.size)
+        self.n_samples_ = self.theta_.shape[0]
         return self
 
-    def predict(self, theta: object) -> np.ndarray:
+    def predict(self, X: object) -> np.ndarray:
         """Predicted effect for each θ."""
-        if not hasattr(self, "coef_"):
-            raise ValueError("this LinearEffectModel is not fitted yet; call fit first")
-        return self.intercept_ + self.coef_ * _column(theta, "theta")
+        check_is_fitted(self, "coef_")
+        X = validate_data(self, self._one_column(X), reset=False, dtype=np.float64)
+        return self._line(X)
+
+    def _one_column(self, theta: object) -> object:
+        """A number or a 1-D array of θ as one column where the model takes one parameter
+        (or is fitted anew); anything else goes to validate_data as it is."""
+        if getattr(self, "n_features_in_", 1) != 1:
+            return theta
+        array = np.asarray(theta) if not hasattr(theta, "ndim") else theta
+        return np.reshape(array, (-1, 1)) if array.ndim < 2 else theta
+
+    def _line(self, theta: np.ndarray) -> np.ndarray:
+        """b + c·θ for rows of θ."""
+        return self.intercept_ + theta @ self.coef_
 
     def settled(self, tol: float) -> bool:
         """Eq. 5.19: the last sample changed the RSS by less than ``tol`` (|S_m+1 − S_m| < δ3)."""
@@ -93,23 +105,21 @@ class LinearEffectModel(RegressorMixin, BaseEstimator):
         no action can use, so θ_max is then the smallest θ explored: the best valid one known.
         """
         low, high = check_bounds(bounds)
-        if self.coef_ >= 0:
+        theta = self._one_parameter()
+        if self.coef_[0] >= 0:
             theta_max = high
         else:
-            inside = self.theta_[(self.theta_ > low) & (self.theta_ <= high)]
+            inside = theta[(theta > low) & (theta <= high)]
             theta_max = float(inside.min()) if inside.size else high
-        return theta_max, float(self.predict(theta_max)[0])
+        return theta_max, float(self._line(np.array([[theta_max]]))[0])
 
-
-def check_bounds(bounds: Sequence[float]) -> tuple[float, float]:
-    """``bounds`` as a (low, high) pair of finite floats with low < high, or a clear error."""
-    try:
-        low, high = (float(b) for b in bounds)
-    except (TypeError, ValueError):
-        raise ValueError(f"bounds must be a (low, high) pair of numbers, got {bounds!r}") from None
-    if not (math.isfinite(low) and math.isfinite(high) and low < high):
-        raise ValueError(f"bounds must be finite with low < high, got ({low}, {high})")
-    return low, high
+    def _one_parameter(self) -> np.ndarray:
+        """The θ samples of a one-parameter model (the thesis's Ĥ(θ))."""
+        check_is_fitted(self, "coef_")
+        if self.n_features_in_ != 1:
+            raise ValueError(f"this LinearEffectModel has {self.n_features_in_} action "
+                             f"parameters; Ĥ(θ)'s maximum and the store take one")
+        return self.theta_[:, 0]
 
 
 @dataclass(frozen=True)
@@ -126,20 +136,21 @@ class StoredModel:
         return {
             "key": list(self.key),
             "bounds": list(self.bounds),
-            "theta": self.model.theta_.tolist(),
+            "theta": self.model._one_parameter().tolist(),
             "effect": self.model.effect_.tolist(),
             "fit_intercept": self.model.fit_intercept,
             "intercept": self.model.intercept_,
-            "slope": self.model.coef_,
+            "slope": float(self.model.coef_[0]),
             "theta_max": theta_max,
             "e_max": e_max,
         }
 
     @classmethod
     def from_record(cls, record: dict) -> StoredModel:
-        """Rebuild from a record by refitting its samples (raises KeyError/ValueError if bad)."""
-        key = tuple(str(part) for part in record["key"])
-        model = LinearEffectModel(fit_intercept=bool(record["fit_intercept"]))
+        """Rebuild from a record that passed the schema by refitting its samples (ValueError
+        if they do not fit: two lengths, or bounds not lo < hi)."""
+        key = tuple(record["key"])
+        model = LinearEffectModel(fit_intercept=record["fit_intercept"])
         model.fit(record["theta"], record["effect"])
         return cls(key=key, bounds=check_bounds(record["bounds"]), model=model)
 
@@ -159,29 +170,17 @@ class ModelStore:
 
     def _load(self) -> None:
         """Read every model from the file (a regular file of bounded size, see
-        ``read_json``), or raise StoreError naming the file and, for a bad record, which."""
-        try:
-            data = read_json(self.path, "model store")
-        except StoreFileError as exc:
-            raise StoreError(str(exc)) from None
-        if not isinstance(data, dict) or data.get("format") != STORE_FORMAT:
-            raise StoreError(f"{str(self.path)!r} is not a goalagent effect-model store")
-        if data.get("version") != STORE_VERSION:
-            raise StoreError(
-                f"model store {str(self.path)!r} has version {data.get('version')!r}, "
-                f"this goalagent reads version {STORE_VERSION}"
-            )
-        records = data.get("models")
-        if not isinstance(records, list):
-            raise StoreError(f"model store {str(self.path)!r} has no list of models")
-        for index, record in enumerate(records):
+        ``read_json``), checked by ``schemas/effect_models.schema.json``, or raise StoreError
+        naming the file and where in it."""
+        data = read_store(self.path, "effect-model store", STORE_FORMAT, STORE_VERSION,
+                          StoreError)
+        check_store(data, "effect_models", self.path, "effect-model store", StoreError)
+        for index, record in enumerate(data["models"]):
             try:
-                if not isinstance(record, dict) or not isinstance(record.get("key"), list):
-                    raise ValueError("not a record with a key list")
                 stored = StoredModel.from_record(record)
-            except (KeyError, TypeError, ValueError) as exc:
-                raise StoreError(f"model store {str(self.path)!r} has a bad record (model "
-                                 f"{index}): {exc!r}") from None
+            except ValueError as exc:
+                raise StoreError(f"effect-model store {str(self.path)!r} has a bad record "
+                                 f"(model {index}): {exc}") from None
             self._models[stored.key] = stored
 
     def get(self, key: Sequence[str]) -> StoredModel | None:
