@@ -1,5 +1,5 @@
-"""`python -m goalagent` runs the command-line interface."""
+"""`python -m goalagent` runs the command-line interface (signals handled from the start)."""
 
-from goalagent.cli import main
+from goalagent.launcher import main
 
 main()

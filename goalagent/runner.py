@@ -1,12 +1,12 @@
 """One ``goalagent run`` from start to exit code: run hooks, signals, the end-of-run order.
 
-Ctrl-C (SIGINT) and SIGTERM stop the agents -- within a tick of the watchdog even while a
-Prolog query runs away --, say which agent and rule were running, and still finish
-the run: the hooks' ``finish`` -- ``--save-beliefs`` first, then the reports -- and the
-summaries; the exit code is then 130 or 143. A second signal ends at once (whatever is
-being saved is abandoned, and since saves are atomic the previous file stays whole). A run
-hook that raises is reported and the run goes on without it: an extension's report never
-costs the user what the agents learned.
+Ctrl-C (SIGINT), SIGTERM and SIGHUP (the terminal closed) stop the agents -- within a tick
+of the watchdog even while a Prolog query runs away --, say which agent and rule were
+running, and still finish the run: the hooks' ``finish`` -- ``--save-beliefs`` first, then
+the reports -- and the summaries; the exit code is then 130, 143 or 129. A second signal
+ends at once (whatever is being saved is abandoned, and since saves are atomic the previous
+file stays whole). A run hook that raises is reported and the run goes on without it: an
+extension's report never costs the user what the agents learned.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from goalagent.agent import Agent
     from goalagent.mas import AgentSummary, MultiAgentSystem
 
-EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
+EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129}
 
 
 class RunStopped(KeyboardInterrupt):
@@ -43,9 +43,9 @@ class RunStopped(KeyboardInterrupt):
 
 @contextlib.contextmanager
 def stop_on_signals() -> Iterator[None]:
-    """Within the block SIGINT and SIGTERM raise :class:`RunStopped` (each time one comes),
-    also while Prolog runs (the watchdog aborts the running query: goalagent.kb.watchdog);
-    the previous handlers come back afterwards."""
+    """Within the block SIGINT, SIGTERM and SIGHUP raise :class:`RunStopped` (each time one
+    comes), also while Prolog runs (the watchdog aborts the running query:
+    goalagent.kb.watchdog); the previous handlers come back afterwards."""
 
     def handler(signum: int, frame: FrameType | None) -> None:
         engine = get_engine()
@@ -88,10 +88,16 @@ class Run:
         self.system = system
         self.hooks = list(hooks)  # in order: --save-beliefs first, then the extensions'
         self.context = context
-        self.report = report  # one line on stderr (user data: never markup)
+        self._report = report  # one line on stderr (user data: never markup)
         self.failed_hooks = 0
         self._cycling = list(self.hooks)  # hooks still called after each cycle
         self._last: Agent | None = None  # the agent whose cycle ended last
+
+    def report(self, line: str) -> None:
+        """Say ``line`` on stderr; a terminal that is gone (SIGHUP: writes fail) or a closed
+        pipe must not keep the run from its end (the saves)."""
+        with contextlib.suppress(OSError):
+            self._report(line)
 
     def execute(self, max_cycles: int | None,
                 status: Callable[[Agent], None] | None = None) -> int:
@@ -160,7 +166,7 @@ class Run:
         if agent is not None:
             where = f" in agent {agent.name}, cycle {agent.cycle}"
             if rule is not None:
-                where += f", module {rule.module}, rule at {rule.rule.pos}"
+                where += f", module {rule.shown}, rule at {rule.rule.pos}"
         elif self._last is not None:
             where = f" after agent {self._last.name}'s cycle {self._last.cycle}"
         else:

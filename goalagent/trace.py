@@ -21,6 +21,7 @@ from rich.text import Text
 
 from goalagent.agent import Event, EventKind
 from goalagent.agent.events import show_term
+from goalagent.console import LastingConsole
 from goalagent.kb.terms import Term
 from ondisk import AtomicFile, check_target
 
@@ -93,7 +94,7 @@ class TracePrinter:
                  console: Console | None = None, file: Path | None = None) -> None:
         self.kinds = frozenset(kinds)
         self.idle = idle
-        self.console = console if console is not None or file is not None else Console(
+        self.console = console if console is not None or file is not None else LastingConsole(
             highlight=False, soft_wrap=True, emoji=False)
         self.path = None if file is None else check_target(file)
         self._file: AtomicFile | None = None  # made at the first line (nothing to leave before)

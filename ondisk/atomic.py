@@ -20,10 +20,12 @@ where the link points, so the user can give that path instead.
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import secrets
 import stat
+from collections.abc import Iterator
 from pathlib import Path
 from types import TracebackType
 from typing import IO
@@ -128,11 +130,11 @@ class AtomicFile:
         if self._done:
             return
         self._done = True
+        Path(self._temporary).unlink(missing_ok=True)  # first: a signal may cut what follows
         try:
             self._stream.close()
         except OSError:
             pass  # a write that failed (disk full) fails again on close: nothing to keep
-        Path(self._temporary).unlink(missing_ok=True)
 
     def __enter__(self) -> AtomicFile:
         return self
@@ -153,6 +155,34 @@ def write_atomically(path: str | os.PathLike[str], data: str | bytes, *,
     return file.path
 
 
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """For a writer that wants a file name rather than a stream (ffmpeg writing a video): a
+    new, empty file beside ``path``, with the same suffix (writers choose their format by it),
+    for the block to write by name. When the block ends well it is fsynced, given the mode
+    (as :class:`AtomicFile` does) and put in place of ``path``; when it raises, it is removed
+    and ``path`` stays as it was."""
+    target = check_target(path)
+    existing = _existing_mode(target)
+    temporary, fd = _create_temporary(target, suffix=target.suffix)
+    os.close(fd)
+    try:
+        yield Path(temporary)
+        fd = os.open(temporary, os.O_RDONLY | _CLOEXEC | _NOFOLLOW)
+        try:
+            os.fsync(fd)
+            if existing is not None:
+                os.fchmod(fd, existing)
+        finally:
+            os.close(fd)
+        check_target(target)
+        os.replace(temporary, target)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+    _fsync_folder(target.parent)
+
+
 def _existing_mode(target: Path) -> int | None:
     """The permission bits of the file at ``target`` (None: there is none yet)."""
     try:
@@ -161,11 +191,12 @@ def _existing_mode(target: Path) -> int | None:
         return None
 
 
-def _create_temporary(target: Path) -> tuple[str, int]:
-    """A new, empty file beside ``target`` under an unused hidden name: (name, descriptor)."""
+def _create_temporary(target: Path, suffix: str = ".tmp") -> tuple[str, int]:
+    """A new, empty file beside ``target`` under an unused hidden name ending in ``suffix``:
+    (name, descriptor)."""
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | _CLOEXEC | _NOFOLLOW
     while True:
-        name = target.parent / f".{target.name[:_NAME_KEPT]}.{secrets.token_hex(4)}.tmp"
+        name = target.parent / f".{target.name[:_NAME_KEPT]}.{secrets.token_hex(4)}{suffix}"
         try:
             return str(name), os.open(name, flags, _NEW_FILE_MODE)
         except FileExistsError:

@@ -3,8 +3,9 @@
 The database is what ``learn(..., transfer)`` learned about each can (its parts'
 descriptors, ``above`` relations, part models ĝ/ĥ and the functional pair) and what later cans
 transfer from. The commands read it (or remove one object) at ``--db`` (default: the garbage
-environment's default ``objects`` path). Everything printed is plain text (no Rich markup is
-read from names that come from files).
+environment's default ``objects`` path). Everything printed is plain text: no Rich markup is
+read from names that come from files, and their control characters (ANSI escapes) are shown
+escaped (``goalagent.console.printable``, which ``LastingConsole`` applies to every string).
 """
 
 from __future__ import annotations
@@ -13,15 +14,14 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 from rich.table import Table
 
-from goalagent.console import err_console, user_error
+from goalagent.console import LastingConsole, err_console, printable, user_error
 from robot.paths import default_objects_path
 
 DB_OPTION = Annotated[Path | None, typer.Option(
     "--db", help="The known-object database (default: the garbage environment's).")]
-out_console = Console(highlight=False, soft_wrap=True, emoji=False)
+out_console = LastingConsole(highlight=False, soft_wrap=True, emoji=False)
 
 
 def _open(db: Path | None):  # -> KnownObjectDatabase
@@ -44,8 +44,9 @@ def list_objects(db: DB_OPTION = None) -> None:
     for known in database:
         opens = "-" if known.functional is None else (
             f"{known.functional.action}({known.functional.part}, {known.functional.theta:.3f})")
-        table.add_row(known.name, ", ".join(known.parts), opens, str(known.n_actions),
-                      known.source or "-", str(known.extra.get("can_file", "-")))
+        table.add_row(*(printable(cell) for cell in (
+            known.name, ", ".join(known.parts), opens, str(known.n_actions), known.source or "-",
+            str(known.extra.get("can_file", "-")))))
     if not len(database):
         err_console.print(f"no known objects in {database.path}", markup=False)
         return
@@ -75,7 +76,7 @@ def show_object(name: Annotated[str, typer.Argument(help="The object's name.")],
     out_console.print("\n".join(lines), markup=False)
     table = Table("part", "action", "n", "g(theta) = b + c theta", "h(e) = d + e e_psi")
     for (part, action), model in known.models.items():
-        table.add_row(part, action, str(model.n_samples_),
+        table.add_row(printable(part), printable(action), str(model.n_samples_),
                       f"{model.g_intercept_:+.4f} {model.g_slope_:+.3f} theta",
                       f"{model.h_intercept_:+.4f} {model.h_slope_:+.3f} e")
     out_console.print(table, markup=False)
@@ -91,6 +92,8 @@ def forget_object(name: Annotated[str, typer.Argument(help="The object's name.")
         database.forget(name)
     except DatabaseError as err:
         raise user_error(str(err)) from None
+    except OSError as err:  # the file cannot be replaced: it stays as it was
+        raise user_error(f"cannot rewrite {database.path}: {err.strerror or err}") from None
     err_console.print(f"forgot {name}; {len(database)} known objects left in {database.path}",
                       markup=False)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything goalagent needs on a bare Debian machine: SWI-Prolog (when swipl is
 # missing), EGL/Mesa, Chromium and its driver (for the inspector's browser test), a
-# virtualenv in .venv, and the package with its dev and bench extras.
+# virtualenv in .venv, and the package with its dev, bench and cluster (Ray) extras.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -26,5 +26,5 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q -e ".[dev,bench]"
+.venv/bin/python -m pip install -q -e ".[dev,bench,cluster]"
 echo "setup: done (.venv ready, swipl $(swipl --version | awk '{print $3}'))"

@@ -14,6 +14,7 @@ The shipped cans (the thesis's o1..o5 and two new mechanisms) live in ``sim/cans
 from __future__ import annotations
 
 import json
+import math
 import os
 from collections.abc import Sequence
 from functools import cache
@@ -22,6 +23,7 @@ from pathlib import Path
 import jsonschema
 import yaml
 
+from ondisk import read_bounded
 from sim.canspec import MARKER_SIZE, CanSpec
 
 CAN_DIR = Path(__file__).parent / "cans"
@@ -32,6 +34,12 @@ MIN_BRIGHTNESS = 0.3
 """... and no darker than this, so it is never seen as a marker or as the dark inside."""
 PARTS_BY_MECHANISM = {"lift_handle": "handle", "pull_handle": "handle", "pedal": "pedal"}
 GEARED = ("lift_handle", "pull_handle", "pedal", "slide_lid")
+MAX_CAN_BYTES = 64 * 1024
+"""Largest can file read (the shipped ones are under 1 kB)."""
+MAX_NESTING = 16
+"""Deepest nesting of mappings and lists accepted (a can file is three deep)."""
+MAX_NUMBER_CHARS = 32
+"""Longest number accepted, in characters (a measurement needs a handful)."""
 
 
 class CanFileError(ValueError):
@@ -47,14 +55,66 @@ def _schema_validator() -> jsonschema.protocols.Validator:
     return cls(schema)
 
 
+class _BoundedLoader(yaml.SafeLoader):
+    """PyYAML's safe loader within a can file's bounds, each refusal a located CanFileError:
+    no aliases (a few lines of nested aliases expand to billions of nodes for every later
+    walk), nesting at most MAX_NESTING deep (the composer recurses per level), numbers of at
+    most MAX_NUMBER_CHARS characters (Python refuses to convert a 5,000-digit integer) that
+    are finite (``1.0e+400`` and ``.inf`` are no measurement)."""
+
+    def __init__(self, text: str, source: str) -> None:
+        super().__init__(text)
+        self.source = source
+        self._depth = 0
+
+    def _fail(self, mark: yaml.Mark, message: str) -> CanFileError:
+        return CanFileError(f"{self.source}:{mark.line + 1}:{mark.column + 1}: {message}")
+
+    def compose_node(self, parent: yaml.Node | None, index: object) -> yaml.Node | None:
+        event = self.peek_event()
+        if isinstance(event, yaml.AliasEvent):
+            raise self._fail(event.start_mark, f"an alias (*{event.anchor}): YAML aliases are "
+                             "not accepted in a can file; write the value out")
+        if self._depth >= MAX_NESTING:
+            raise self._fail(event.start_mark, f"nested more than {MAX_NESTING} deep")
+        self._depth += 1
+        try:
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+
+    def construct_number(self, node: yaml.ScalarNode) -> int | float:
+        """An int or float scalar, bounded in length and finite."""
+        if len(node.value) > MAX_NUMBER_CHARS:
+            raise self._fail(node.start_mark, f"a number of {len(node.value)} characters (at "
+                             f"most {MAX_NUMBER_CHARS} are accepted)")
+        if node.tag.endswith(":int"):
+            return self.construct_yaml_int(node)
+        value = self.construct_yaml_float(node)
+        if not math.isfinite(value):
+            raise self._fail(node.start_mark, f"{node.value} is not a finite number")
+        return value
+
+
+_BoundedLoader.add_constructor("tag:yaml.org,2002:int", _BoundedLoader.construct_number)
+_BoundedLoader.add_constructor("tag:yaml.org,2002:float", _BoundedLoader.construct_number)
+
+
 class _Located:
     """A parsed YAML document with the position of every node, to place errors."""
 
     def __init__(self, text: str, source: str) -> None:
         self.source = source
+        loader: _BoundedLoader | None = None
         try:
-            self.root = yaml.compose(text, Loader=yaml.SafeLoader)
-            self.data = yaml.safe_load(text)
+            loader = _BoundedLoader(text, source)  # its reader refuses control characters
+            self.root = loader.get_single_node()
+            self.data = None if self.root is None else loader.construct_document(self.root)
+        except yaml.reader.ReaderError as exc:
+            before = text[:exc.position]
+            where = self._at(before.count("\n"), len(before) - before.rfind("\n") - 1)
+            raise CanFileError(f"{where}: not valid YAML: the character U+{exc.character:04X} "
+                               "is not allowed") from None
         except yaml.MarkedYAMLError as exc:
             mark = exc.problem_mark or exc.context_mark
             where = self._at(mark.line, mark.column) if mark else f"{source}:1:1"
@@ -62,6 +122,9 @@ class _Located:
             raise CanFileError(f"{where}: not valid YAML: {problem}") from None
         except yaml.YAMLError as exc:
             raise CanFileError(f"{source}:1:1: not valid YAML: {exc}") from None
+        finally:
+            if loader is not None:
+                loader.dispose()
         if self.root is not None:
             self._check_duplicates(self.root)
 
@@ -126,10 +189,15 @@ def _schema_errors(doc: _Located) -> None:
             message = error.message.replace("is a required property", "is missing")
         else:
             name = ".".join(str(p) for p in path) or "the file"
-            message = f"{name}: {error.message}"
+            message = f"{name}: {_shortened(error.message)}"
         placed.append((doc.where(path, key), message))
     where, message = min(placed, key=lambda item: _position(item[0]))
     raise CanFileError(f"{where}: {message}")
+
+
+def _shortened(message: str, keep: int = 200) -> str:
+    """A schema message cut to ``keep`` characters (it quotes the value: a name may be 60 kB)."""
+    return message if len(message) <= keep else f"{message[:keep]}... ({len(message)} characters)"
 
 
 def _position(where: str) -> tuple[int, int]:
@@ -203,9 +271,17 @@ def load_can(path: str | os.PathLike[str]) -> CanSpec:
     """Read the can described in the file at ``path``."""
     source = Path(path)
     try:
-        text = source.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CanFileError(f"{source}: cannot read the can file: {exc}") from None
+        data = read_bounded(source, MAX_CAN_BYTES)
+    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
+        reason = getattr(exc, "strerror", None) or exc
+        raise CanFileError(f"{source}:1:1: cannot read the can file: {reason}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        before = data[:exc.start].decode("utf-8", errors="replace")
+        line, col = before.count("\n") + 1, len(before) - before.rfind("\n")
+        raise CanFileError(f"{source}:{line}:{col}: not UTF-8 text (byte "
+                           f"0x{data[exc.start]:02x})") from None
     return parse_can(text, str(source))
 
 

@@ -26,6 +26,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from ondisk import atomic_path
 from sim.base import CameraModel, RenderedWorld
 from sim.scene import (
     ARM_KP,
@@ -422,15 +423,15 @@ class GarbageWorld(RenderedWorld):
 
         self._camera(camera)
         out = Path(path)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        writer = imageio.get_writer(str(out), fps=FRAME_RATE, macro_block_size=1)
-        self._recorder = _Recorder(writer, camera, self.data.time)
-        try:
-            self._recorder.capture(self)
-            yield out
-        finally:
-            self._recorder = None
-            writer.close()
+        with atomic_path(out) as partial:  # the video is put in place whole when it ends
+            writer = imageio.get_writer(str(partial), fps=FRAME_RATE, macro_block_size=1)
+            self._recorder = _Recorder(writer, camera, self.data.time)
+            try:
+                self._recorder.capture(self)
+                yield out
+            finally:
+                self._recorder = None
+                writer.close()
 
 
 class _Recorder:

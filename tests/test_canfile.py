@@ -46,7 +46,7 @@ def test_a_can_file_anywhere_is_found_by_its_path(tmp_path: Path):
     assert load_can(path) == spec
     with pytest.raises(CanFileError, match="unknown can 'o9': name a shipped can"):
         find_can("o9")
-    with pytest.raises(CanFileError, match="missing.yaml: cannot read the can file"):
+    with pytest.raises(CanFileError, match="missing.yaml:1:1: cannot read the can file"):
         find_can(str(tmp_path / "missing.yaml"))
 
 

@@ -17,7 +17,14 @@ from pathlib import Path
 
 import pytest
 
-from ondisk import AtomicFile, TargetError, check_target, read_bounded, write_atomically
+from ondisk import (
+    AtomicFile,
+    TargetError,
+    atomic_path,
+    check_target,
+    read_bounded,
+    write_atomically,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -162,6 +169,38 @@ def test_a_link_put_in_place_while_writing_is_refused_at_commit(tmp_path: Path):
         file.commit()
     assert victim.read_text() == "precious" and target.is_symlink()
     assert _leftovers(tmp_path) == []
+
+
+def test_a_writer_that_wants_a_name_gets_one_with_the_suffix_and_its_file_is_put_in_place(
+        tmp_path: Path):
+    target = tmp_path / "run.mp4"
+    target.write_bytes(b"old video")
+    target.chmod(0o640)
+    with atomic_path(target) as partial:
+        assert partial.parent == tmp_path and partial.name.startswith(".run.mp4.")
+        assert partial.suffix == ".mp4" and partial.exists()
+        with open(partial, "wb") as stream:  # as ffmpeg does: by name, truncating
+            stream.write(b"new video")
+        assert target.read_bytes() == b"old video"
+    assert target.read_bytes() == b"new video"
+    assert stat.S_IMODE(target.stat().st_mode) == 0o640
+    assert _leftovers(tmp_path) == []
+
+
+def test_a_writer_by_name_that_fails_leaves_the_old_file(tmp_path: Path):
+    target = tmp_path / "run.mp4"
+    target.write_bytes(b"old video")
+    with pytest.raises(RuntimeError), atomic_path(target) as partial:
+        partial.write_bytes(b"half")
+        raise RuntimeError("ffmpeg died")
+    assert target.read_bytes() == b"old video" and _leftovers(tmp_path) == []
+    victim = tmp_path / "victim"
+    victim.write_text("precious")
+    link = tmp_path / "link.mp4"
+    link.symlink_to(victim)
+    with pytest.raises(TargetError, match="symbolic link"), atomic_path(link):
+        pass
+    assert victim.read_text() == "precious"
 
 
 def test_a_missing_folder_is_made_and_a_file_in_the_way_is_a_clear_error(tmp_path: Path):

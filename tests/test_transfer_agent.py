@@ -15,7 +15,7 @@ import pytest
 from behaviours.learners.known_objects import KnownObjectDatabase
 from goalagent.eis import ActException, ManagementException, load_environment
 from goalagent.eis.terms import Action
-from robot.reproduce._ch5_agent import AgentRun, agent_run, algorithm6_n
+from robot.reproduce.studies.common.ch5_agent import AgentRun, agent_run, algorithm6_n
 from sim.canfile import find_can
 
 SLACK = 5

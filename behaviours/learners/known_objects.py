@@ -4,8 +4,11 @@ A ``KnownObject`` keeps an object's parts (Table 5.1 descriptors), their ``above
 the action types' bounds, every pair model's samples (θ, e_ψ, e_o) and the functional pair
 that achieved the goal. ``KnownObjectDatabase`` persists them as one versioned JSON file,
 rewritten atomically (``persist.write_text_atomically``) on every change, so a crash never
-leaves half a database. Models are stored as their samples and refitted on
-load (the samples are the truth; the coefficients are written for human readers only).
+leaves half a database. Models are stored as their samples and refitted when first used
+after loading (the samples are the truth; the coefficients are written for human readers
+only). A file is checked by its schema, then for what the schema cannot say (numbers that
+JSON reads as infinite or too large for a float, one sample per index, parts the models
+name), so a hostile file is a DatabaseError naming the record, never a crash.
 """
 
 from __future__ import annotations
@@ -13,7 +16,8 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator, Mapping
+import reprlib
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,6 +34,8 @@ from behaviours.learners.persist import check_store, read_store, write_text_atom
 
 DATABASE_FORMAT = "goalagent-known-objects"
 DATABASE_VERSION = 1
+_NUMBER_TYPES = frozenset({int, float})
+"""What JSON numbers are read as (``true`` is no number, though Python's bool is an int)."""
 
 
 class DatabaseError(ValueError):
@@ -77,15 +83,10 @@ class KnownObject:
 
     def to_record(self) -> dict:
         """A JSON-ready record."""
-        models = []
-        for (part, action), model in self.models.items():
-            models.append({
-                "part": part, "action": action,
-                "theta": model.theta_.tolist(), "displacement": model.displacement_.tolist(),
-                "effect": model.effect_.tolist(),
-                "g": [model.g_intercept_, model.g_slope_],
-                "h": [model.h_intercept_, model.h_slope_],
-            })
+        if isinstance(self.models, StoredModels):
+            models = [self.models.record(pair) for pair in self.models]
+        else:
+            models = [_model_record(pair, model) for pair, model in self.models.items()]
         functional = None if self.functional is None else {
             "part": self.functional.part, "action": self.functional.action,
             "theta": self.functional.theta}
@@ -103,35 +104,106 @@ class KnownObject:
 
     @classmethod
     def from_record(cls, record: dict) -> KnownObject:
-        """Rebuild from a record, refitting each model on its samples (KeyError/ValueError)."""
-        parts = {str(name): _descriptor(values, name) for name, values in record["parts"].items()}
-        models: dict[Pair, PartActionModel] = {}
-        for entry in record["models"]:
-            pair = (str(entry["part"]), str(entry["action"]))
-            models[pair] = PartActionModel().fit(entry["theta"], entry["displacement"],
-                                                 entry["effect"])
+        """Rebuild from a record that passed the schema (ValueError saying what else is
+        wrong); the pair models are fitted on their samples when first asked for."""
         functional = record.get("functional")
         return cls(
-            name=str(record["name"]),
-            parts=parts,
-            above=frozenset((str(a), str(b)) for a, b in record["above"]),
-            bounds={str(a): check_bounds(b, f"bounds of {a!r}")
-                    for a, b in record["bounds"].items()},
-            models=models,
+            name=record["name"],
+            parts={name: _descriptor(values, name) for name, values in record["parts"].items()},
+            above=frozenset((a, b) for a, b in record["above"]),
+            bounds={a: check_bounds(b, f"bounds of {a!r}") for a, b in record["bounds"].items()},
+            models=StoredModels(_model_entry(entry) for entry in record["models"]),
             functional=None if functional is None else FunctionalPair(
-                str(functional["part"]), str(functional["action"]), float(functional["theta"])),
-            n_actions=int(record.get("n_actions", 0)),
-            source=None if record.get("source") is None else str(record["source"]),
+                functional["part"], functional["action"],
+                _numbers([functional["theta"]], "the functional theta")[0]),
+            n_actions=record.get("n_actions", 0),
+            source=record.get("source"),
             extra=dict(record.get("extra") or {}),
         )
 
 
+class StoredModels(Mapping[Pair, PartActionModel]):
+    """An object's pair models as read from a database: each entry's samples are checked
+    when the file is read and the model is fitted on them when first asked for, so loading
+    costs no fitting (a database of 150,000 models loads in seconds), and a rewrite (after
+    ``forget``) writes the entries of models nobody asked for back as they were read."""
+
+    def __init__(self, entries: Iterable[tuple[Pair, dict]]) -> None:
+        self._entries = dict(entries)
+        self._fitted: dict[Pair, PartActionModel] = {}
+
+    def __getitem__(self, pair: Pair) -> PartActionModel:
+        model = self._fitted.get(pair)
+        if model is None:
+            entry = self._entries[pair]
+            model = PartActionModel().fit(entry["theta"], entry["displacement"],
+                                          entry["effect"])
+            self._fitted[pair] = model
+        return model
+
+    def __iter__(self) -> Iterator[Pair]:
+        return iter(self._entries)
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    def record(self, pair: Pair) -> dict:
+        """The database entry of ``pair``'s model."""
+        entry = self._entries[pair]
+        if pair not in self._fitted and "g" in entry and "h" in entry:
+            return entry
+        return _model_record(pair, self[pair])
+
+
+def _model_record(pair: Pair, model: PartActionModel) -> dict:
+    """The database entry of a fitted pair model: its samples (the truth) and, for human
+    readers, the coefficients of ĝ and ĥ."""
+    return {"part": pair[0], "action": pair[1],
+            "theta": model.theta_.tolist(), "displacement": model.displacement_.tolist(),
+            "effect": model.effect_.tolist(),
+            "g": [model.g_intercept_, model.g_slope_], "h": [model.h_intercept_, model.h_slope_]}
+
+
+def _model_entry(entry: dict) -> tuple[Pair, dict]:
+    """A pair model's entry (its structure checked by the schema), checked for finite
+    numbers and one sample (θ, e_ψ, e_o) per index."""
+    pair = (entry["part"], entry["action"])
+    for key in ("theta", "displacement", "effect", "g", "h"):
+        if key in entry and not _finite_numbers(entry[key]):
+            raise ValueError(f"{key} of {pair} must hold finite numbers only, got "
+                             f"{reprlib.repr(entry[key])}")
+    if not len(entry["theta"]) == len(entry["displacement"]) == len(entry["effect"]):
+        raise ValueError(f"the model of {pair} has not one theta, displacement and effect "
+                         "per sample")
+    return pair, entry
+
+
+def _finite_numbers(values: object) -> bool:
+    """Whether ``values`` is a non-empty list of finite JSON numbers. JSON reads ``1e400``
+    as infinity and ``10**400`` as an integer no float holds; the schema passes both.
+    Checked in C where it can be (``map(type, ...)``, ``math.fsum``: a sum is finite exactly
+    when every term is, and a 400-digit integer overflows it): a database holds hundreds of
+    thousands of these short lists, for which numpy costs more than the check."""
+    if type(values) is not list or not values:
+        return False
+    try:
+        return _NUMBER_TYPES.issuperset(map(type, values)) and math.isfinite(math.fsum(values))
+    except (OverflowError, ValueError):  # ValueError: inf and -inf in one list
+        return False
+
+
+def _numbers(values: object, what: str) -> list:
+    """``values`` if it is a non-empty list of finite numbers, else a ValueError naming
+    ``what``."""
+    if not _finite_numbers(values):
+        raise ValueError(f"{what} must be a non-empty list of finite numbers, got "
+                         f"{reprlib.repr(values)}")
+    return values  # type: ignore[return-value]
+
+
 def _descriptor(values: object, name: object) -> np.ndarray:
     """A part descriptor as a finite float vector, or a ValueError naming the part."""
-    array = np.asarray(values, dtype=float)
-    if array.ndim != 1 or array.size == 0 or not np.all(np.isfinite(array)):
-        raise ValueError(f"part {name!r} has a bad descriptor {values!r}")
-    return array
+    return np.asarray(_numbers(values, f"the descriptor of part {reprlib.repr(name)}"))
 
 
 class KnownObjectDatabase:
@@ -153,7 +225,7 @@ class KnownObjectDatabase:
         for index, record in enumerate(data["objects"]):
             try:
                 known = KnownObject.from_record(record)
-            except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            except (KeyError, TypeError, ValueError, AttributeError, OverflowError) as exc:
                 raise DatabaseError(f"{what} {str(self.path)!r} has a bad record (object "
                                     f"{index}): {exc!r}") from None
             self._objects[known.name] = known

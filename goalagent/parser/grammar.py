@@ -78,6 +78,11 @@ def _describe_expected(expected: Iterable[str]) -> str:
     return ", ".join(names)
 
 
+def _shortened(text: str, keep: int = 40) -> str:
+    """``text`` quoted, cut to its first ``keep`` characters (a token may be a whole line)."""
+    return repr(text) if len(text) <= keep else f"{text[:keep]!r}... ({len(text)} characters)"
+
+
 def _located_error(err: UnexpectedInput, source: Source) -> GoalSyntaxError:
     """Lark's error as a GoalSyntaxError at the offending character."""
     if isinstance(err, UnexpectedEOF):
@@ -93,7 +98,7 @@ def _located_error(err: UnexpectedInput, source: Source) -> GoalSyntaxError:
             )
         return source.error(
             token.start_pos,
-            f"unexpected {token.value!r}, expected {_describe_expected(err.expected)}",
+            f"unexpected {_shortened(token.value)}, expected {_describe_expected(err.expected)}",
         )
     if isinstance(err, UnexpectedCharacters):
         char = source.text[err.pos_in_stream] if err.pos_in_stream < len(source.text) else ""
