@@ -38,8 +38,7 @@ from goalagent.extensions import (
 )
 from goalagent.kb.engine import KBError
 from goalagent.kb.limits import Limits, default_module_depth
-from goalagent.kb.terms import Term
-from goalagent.mas import MultiAgentSystem, parse_parameter
+from goalagent.mas import MultiAgentSystem, ParameterText
 from goalagent.parser import GoalSyntaxError, parse_mas_file
 from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
@@ -69,13 +68,15 @@ MaxModuleDepth = Annotated[int, typer.Option(
          "the C stack safely allows).")]
 
 
-def _env_params(pairs: list[str]) -> dict[str, Term]:
-    params: dict[str, Term] = {}
+def _env_params(pairs: list[str]) -> dict[str, ParameterText]:
+    """``--env-param KEY=VALUE`` pairs, each value kept as typed until the environment says
+    whether it is a path (``goalagent.mas.read_parameter``)."""
+    params: dict[str, ParameterText] = {}
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
             raise user_error(f"--env-param {pair!r}: expected KEY=VALUE")
-        params[key.strip()] = parse_parameter(value.strip())
+        params[key.strip()] = ParameterText(value.strip())
     return params
 
 
@@ -129,7 +130,8 @@ def _language_run_options(
     env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
     env_param: Annotated[
         list[str] | None,
-        typer.Option("--env-param", help="KEY=VALUE environment init parameter (Prolog term)."),
+        typer.Option("--env-param", help="KEY=VALUE environment init parameter (a Prolog "
+                                          "term; a file name for a path parameter)."),
     ] = None,
     max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
@@ -274,7 +276,8 @@ def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
         raise user_error(f"--{str(err).replace('_', '-')}") from None
 
 
-def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> None:
+def _check_env_options(path: Path, env: str | None,
+                       params: dict[str, ParameterText]) -> None:
     """``--env`` names an environment and ``--env-param`` keys it takes, with the closest
     name when not (said of the option, not of a place in the agent file)."""
     name = env
@@ -298,7 +301,7 @@ def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> 
             raise user_error(f"--env-param {key}: {problem}")
 
 
-def _build_system(path: Path, env: str | None, params: dict[str, Term],
+def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
     if path.suffix != ".mas2g" or env is None:

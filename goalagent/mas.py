@@ -90,6 +90,34 @@ def parse_parameter(text: str) -> Term:
     return Atom(text.strip()) if isinstance(term, Var) else term
 
 
+@dataclass(frozen=True)
+class ParameterText:
+    """An environment parameter's value as the user typed it (``--env-param k=v``), read once
+    the environment is known: a parameter it declares as a path takes a file name as written
+    (see ``read_parameter``)."""
+
+    text: str
+
+
+def looks_like_file_name(text: str) -> bool:
+    """Unquoted text with a ``.`` or a ``/`` in it: ``db.json``, ``out/db``, ``../x.yaml``
+    (as Prolog, ``db.json`` would be the term '.'(db, json))."""
+    stripped = text.strip()
+    return bool(stripped) and stripped[0] not in "'\"" and any(c in stripped for c in "./")
+
+
+def read_parameter(value: Term | ParameterText, *, path: bool) -> Term:
+    """The term of an init parameter's value: typed text is taken as written when the
+    parameter is a path and the text looks like a file name, else read as Prolog
+    (``parse_parameter``); a term is kept as it is (a ``.mas2g`` file's init values are terms
+    already, so a file name there is quoted: ``objects = 'db.json'``)."""
+    if not isinstance(value, ParameterText):
+        return value
+    if path and looks_like_file_name(value.text):
+        return value.text.strip()
+    return parse_parameter(value.text)
+
+
 class MultiAgentSystem:
     """Agents, their environment and the message routing between them."""
 
@@ -128,7 +156,7 @@ class MultiAgentSystem:
         cls,
         path: str | Path,
         *,
-        env_params: Mapping[str, Term] | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
         **kwargs,
     ) -> MultiAgentSystem:
         """Parse a `.mas2g` file (any GOAL version), start its environment and launch its
@@ -136,7 +164,8 @@ class MultiAgentSystem:
         mas = parse_mas_file(path)
         programs = load_agents(mas)
         numbers = {agentfile.name: agentfile.number for agentfile in mas.agentfiles}
-        params = {key: get_engine().parse_term(value.text) for key, value in mas.env_init}
+        params: dict[str, Term | ParameterText] = {
+            key: get_engine().parse_term(value.text) for key, value in mas.env_init}
         params.update(env_params or {})
         environment = (_make_environment(mas.environment, mas.env_pos or mas.pos)
                        if mas.environment else None)
@@ -171,7 +200,7 @@ class MultiAgentSystem:
         path: str | Path,
         *,
         environment: str | None = None,
-        env_params: Mapping[str, Term] | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
         **kwargs,
     ) -> MultiAgentSystem:
         """A system of the one agent in ``path``, on ``environment`` if given."""
@@ -219,11 +248,14 @@ class MultiAgentSystem:
             return name
         return next(f"{name}{n}" for n in range(2, len(taken) + 3) if f"{name}{n}" not in taken)
 
-    def _start_environment(self, params: dict[str, Term]) -> None:
+    def _start_environment(self, params: dict[str, Term | ParameterText]) -> None:
         if self.environment is None:
             return
         self.environment.attach_environment_listener(self)
-        converted: dict[str, Parameter] = {key: from_term(value) for key, value in params.items()}
+        environment = self.environment
+        converted: dict[str, Parameter] = {
+            key: from_term(read_parameter(value, path=environment.is_path_parameter(key)))
+            for key, value in params.items()}
         self.environment.init(converted)
         self.environment.start()
         for entity in self.environment.free_entities():
