@@ -180,6 +180,24 @@ def cell_label(values: dict) -> str:
     return ", ".join(f"{key} = {format_value(value)}" for key, value in values.items())
 
 
+def verdict_summary(document: SweepDocument, index: int) -> str:
+    """Which cells make claim ``index`` hold (supported, or not contradicted for a claim of
+    sameness) and which contradict it, each with p and r."""
+    groups: dict[str, list[str]] = {}
+    for cell in document.cells:
+        comparison = cell.summary.comparisons[index]
+        shown = cell_label(cell.values)
+        if comparison.p_value is not None:
+            shown += f" (p = {p_text(comparison.p_value)}"
+            if comparison.effect_size is not None:
+                shown += f", r = {comparison.effect_size:+.2f}"
+            shown += ")"
+        groups.setdefault(comparison.verdict, []).append(shown)
+    parts = [f"{verdict} in {len(cells)} of {len(document.cells)} cells: {'; '.join(cells)}"
+             for verdict, cells in sorted(groups.items())]
+    return "By cell: " + ". ".join(parts) + "."
+
+
 def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
                plot_files: Sequence[str], base_config: StudyConfig) -> str:
     """NAME-sweep-KEYS.md: the headline metrics per cell, each claim's verdict per cell."""
@@ -213,7 +231,7 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
                           "—" if comparison.effect_size is None
                           else f"{comparison.effect_size:+.2f}"])
         lines += [markdown_table([*keys, "verdict", "mean difference", "95% CI", "p", "r"],
-                                 table), ""]
+                                 table), "", verdict_summary(document, index), ""]
     for name in plot_files:
         lines += [f"![{name}]({name})", ""]
     all_seeds = [record for cell in document.cells for record in cell.seeds]
