@@ -343,7 +343,8 @@ class GarbageWorld(RenderedWorld):
         return -math.copysign(inner - uncovered / 2, shift)
 
     def set_opening(self, width: float) -> None:
-        """Put the lid (and a geared handle) where the opening is ``width`` m, at rest."""
+        """Put the lid (and a geared handle) where the opening is ``width`` m, at rest, and
+        every part that gave a little (a handle's play, a sliding can) back in place."""
         m, d = self.model, self.data
         hinge = d.joint(self.spec.lid_joint)
         geared = self.spec.geared_joint
@@ -373,6 +374,10 @@ class GarbageWorld(RenderedWorld):
         hinge.qvel[:] = 0.0
         if slide is not None:
             slide.qvel[:] = 0.0
+        for name in self.spec.give_joints:  # parts that gave a little go back in place
+            joint = d.joint(name)
+            joint.qpos[:] = 0.0
+            joint.qvel[:] = 0.0
         mujoco.mj_forward(m, d)
 
     def gap_corners(self) -> np.ndarray:
