@@ -4,7 +4,7 @@ Every predicate the manual documents (its chapters on built-ins, extensions, mod
 tabling, coroutining, threads, engines, foreign code, the hackers' corner, profiling, saved
 states, ...), section by section, with what confine.pl does with it when an agent writes it:
 without the sandbox and with it (see scripts/confinement_review.pl). The table is re-checked
-by tests/test_confinement_review.py; after a change to the confinement, write it again:
+by tests/goalagent/kb/test_confinement_review.py; after a change to the confinement, write it again:
 
     .venv/bin/python scripts/confinement_review.py            # from the table's own rows
     .venv/bin/python scripts/confinement_review.py --manual DIR   # from a manual's sources

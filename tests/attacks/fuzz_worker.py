@@ -1,5 +1,5 @@
-"""The child process of tests/test_fuzz_inputs.py: reads one JSON request per line, feeds it to
-a loader or the command line in-process, and answers one JSON line (what happened, and
+"""The child process of tests/attacks/test_fuzz_inputs.py: reads one JSON request per line,
+feeds it to a loader or the command line in-process, and answers one JSON line (what happened, and
 whether anything escaped as a traceback). The parent kills it when an answer is late, so a
 hang is a failure that names its input instead of a stuck test run."""
 

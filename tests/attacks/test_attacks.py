@@ -233,7 +233,7 @@ def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
 # Issue 24: grammar bodies ran unchecked -- phrase({shell(..)}, []) passed check --sandbox and
 # ran under run --sandbox; phrase({halt}, []) ended the run; phrase({ga_kb:assertz(..)}, [])
 # wrote into the runtime. Now a body is checked as the goal SWI-Prolog translates it to (those
-# built while the agent runs are in tests/test_confinement.py's DYNAMIC).
+# built while the agent runs are in tests/goalagent/kb/test_confinement.py's DYNAMIC).
 GRAMMAR_WRITTEN = [
     f"if bel(phrase({{{HIDDEN}}}, [])) then print(x).",
     f"if bel(phrase(([a], {{{HIDDEN}}}), [a])) then print(x).",

@@ -1,7 +1,7 @@
 """Fuzzing the loaders and the command line (issues 14 and 19): every input ends in an answer
 or a located user error, never a traceback, within a time bound per input (a hang fails and
 names its input) and without the worker's memory running away. Inputs run in a child
-process (tests/fuzz_worker.py) that is killed when it is late; the whole module is bounded
+process (tests/attacks/fuzz_worker.py) that is killed when it is late; the whole module is bounded
 to about a minute by its example counts."""
 
 from __future__ import annotations

@@ -1,7 +1,8 @@
 """Who may drive the mind inspector (issue 24 item 1): only its own page, at its own address,
 with the run's token; what a page sends is bounded; its queries are confined as agent code
 (and sandboxed with --sandbox). The browser's side (a page of another origin, a rebound host
-name) is in tests/test_inspector.py; here a WebSocket client speaks to a real run."""
+name) is in tests/goalagent/inspector/test_inspector.py; here a WebSocket client speaks to a
+real run."""
 
 from __future__ import annotations
 

@@ -146,7 +146,7 @@ def test_the_guard_holds_for_an_agent_run_in_another_thread(tmp_path: Path):
 def test_swi_keeps_only_its_stack_guard_and_thread_alert_of_the_signal_handlers():
     """Every other handler (Python's SIGINT, SIG_IGN for SIGPIPE, the defaults for SIGTERM,
     SIGHUP, SIGALRM, SIGCHLD, ...) is what it was before SWI started: Ctrl-C and SIGTERM
-    work as tests/test_limits.py and test_saving.py check."""
+    work as tests/goalagent/kb/test_limits.py and test_saving.py check."""
     code = textwrap.dedent("""
         import ctypes, signal
         libc = ctypes.CDLL(None)

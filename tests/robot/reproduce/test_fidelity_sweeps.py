@@ -20,7 +20,7 @@ SMALL = {
     "appA-search": ({"consistent_actions": "true,false"}, {}),
 }
 """Each committed sweep's first parameter at the study's quick size (the default values of
-ch4's and ch5's run in tests/test_studies.py)."""
+ch4's and ch5's run in tests/robot/reproduce/test_studies.py)."""
 
 
 @pytest.mark.parametrize("name", sorted(SMALL))

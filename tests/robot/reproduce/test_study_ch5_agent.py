@@ -1,5 +1,6 @@
 """``ch5-agent``'s statistics and listing on hand-made seeds (its runs are the agent runs of
-tests/test_transfer_agent.py, through the same helpers: studies/common/ch5_agent.py)."""
+tests/robot/reproduce/test_transfer_agent.py, through the same helpers:
+studies/common/ch5_agent.py)."""
 
 from __future__ import annotations
 
