@@ -1,5 +1,69 @@
-"""Shared pytest set-up: MuJoCo renders headless (EGL) unless the caller chose a backend."""
+"""Shared pytest set-up, and the two ways the tests run the ``goalagent`` command.
+
+MuJoCo renders headless (EGL) unless the caller chose a backend. :func:`goalagent` runs the
+command in a child process, as a user does: for what needs a process of its own (its exit
+status and streams as the shell sees them, signals, the interpreter's start-up, anything that
+would change the test process). :func:`cli` runs it in this process through typer's
+``CliRunner``: for argument validation, exit codes and messages, without a Python start-up.
+:func:`python` runs a snippet in a child Python.
+"""
+
+from __future__ import annotations
 
 import os
+import subprocess
+import sys
+import textwrap
+from functools import cache
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import typer
+    from click.testing import Result
 
 os.environ.setdefault("MUJOCO_GL", "egl")
+
+ROOT = Path(__file__).resolve().parents[1]
+"""The repository's root: the child processes' default working directory."""
+
+
+def _child(command: list[str], cwd: Path, timeout: float, env: dict[str, str] | None,
+           input: str | None) -> subprocess.CompletedProcess[str]:
+    """``command`` to its end (a child still running after ``timeout`` seconds, a hang, fails
+    the calling test through ``subprocess.TimeoutExpired``); stdin is ``input``, or empty so
+    that no child waits on the terminal; ``env`` adds to this process's environment."""
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout,
+                          env={**os.environ, **(env or {})}, input=input,
+                          stdin=None if input is not None else subprocess.DEVNULL)
+
+
+def goalagent(*args: str, cwd: Path = ROOT, timeout: float = 300,
+              env: dict[str, str] | None = None,
+              input: str | None = None) -> subprocess.CompletedProcess[str]:
+    """``python -m goalagent ARGS`` in a child process."""
+    return _child([sys.executable, "-m", "goalagent", *args], cwd, timeout, env, input)
+
+
+def python(code: str, *args: str, cwd: Path = ROOT, timeout: float = 120,
+           env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+    """``python -c CODE ARGS`` in a child process (``code`` is dedented)."""
+    return _child([sys.executable, "-c", textwrap.dedent(code), *args], cwd, timeout, env,
+                  None)
+
+
+@cache
+def _installed_app() -> typer.Typer:
+    from goalagent.cli import create_app
+
+    return create_app()
+
+
+def cli(*args: str, app: typer.Typer | None = None) -> Result:
+    """``goalagent ARGS`` in this process (the installed extensions' commands, or ``app``'s);
+    an exception escaping the command fails the calling test, as a traceback would."""
+    from typer.testing import CliRunner
+
+    result = CliRunner().invoke(app or _installed_app(), list(args), catch_exceptions=False)
+    assert "Traceback" not in result.stderr, result.stderr
+    return result

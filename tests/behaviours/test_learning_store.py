@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
@@ -13,6 +11,7 @@ import pytest
 
 from behaviours.learners.effect_models import LinearEffectModel, ModelStore, StoreError
 from behaviours.learning import learn
+from tests.conftest import python
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -118,10 +117,8 @@ def test_a_crash_mid_write_leaves_the_old_file(tmp_path: Path) -> None:
         ("o1", "lid", "extend_arm"), (0.0, 0.1), LinearEffectModel().fit([0.0, 0.1], [0, 0.13])
     )
     before = path.read_bytes()
-    crashed = subprocess.run(
-        [sys.executable, "-c", CRASH_SCRIPT, str(path)], cwd=ROOT, capture_output=True, timeout=60
-    )
-    assert crashed.returncode == 3, crashed.stderr.decode()
+    crashed = python(CRASH_SCRIPT, str(path), timeout=60)
+    assert crashed.returncode == 3, crashed.stderr
     assert path.read_bytes() == before
     leftovers = [p.name for p in tmp_path.iterdir() if p.name != path.name]
     assert len(leftovers) == 1 and leftovers[0].startswith(".effects.json.")  # the dead temp file

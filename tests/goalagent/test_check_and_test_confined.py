@@ -4,8 +4,6 @@ away, sleeps or is refused fails its own item, with its position, and the file g
 
 from __future__ import annotations
 
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
@@ -13,6 +11,7 @@ import pytest
 
 from goalagent.kb.limits import Limits
 from goalagent.testing import run_test_file
+from tests.conftest import goalagent
 
 # goalagent check ran agent code: the undefined-call check loaded the agent unconfined and
 # adopting the initial goals ran knowledge rules, even under check --sandbox.
@@ -35,15 +34,10 @@ main module { program {
 """
 
 
-def _goalagent(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], capture_output=True,
-                          text=True, timeout=180, cwd=cwd, stdin=subprocess.DEVNULL)
-
-
 @pytest.mark.parametrize("sandbox", [False, True])
 def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool):
     (tmp_path / "evil.goal").write_text(CHECKED)
-    result = _goalagent("check", "evil.goal", *["--sandbox"] * sandbox, cwd=tmp_path)
+    result = goalagent("check", "evil.goal", *["--sandbox"] * sandbox, cwd=tmp_path)
     assert not list(tmp_path.glob("PWNED*")), result.stderr
     assert "Traceback" not in result.stderr
     if sandbox:  # refused, located; and still not run
@@ -60,7 +54,7 @@ def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool):
 def test_check_still_reports_what_run_refuses_in_a_directive(tmp_path: Path):
     (tmp_path / "a.goal").write_text("init module { knowledge { :- ga_kb:assertz(x). } }\n"
                                      "main module { program { if true then print(x). } }\n")
-    result = _goalagent("check", "a.goal", cwd=tmp_path)
+    result = goalagent("check", "a.goal", cwd=tmp_path)
     assert result.returncode == 2
     assert "a.goal:1:27: knowledge clause" in result.stderr
     assert "qualified with a module" in result.stderr
@@ -126,7 +120,7 @@ def test_goalagent_test_takes_the_sandbox_and_the_limits(tmp_path: Path):
             }
         }
     """)
-    result = _goalagent("test", "t.test2g", "--sandbox", "--max-query-seconds", "5",
+    result = goalagent("test", "t.test2g", "--sandbox", "--max-query-seconds", "5",
                         "--max-inferences", "1000000", cwd=tmp_path)
     assert result.returncode == 1, result.stderr
     assert not (tmp_path / "PWNED").exists()
@@ -138,5 +132,5 @@ def test_goalagent_test_takes_the_sandbox_and_the_limits(tmp_path: Path):
     assert "not allowed in the sandbox" in lines[4]
     assert "FAILED  assert  (t.test2g:9:13)" in lines[5]
     assert "more than 1,000,000 inferences" in lines[5]
-    bad = _goalagent("test", "t.test2g", "--max-query-seconds", "0", cwd=tmp_path)
+    bad = goalagent("test", "t.test2g", "--max-query-seconds", "0", cwd=tmp_path)
     assert bad.returncode == 2 and "--max-query-seconds" in bad.stderr

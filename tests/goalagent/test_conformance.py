@@ -5,10 +5,7 @@ through the ``goalagent`` command line.
 
 from __future__ import annotations
 
-import os
 import random
-import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -19,6 +16,7 @@ from goalagent.eis.envs.blocksworld import random_towers
 from goalagent.kb.terms import Atom, Struct, Term
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import GoalSyntaxError
+from tests.conftest import cli, goalagent
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "agents" / "examples"
@@ -82,15 +80,6 @@ def line_of(name: str, fragment: str) -> int:
         if fragment in line:
             return number
     raise AssertionError(f"{fragment!r} not in {name}")
-
-
-def goalagent(*args: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
-    """Run the ``goalagent`` command (the installed console script's module) in a subprocess."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "goalagent", *args],
-        capture_output=True, text=True, timeout=timeout, cwd=ROOT, env=env,
-    )
 
 
 # ----------------------------------------------------------------------------- no environment
@@ -395,17 +384,16 @@ def test_cli_traces_every_example_to_its_end(name: str) -> None:
 
 
 def test_cli_check_accepts_every_example() -> None:
-    paths = sorted(str(p.relative_to(ROOT)) for p in EXAMPLES.iterdir()
-                   if p.suffix in (".goal", ".mas2g"))
-    done = goalagent("check", *paths)
-    assert done.returncode == 0, done.stderr
+    paths = sorted(str(p) for p in EXAMPLES.iterdir() if p.suffix in (".goal", ".mas2g"))
+    done = cli("check", *paths)
+    assert done.exit_code == 0, done.stderr
     assert "warning" not in done.stderr
 
 
 def test_cli_check_reports_every_broken_file_without_traceback() -> None:
     paths = sorted(BROKEN.glob("*.goal")) + sorted(BROKEN.glob("*.mas2g"))
-    done = goalagent("check", *map(str, paths))
-    assert done.returncode == 2
+    done = cli("check", *map(str, paths))
+    assert done.exit_code == 2
     assert "Traceback" not in done.stderr
     for path in paths:
         line, col = path.read_text().splitlines()[0].removeprefix("% expect-error: ").split(":")
@@ -415,7 +403,7 @@ def test_cli_check_reports_every_broken_file_without_traceback() -> None:
 
 def test_cli_reports_a_broken_file_on_run_with_exit_code_2() -> None:
     path = BROKEN / "unterminated_comment.goal"
-    done = goalagent("run", str(path))
-    assert done.returncode == 2
+    done = cli("run", str(path))
+    assert done.exit_code == 2
     assert f"{path}:5:9: " in done.stderr
     assert "Traceback" not in done.stderr

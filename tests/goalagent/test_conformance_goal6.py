@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import io
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from goalagent.mas import MultiAgentSystem, parse_parameter
+from tests.conftest import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "agents" / "examples"
@@ -110,14 +109,12 @@ def test_cli_checks_and_runs_every_multi_file_example() -> None:
     systems = sorted(GOAL6.glob("*/*.mas2g"))
     assert len(systems) == 8  # blocks, chores, coffee, stack, tower; bw4t, elevator, hanoi
     files = [str(p) for p in systems] + [str(p) for p in GOAL6.glob("*/*.mod2g")]
-    checked = subprocess.run([sys.executable, "-m", "goalagent", "check", *files],
-                             capture_output=True, text=True, timeout=120)
-    assert checked.returncode == 0, checked.stderr
+    checked = cli("check", *files)
+    assert checked.exit_code == 0, checked.stderr
     assert checked.stderr.count(": ok") == len(files)
     coffee = str(GOAL6 / "coffee/coffee.mas2g")
-    ran = subprocess.run([sys.executable, "-m", "goalagent", "run", coffee],
-                         capture_output=True, text=True, timeout=120)
-    assert ran.returncode == 0 and ran.stdout == "made(coffee)\n", ran.stderr
+    ran = cli("run", coffee)
+    assert ran.exit_code == 0 and ran.stdout == "made(coffee)\n", ran.stderr
     assert re.findall(r"(\w+): terminated", ran.stderr) == ["maker", "grinder"]
 
 

@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-import textwrap
 from pathlib import Path
 
 import pytest
@@ -16,8 +12,8 @@ from goalagent.cli import create_app
 from goalagent.eis import load_environment
 from goalagent.extensions import Extension, RunContext, RunHook, RunOption, installed_extensions
 from goalagent.parser import GoalSyntaxError, parse_agent_file
+from tests.conftest import ROOT, cli, goalagent, python
 
-ROOT = Path(__file__).resolve().parents[2]
 HELLO = ROOT / "agents" / "examples" / "hello_world.goal"
 VISITS = """
 main: walker {
@@ -25,16 +21,6 @@ main: walker {
     main module [exit=always] { program { if true then insert(visited(c, 3.5)). } }
 }
 """
-
-
-def python(code: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True,
-                          text=True, timeout=120, cwd=ROOT, env=env)
-
-
-def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], capture_output=True,
-                          text=True, timeout=120, cwd=cwd)
 
 
 def test_the_robot_extension_is_found_by_its_entry_point():
@@ -62,8 +48,9 @@ def test_check_on_a_plain_agent_loads_the_extension_but_not_mujoco_or_opencv():
     assert result.stdout.splitlines() == ["exit 0", "['robot.extension']"], result.stderr
 
 
-def test_no_import_sets_an_environment_variable_and_the_garbage_environment_chooses_egl():
-    env = {key: value for key, value in os.environ.items() if key != "MUJOCO_GL"}
+def test_no_import_sets_an_environment_variable_and_the_garbage_environment_chooses_egl(
+        monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.delenv("MUJOCO_GL", raising=False)  # the children start without it
     result = python("""
         import importlib, os, pkgutil
         # third-party libraries may set variables of their own (OpenCV, OpenMP): not ours
@@ -82,7 +69,7 @@ def test_no_import_sets_an_environment_variable_and_the_garbage_environment_choo
                 names.append(info.name)
         print(len(names), "sim.world" in names, "robot.envs.garbage" in names)
         print(sorted(set(os.environ.items()) ^ set(before.items())))
-    """, env)
+    """)
     count, changes = result.stdout.splitlines()
     assert count.endswith(" True True") and int(count.split()[0]) > 40, result.stderr
     assert changes == "[]"
@@ -91,7 +78,7 @@ def test_no_import_sets_an_environment_variable_and_the_garbage_environment_choo
         from goalagent.eis import load_environment
         load_environment("garbage")
         print(os.environ.get("MUJOCO_GL"))
-    """, env)
+    """)
     assert result.stdout.strip() == "egl", result.stderr
 
 
@@ -134,9 +121,9 @@ def test_save_predicate_writes_declared_beliefs_that_load_back(tmp_path: Path):
     agent = tmp_path / "walker.goal"
     agent.write_text(VISITS)
     saved = tmp_path / "saved.pl"
-    result = goalagent("run", str(agent), "--save-beliefs", str(saved),
+    result = cli("run", str(agent), "--save-beliefs", str(saved),
                        "--save-predicate", "visited/2", "--save-predicate", "here/1")
-    assert result.returncode == 0, result.stderr
+    assert result.exit_code == 0, result.stderr
     assert f"saved 4 afford/6, visited/2, here/1 beliefs to {saved}" in result.stderr
     assert saved.read_text() == (
         "% afford(Obj, Act, Eff, Tot, Suc, Rel) beliefs saved by goalagent\n"
@@ -148,16 +135,16 @@ def test_save_predicate_writes_declared_beliefs_that_load_back(tmp_path: Path):
     empty = tmp_path / "empty.goal"
     empty.write_text("main: walker { main module [exit=always] { program { "
                      "if true then print(x). } } }")
-    result = goalagent("run", str(empty), "--load-beliefs", str(saved), "--save-beliefs",
+    result = cli("run", str(empty), "--load-beliefs", str(saved), "--save-beliefs",
                        str(again), "--save-predicate", "visited/2", "--save-predicate", "here/1")
-    assert result.returncode == 0, result.stderr
+    assert result.exit_code == 0, result.stderr
     assert again.read_text() == saved.read_text()
 
 
 def test_a_bad_save_predicate_is_a_user_error(tmp_path: Path):
-    result = goalagent("run", str(HELLO), "--save-beliefs", str(tmp_path / "x.pl"),
+    result = cli("run", str(HELLO), "--save-beliefs", str(tmp_path / "x.pl"),
                        "--save-predicate", "visited")
-    assert result.returncode == 2
+    assert result.exit_code == 2
     assert result.stderr.strip() == ("error: --save-predicate 'visited': expected NAME/ARITY, "
                                      "e.g. visited/2")
     assert "Traceback" not in result.stderr and not (tmp_path / "x.pl").exists()
@@ -169,9 +156,7 @@ def test_a_broken_extension_is_a_warning_and_the_language_still_runs(tmp_path: P
     (info / "METADATA").write_text("Metadata-Version: 2.1\nName: broken-ext\nVersion: 1.0\n")
     (info / "entry_points.txt").write_text(
         "[goalagent.extensions]\nbroken = no_such_module.anywhere:EXTENSION\n")
-    env = {**os.environ, "PYTHONPATH": str(tmp_path)}
-    result = subprocess.run([sys.executable, "-m", "goalagent", "check", str(HELLO)],
-                            capture_output=True, text=True, timeout=120, cwd=ROOT, env=env)
+    result = goalagent("check", str(HELLO), env={"PYTHONPATH": str(tmp_path)})
     assert result.returncode == 0, result.stderr
     assert ("warning: goalagent extension 'broken' (no_such_module.anywhere:EXTENSION) could "
             "not be loaded: ModuleNotFoundError: No module named 'no_such_module'"

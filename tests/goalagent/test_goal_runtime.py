@@ -8,14 +8,13 @@ own; each comment names the GOAL test it re-states."""
 from __future__ import annotations
 
 import io
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
 from goalagent.kb.limits import default_module_depth
 from goalagent.mas import MultiAgentSystem
 from goalagent.testing import run_test_file
+from tests.conftest import cli, goalagent
 
 RECURSIVE = """
 main module [exit=always] { program { if true then down(0). } }
@@ -26,11 +25,6 @@ module down(N) {
     }
 }
 """
-
-
-def goalagent(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], capture_output=True,
-                          text=True, timeout=300)
 
 
 def test_module_calls_nest_far_deeper_than_24_by_default(tmp_path: Path) -> None:
@@ -46,8 +40,8 @@ def test_module_calls_nest_far_deeper_than_24_by_default(tmp_path: Path) -> None
 def test_module_depth_is_a_limit_with_a_flag(tmp_path: Path) -> None:
     path = tmp_path / "deep.goal"
     path.write_text(RECURSIVE.replace("{depth}", "300"))
-    result = goalagent("run", str(path), "--max-module-depth", "50")
-    assert result.returncode == 1
+    result = cli("run", str(path), "--max-module-depth", "50")
+    assert result.exit_code == 1
     assert "error: agent deep failed: module calls nested more than 50 deep" in result.stderr
     assert "--max-module-depth" in result.stderr
     assert "Traceback" not in result.stderr
@@ -86,8 +80,8 @@ def test_focus_select_needs_the_goal_literals_in_one_goal(tmp_path: Path) -> Non
             program { if goal(aap), goal(kat), not(goal(beer)) then print(ok). }
         }
     """))
-    result = goalagent("run", str(path))
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(path))
+    assert result.exit_code == 0, result.stderr
     assert result.stdout.split() == ["ok"]
 
 
@@ -119,8 +113,8 @@ def test_a_test_block_with_no_tests_passes(tmp_path: Path) -> None:
                    'masTest { mas = "a.mas2g". a { test { } } }')
     report = run_test_file(path, output=io.StringIO())
     assert report.verdicts == [] and report.passed
-    result = goalagent("test", str(path))
-    assert result.returncode == 0, result.stderr
+    result = cli("test", str(path))
+    assert result.exit_code == 0, result.stderr
     assert "0 passed, 0 failed" in result.stdout
 
 
@@ -190,8 +184,8 @@ def test_goal7_channels_reach_their_subscribers(tmp_path: Path) -> None:
         'agentfiles { "listener.goal". "speaker.goal". }\n'
         "launchpolicy { launch ann : listener. launch bob : listener. "
         "launch sam : speaker. }\n")
-    result = goalagent("run", str(tmp_path / "s.mas2g"), "--max-cycles", "3")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(tmp_path / "s.mas2g"), "--max-cycles", "3")
+    assert result.exit_code == 0, result.stderr
     assert sorted(result.stdout.split()) == ["heard(sam,hello)", "heard(sam,hello)"]
 
 
@@ -202,7 +196,7 @@ def test_traces_and_warnings_name_the_users_own_modules(tmp_path: Path) -> None:
     (tmp_path / "s.mas2g").write_text(
         "define mover as agent { use moverMain as main module. }\n"
         "launchpolicy { launch mover. }\n")
-    result = goalagent("run", str(tmp_path / "s.mas2g"), "--max-cycles", "1", "--trace=rules")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(tmp_path / "s.mas2g"), "--max-cycles", "1", "--trace=rules")
+    assert result.exit_code == 0, result.stderr
     assert "fired moverMain " in result.stdout and "fired main " not in result.stdout
     assert "warning: agent mover: module moverMain, rule at" in result.stderr

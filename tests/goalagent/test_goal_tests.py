@@ -5,8 +5,6 @@ a report per item, exit code 1 when one failed, 2 for a test that cannot run."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
@@ -14,6 +12,7 @@ import pytest
 
 from goalagent.parser import GoalSyntaxError, parse_test
 from goalagent.testing import run_test_file
+from tests.conftest import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 COFFEE_TEST = ROOT / "agents" / "examples" / "goal6" / "coffee" / "coffee.test2g"
@@ -178,18 +177,15 @@ def test_goal5_mas_tests_with_init_assert_and_evaluate(tmp_path: Path) -> None:
 
 
 def test_cli_reports_and_exits_with_the_outcome(tmp_path: Path) -> None:
-    good = subprocess.run([sys.executable, "-m", "goalagent", "test", str(COFFEE_TEST)],
-                          capture_output=True, text=True, timeout=120)
-    assert good.returncode == 0, good.stderr
+    good = cli("test", str(COFFEE_TEST))
+    assert good.exit_code == 0, good.stderr
     assert "10 passed, 0 failed" in good.stdout
     failing = counter(tmp_path, "use sys.\ncounter { do main until bel(n(9)). }\n")
-    bad = subprocess.run([sys.executable, "-m", "goalagent", "test", str(failing)],
-                         capture_output=True, text=True, timeout=120)
-    assert bad.returncode == 1 and "FAILED  do main until" in bad.stdout
+    bad = cli("test", str(failing))
+    assert bad.exit_code == 1 and "FAILED  do main until" in bad.stdout
     broken = counter(tmp_path, "use sys.\nnobody { do main. }\n", "b.test2g")
-    error = subprocess.run([sys.executable, "-m", "goalagent", "test", str(broken)],
-                           capture_output=True, text=True, timeout=120)
-    assert error.returncode == 2 and "Traceback" not in error.stderr
+    error = cli("test", str(broken))
+    assert error.exit_code == 2 and "Traceback" not in error.stderr
     assert "b.test2g:2:1: no agent called nobody in sys.mas2g" in error.stderr
 
 

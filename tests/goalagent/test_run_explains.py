@@ -9,21 +9,16 @@ from __future__ import annotations
 import os
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+from matplotlib import colormaps
+from matplotlib.image import imread
 
 from goalagent.agent import Agent, AgentError
 from goalagent.agent.events import plain_variables
-
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], cwd=cwd,
-                          capture_output=True, text=True, timeout=300)
+from tests.conftest import ROOT, cli, goalagent
 
 
 def test_an_idle_agent_with_goals_left_is_warned_about_once() -> None:
@@ -86,8 +81,8 @@ def test_load_errors_show_no_prolog_variable_numbers() -> None:
 
 
 def test_version() -> None:
-    result = goalagent("--version")
-    assert result.returncode == 0 and re.fullmatch(r"goalagent \d+\.\d+\.\d+\n", result.stdout)
+    result = cli("--version")
+    assert result.exit_code == 0 and re.fullmatch(r"goalagent \d+\.\d+\.\d+\n", result.stdout)
 
 
 def test_env_module_class_is_found_in_the_current_directory(tmp_path: Path) -> None:
@@ -138,20 +133,26 @@ main module [exit=always] { program { if true then print(done). } }
 """
 
 
-def test_the_reliability_plot_never_lands_in_the_current_directory(tmp_path: Path) -> None:
+def test_the_reliability_plot_never_lands_in_the_current_directory(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     program = tmp_path / "learner.goal"
     program.write_text(AFFORD_AGENT)
     work = tmp_path / "work"
     work.mkdir()
-    plain = goalagent("run", str(program), cwd=work)
-    assert plain.returncode == 0, plain.stderr
+    monkeypatch.chdir(work)
+    plain = cli("run", str(program))
+    assert plain.exit_code == 0, plain.stderr
     written = Path(re.search(r"reliability plot: (\S+)", plain.stderr).group(1))
-    assert written.name == "afford-learner.png" and written.stat().st_size > 1000
+    assert written.name == "afford-learner.png"
+    plot = imread(written)
+    assert plot.shape[:2] == (550, 990)  # 9 x 5 inches at 110 dpi
+    first = colormaps["tab20"].colors[0]  # the one affordance's series
+    assert np.all(np.abs(plot[..., :3] - first) < 0.02, axis=-1).sum() > 20
     assert written.parent != work and written.parent.name.startswith("goalagent-plots-")
     shutil.rmtree(written.parent)
     saved = tmp_path / "out" / "learned.pl"
-    beside = goalagent("run", str(program), "--save-beliefs", str(saved), cwd=work)
-    assert beside.returncode == 0, beside.stderr
+    beside = cli("run", str(program), "--save-beliefs", str(saved))
+    assert beside.exit_code == 0, beside.stderr
     assert f"reliability plot: {saved.parent / 'afford-learner.png'}" in beside.stderr
     assert (saved.parent / "afford-learner.png").is_file()
     assert list(work.iterdir()) == []
@@ -190,17 +191,18 @@ def test_a_goal_too_deep_to_convert_still_gets_its_summary(tmp_path: Path) -> No
 
 
 def test_max_cycles_rejects_negatives() -> None:
-    result = goalagent("run", "agents/examples/hello_world.goal", "--max-cycles", "-1")
-    assert result.returncode == 2 and "Traceback" not in result.stderr
+    result = cli("run", str(ROOT / "agents/examples/hello_world.goal"), "--max-cycles",
+                 "-1")
+    assert result.exit_code == 2 and "Traceback" not in result.stderr
     assert "--max-cycles must be 0 or more" in result.stderr
 
 
 def test_saved_beliefs_get_normal_permissions(tmp_path: Path) -> None:
     (tmp_path / "steady.goal").write_text(STEADY)
     target = tmp_path / "saved.pl"
-    result = goalagent("run", str(tmp_path / "steady.goal"), "--max-cycles", "1",
-                       "--save-beliefs", str(target), "--save-predicate", "p/1")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(tmp_path / "steady.goal"), "--max-cycles", "1",
+                 "--save-beliefs", str(target), "--save-predicate", "p/1")
+    assert result.exit_code == 0, result.stderr
     mask = os.umask(0)
     os.umask(mask)
     assert target.stat().st_mode & 0o777 == 0o666 & ~mask  # not mkstemp's 0600

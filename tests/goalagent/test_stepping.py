@@ -4,8 +4,6 @@ condition becomes true; queries answer from the stopped agent."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -14,6 +12,7 @@ from goalagent.debugger import Breakpoint, Debugger, DebuggerError, Stop, answer
 from goalagent.extensions import RunContext
 from goalagent.kb.terms import Atom, Struct, Var
 from goalagent.mas import MultiAgentSystem
+from tests.conftest import goalagent
 
 ROOT = Path(__file__).resolve().parents[2]
 BLOCKS = ROOT / "agents" / "examples" / "blocks_builder.goal"
@@ -126,10 +125,8 @@ def test_breakpoint_files_match_by_path_end() -> None:
 def test_step_prompt_on_the_terminal() -> None:
     commands = "\n".join(["?", "n", "q bel(on(X, table))", "b bel(on(a, b))",
                           "b blocks_builder.goal:31", "b", "zz", "c", "m", "c"]) + "\n"
-    result = subprocess.run(
-        [sys.executable, "-m", "goalagent", "run", str(BLOCKS), "--env", "blocksworld",
-         "--env-param", STATE, "--step"], input=commands, capture_output=True, text=True,
-        timeout=120, cwd=ROOT)
+    result = goalagent("run", str(BLOCKS), "--env", "blocksworld", "--env-param", STATE,
+                       "--step", input=commands)
     assert result.returncode == 0, result.stderr
     err = result.stderr
     assert "-- before the first cycle" in err and "q bel(...)" in err  # the help
@@ -149,9 +146,7 @@ def test_answers_show_fresh_variables_as_underscores() -> None:
     question = Struct("int", (Struct("canMake", (Var("_G44"), Var("_G45"))),))
     assert answer_text([{"S": Atom("grinder"), "M": question}, {}]) == [
         "S=grinder, M=int(canMake(_,_))", "true"]
-    result = subprocess.run(
-        [sys.executable, "-m", "goalagent", "run", "agents/examples/coffee.mas2g", "--step"],
-        input="n\nn\nn\nq bel(received(grinder, M))\nc\n", capture_output=True, text=True,
-        timeout=120, cwd=ROOT)
+    result = goalagent("run", "agents/examples/coffee.mas2g", "--step",
+                       input="n\nn\nn\nq bel(received(grinder, M))\nc\n")
     assert result.returncode == 0, result.stderr
     assert "M=int(canMake(_,_))" in result.stderr and "_G" not in result.stderr

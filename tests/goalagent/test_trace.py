@@ -8,8 +8,7 @@ import json
 import os
 import re
 import shlex
-import subprocess
-import sys
+from functools import partial
 from pathlib import Path
 
 import pytest
@@ -17,8 +16,8 @@ from rich.console import Console
 
 from goalagent.agent import Agent, EventKind
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
-
-ROOT = Path(__file__).resolve().parents[2]
+from tests import conftest
+from tests.conftest import ROOT, cli
 
 # Text Rich would read as markup: a list, a style tag, a closing tag, a quoted atom.
 MARKUP_AGENT = r"""
@@ -33,10 +32,8 @@ main module [exit=nogoals] { program {
 """
 
 
-def goalagent(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], cwd=cwd,
-                          capture_output=True, text=True, timeout=120,
-                          env={**os.environ, "COLUMNS": "200"})
+goalagent = partial(conftest.goalagent, env={"COLUMNS": "200"})
+"""The command, on a terminal wide enough that no line is wrapped."""
 
 
 def test_every_output_path_shows_brackets_and_quoted_atoms(tmp_path: Path) -> None:
@@ -61,12 +58,12 @@ def test_every_output_path_shows_brackets_and_quoted_atoms(tmp_path: Path) -> No
     assert "L=[c], T='[bold]x[/]'" in trace_file.read_text()
     assert "L=[c]" not in filed.stdout
     # a user error naming a list; check's warnings
-    error = goalagent("run", "agents/examples/blocks_builder.goal", "--env", "blocksworld",
-                      "--env-param", "robots=[x]")
-    assert error.returncode == 2 and "got [x]" in error.stderr
+    error = cli("run", str(ROOT / "agents/examples/blocks_builder.goal"), "--env", "blocksworld",
+                "--env-param", "robots=[x]")
+    assert error.exit_code == 2 and "got [x]" in error.stderr
     single = tmp_path / "single.goal"
     single.write_text("main module { program {\n if bel(p([X])) then print('[b]y[/b]').\n} }\n")
-    checked = goalagent("check", str(single))
+    checked = cli("check", str(single))
     assert "singleton variable X" in checked.stderr and f"{single}: ok" in checked.stderr
 
 
@@ -113,8 +110,8 @@ def _umask() -> int:
 def test_unknown_kind_is_refused_with_a_suggestion() -> None:
     with pytest.raises(TraceKindError, match="did you mean rules"):
         parse_kinds("percepts,rulez")
-    result = goalagent("run", "agents/examples/hello_world.goal", "--trace=belifs")
-    assert result.returncode == 2 and "did you mean beliefs?" in result.stderr
+    result = cli("run", str(ROOT / "agents/examples/hello_world.goal"), "--trace=belifs")
+    assert result.exit_code == 2 and "did you mean beliefs?" in result.stderr
 
 
 def test_refused_actions_and_warnings_are_traced_with_fresh_variables_as_underscores() -> None:

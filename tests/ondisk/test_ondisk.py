@@ -11,8 +11,6 @@ from __future__ import annotations
 import os
 import re
 import stat
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -25,6 +23,7 @@ from ondisk import (
     read_bounded,
     write_atomically,
 )
+from tests.conftest import python
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -107,8 +106,7 @@ def test_a_write_the_kernel_refuses_leaves_the_old_file_whole(tmp_path: Path):
         "    write_atomically(sys.argv[1], 'y' * 100_000)\n"
         "except OSError as error:\n"
         "    print(error.strerror)\n")
-    result = subprocess.run([sys.executable, "-c", script, str(target)], capture_output=True,
-                            text=True, timeout=60)
+    result = python(script, str(target), timeout=60)
     assert result.stdout.strip() == "File too large", result.stderr
     assert target.read_text() == "old content\n"
     assert _leftovers(tmp_path) == []
@@ -225,8 +223,7 @@ def test_importing_the_writers_never_touches_the_umask():
         "with tempfile.TemporaryDirectory() as folder:\n"
         "    write_atomically(pathlib.Path(folder) / 'f', 'x')\n"
         "print(calls)\n")
-    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                            timeout=120, cwd=ROOT)
+    result = python(script)
     assert result.stdout.strip() == "[]", result.stderr
 
 

@@ -2,18 +2,21 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-from pathlib import Path
+import cv2
 
-ROOT = Path(__file__).resolve().parents[2]
+from robot.snapshot import SCALE
+from tests.conftest import cli
+
+# robot/snapshot.py's box colours (RGB): none of them occurs in a rendered can frame
+BOXES = {"body": (255, 255, 0), "lid": (0, 255, 255), "handle": (255, 0, 255)}
 
 
 def test_snapshot_command_writes_an_annotated_png(tmp_path):
     out = tmp_path / "frame.png"
-    result = subprocess.run([sys.executable, "-m", "goalagent", "snapshot", "--can", "o2",
-                             "--out", str(out), "--opening", "0.08"],
-                            capture_output=True, text=True, timeout=120, cwd=ROOT)
-    assert result.returncode == 0, result.stderr
+    result = cli("snapshot", "--can", "o2", "--out", str(out), "--opening", "0.08")
+    assert result.exit_code == 0, result.stderr
     assert "parts body, handle, lid, opening 0.08" in result.stderr
-    assert out.stat().st_size > 5_000
+    image = cv2.cvtColor(cv2.imread(str(out)), cv2.COLOR_BGR2RGB)
+    assert image.shape == (240 * SCALE, 320 * SCALE, 3)  # the 320x240 head frame, enlarged
+    for part, colour in BOXES.items():  # each perceived part is boxed in its colour
+        assert (image == colour).all(axis=2).sum() >= 20, part

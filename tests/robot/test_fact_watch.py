@@ -7,6 +7,9 @@ import io
 import re
 from pathlib import Path
 
+import numpy as np
+from matplotlib import colormaps
+from matplotlib.image import imread
 from rich.console import Console
 
 from goalagent.agent import Agent
@@ -73,7 +76,11 @@ def test_the_report_of_thousands_of_affordances_is_bounded(tmp_path: Path):
         text = stream.getvalue()
         assert len(re.findall(r"^│ o\d+ ", text, re.M)) == MAX_ROWS
         assert f"the first {MAX_ROWS} of 400" in text
-        assert (tmp_path / "p.png").stat().st_size > 0
+        plot = imread(tmp_path / "p.png")
+        assert plot.shape[:2] == (550, 990)  # 9 x 5 inches at 110 dpi
+        drawn = [colour for colour in colormaps["tab20"].colors  # one colour per series
+                 if np.all(np.abs(plot[..., :3] - colour) < 0.02, axis=-1).sum() > 20]
+        assert len(drawn) == MAX_SERIES
     finally:
         agent.close()
 

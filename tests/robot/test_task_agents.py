@@ -2,27 +2,21 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
+from click.testing import Result
 
-ROOT = Path(__file__).resolve().parents[2]
+from tests.conftest import ROOT, cli
 
 
-def run(mas: str, *params: str) -> subprocess.CompletedProcess[str]:
+def run(mas: str, *params: str) -> Result:
     args = [a for p in params for a in ("--env-param", p)]
-    return subprocess.run(
-        [sys.executable, "-m", "goalagent", "run", str(ROOT / "agents" / mas), *args,
-         "--max-cycles", "400"],
-        capture_output=True, text=True, timeout=600, cwd=ROOT)
+    return cli("run", str(ROOT / "agents" / mas), *args, "--max-cycles", "400")
 
 
 @pytest.mark.parametrize("exchanged", ["false", "true"])
 def test_the_navigation_agent_learns_then_walks_past_the_fixed_box(exchanged):
     result = run("navigation.mas2g", f"exchanged={exchanged}")
-    assert result.returncode == 0, result.stderr
+    assert result.exit_code == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[-1].startswith("arrived(steps(")
     assert any(line.startswith("trial(explore,") for line in lines)  # it learned first
@@ -35,7 +29,7 @@ def test_the_navigation_agent_learns_then_walks_past_the_fixed_box(exchanged):
 
 def test_the_stacking_agent_builds_a_stack_as_high_as_the_table():
     result = run("stacking.mas2g")
-    assert result.returncode == 0, result.stderr
+    assert result.exit_code == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[-1] == "built(height(0.36),steps(2))"  # choose the box, push it once
     assert any(line.startswith("learned(afford('1001',push_") and line.endswith("moved))")
@@ -44,7 +38,7 @@ def test_the_stacking_agent_builds_a_stack_as_high_as_the_table():
 
 def test_the_search_agent_learns_again_after_the_target_moves():
     result = run("search.mas2g", "move_after=4")
-    assert result.returncode == 0, result.stderr
+    assert result.exit_code == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[-1].startswith("tracked(trial(")
     trial = int(lines[-1].split("trial(")[1].split(")")[0])

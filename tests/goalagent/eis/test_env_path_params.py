@@ -7,8 +7,6 @@ parameter declared ``Path`` it is the file name ``db.json``. Other parameters re
 from __future__ import annotations
 
 import io
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -17,6 +15,7 @@ from goalagent.eis import ManagementException, PythonEnvironment
 from goalagent.eis.registry import register_environment
 from goalagent.kb.terms import Atom, Struct
 from goalagent.mas import MultiAgentSystem, ParameterText, looks_like_file_name, read_parameter
+from tests.conftest import goalagent
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -101,10 +100,8 @@ def test_a_mas_file_names_a_file_quoted_as_before(tmp_path: Path):
 def test_the_garbage_objects_database_from_the_command_line(tmp_path: Path):
     """The issue's command without double quoting (it was refused: "must be a name or
     string, got '.'(db,json)")."""
-    result = subprocess.run(
-        [sys.executable, "-m", "goalagent", "run", str(ROOT / "agents" / "garbage_disposal.mas2g"),
-         "--env-param", "objects=db.json", "--env-param", "models=out/models.json",
-         "--env-param", "learning=transfer", "--max-cycles", "0"],
-        capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    result = goalagent("run", str(ROOT / "agents" / "garbage_disposal.mas2g"),
+                       "--env-param", "objects=db.json", "--env-param", "models=out/models.json",
+                       "--env-param", "learning=transfer", "--max-cycles", "0", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "robot:" in result.stderr and "must be" not in result.stderr

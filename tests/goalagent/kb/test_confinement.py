@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import io
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -20,6 +18,7 @@ from goalagent.kb.terms import Atom, Struct
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 from tests.attack_agent import RUNTIME_MODULES, load_agent
+from tests.conftest import goalagent, python
 
 
 def _untouched() -> None:
@@ -244,9 +243,7 @@ def test_check_sandbox_reports_without_running(tmp_path: Path):
     program.write_text("init module { knowledge { evil :- shell('touch PWNED'). } }\n"
                        "main module { program { if bel(evil) then print(x). } }\n")
     fine = Path(__file__).resolve().parents[3] / "agents" / "examples" / "hello_world.goal"
-    result = subprocess.run([sys.executable, "-m", "goalagent", "check", "--sandbox",
-                             str(program), str(fine)], capture_output=True, text=True,
-                            timeout=120, cwd=tmp_path)
+    result = goalagent("check", "--sandbox", str(program), str(fine), cwd=tmp_path)
     assert result.returncode == 2
     lines = result.stderr.strip().splitlines()
     assert lines[0].startswith(f"{program}:1:27: ") and "not allowed in the sandbox" in lines[0]
@@ -271,8 +268,7 @@ Agent.from_string("main module { program { if true then print(ok). } }", "boxed.
                   limits=Limits(sandbox=True)).step()
 print("macros", loaded("apply_macros"))
 """
-    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            timeout=120, check=False)
+    result = python(code)
     assert result.returncode == 0, result.stderr
     answers = [line.split()[1] for line in result.stdout.splitlines() if line.startswith("macros")]
     assert answers == ["False", "True"], result.stdout

@@ -22,6 +22,7 @@ from goalagent.kb.errors import LimitError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
+from tests.conftest import goalagent
 
 RUNAWAYS = """
 init module { knowledge {
@@ -133,9 +134,7 @@ def test_a_module_calling_itself_stops_that_agent_alone_without_a_traceback(tmp_
         "module loop { program { if true then loop. } }\n")
     (tmp_path / "counter.goal").write_text(COUNTER)
     (tmp_path / "system.mas2g").write_text('agentfiles { "selfcall.goal". "counter.goal". }\n')
-    result = subprocess.run([sys.executable, "-m", "goalagent", "run",
-                             str(tmp_path / "system.mas2g")], capture_output=True, text=True,
-                            timeout=300)
+    result = goalagent("run", str(tmp_path / "system.mas2g"))
     assert result.returncode == 1
     assert "Traceback" not in result.stderr
     assert re.search(r"error: agent selfcall failed: module calls nested more than \d+ deep "
@@ -149,10 +148,8 @@ def test_an_agent_flooding_its_beliefs_is_stopped_and_the_other_finishes(tmp_pat
         "main module { program { if bel(flood) then print(never). } }\n")
     (tmp_path / "counter.goal").write_text(COUNTER)
     (tmp_path / "system.mas2g").write_text('agentfiles { "flood.goal". "counter.goal". }\n')
-    result = subprocess.run([sys.executable, "-m", "goalagent", "run",
-                             str(tmp_path / "system.mas2g"), "--max-inferences", "1000000",
-                             "--max-beliefs", "100000"], capture_output=True, text=True,
-                            timeout=300)
+    result = goalagent("run", str(tmp_path / "system.mas2g"), "--max-inferences", "1000000",
+                       "--max-beliefs", "100000")
     assert result.returncode == 1  # one agent failed; the process ended normally
     assert re.search(r"error: agent flood failed: holds [\d,]+ beliefs, more than 100,000 "
                      r"\(--max-beliefs\); stopped", result.stderr), result.stderr

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import io
-import subprocess
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -16,6 +14,7 @@ from goalagent.beliefs import load_beliefs, save_beliefs
 from goalagent.kb.terms import Atom
 from goalagent.mas import MultiAgentSystem
 from robot.affordance import AFFORD, affordances
+from tests.conftest import goalagent
 
 ROOT = Path(__file__).resolve().parents[3]
 MAS = ROOT / "agents" / "garbage_disposal.mas2g"
@@ -152,10 +151,9 @@ def test_experiments_from_the_command_line(tmp_path: Path):
 
     saved = tmp_path / "exp1.pl"
     models = f"models={tmp_path / 'models.json'}"
-    common = [sys.executable, "-m", "goalagent", "run", str(MAS), "--env-param", models]
-    first = subprocess.run([*common, "--save-beliefs", str(saved), "--plot",
-                            str(tmp_path / "exp1.png")],
-                           capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    common = ["run", str(MAS), "--env-param", models]
+    first = goalagent(*common, "--save-beliefs", str(saved), "--plot", str(tmp_path / "exp1.png"),
+                      cwd=tmp_path, timeout=600)
     assert first.returncode == 0, first.stderr
     assert "afford(lid,extend_arm,opened,5,5,1.0)." in saved.read_text()
     plot = imread(tmp_path / "exp1.png")
@@ -165,9 +163,8 @@ def test_experiments_from_the_command_line(tmp_path: Path):
     drawn = [colour for colour in colormaps["tab20"].colors
              if np.all(np.abs(plot[..., :3] - colour) < 0.02, axis=-1).sum() > 20]
     assert len(drawn) >= 3  # several affordances' reliability steps, one tab20 colour each
-    second = subprocess.run([*common, "--env-param", "can=o2", "--env-param", "trials=1",
-                             "--load-beliefs", str(saved)],
-                            capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    second = goalagent(*common, "--env-param", "can=o2", "--env-param", "trials=1",
+                       "--load-beliefs", str(saved), cwd=tmp_path, timeout=600)
     assert second.returncode == 0, second.stderr
     assert "robot: terminated" in second.stderr
     table = [line for line in second.stderr.splitlines() if "lift_up" in line]

@@ -6,11 +6,16 @@ from __future__ import annotations
 
 import json
 import os
+import platform
+import re
+from importlib import metadata
 from pathlib import Path
 from typing import Annotated, Literal
 
 import numpy as np
 import pytest
+from matplotlib.colors import to_rgb
+from matplotlib.image import imread
 from pydantic import Field
 from rich.console import Console
 
@@ -40,6 +45,7 @@ from robot.reproduce.framework.statistics import (
 from robot.reproduce.framework.sweeps import replot as replot_sweeps
 from robot.reproduce.framework.sweeps import sweep
 from robot.reproduce.framework.tasks import ReproductionFailed
+from tests.conftest import ROOT
 
 
 class ToyConfig(ScaledConfig):
@@ -226,8 +232,14 @@ def test_a_run_writes_typed_json_a_page_and_figures(tmp_path):
     assert document["config"]["offset"] == 0.5
     assert document["command"] == "goalagent reproduce toy-run --seeds 3 --set offset=0.5"
     assert [s["result"]["value"] for s in document["seeds"]] == [0.5, 1.5, 4.5]
-    assert set(document["provenance"][0]) >= {"goalagent", "git_commit", "python", "mujoco",
-                                              "swi_prolog", "platform"}
+    provenance = document["provenance"][0]  # this process's versions, as it reports them
+    assert provenance["python"] == platform.python_version()
+    assert provenance["platform"] == platform.platform()
+    assert provenance["goalagent"] == metadata.version("goalagent")
+    assert provenance["mujoco"] == metadata.version("mujoco")
+    assert re.fullmatch(r"\d+\.\d+\.\d+", provenance["swi_prolog"])
+    assert (provenance["git_commit"] is None if not (ROOT / ".git").exists()
+            else re.fullmatch(r"[0-9a-f]{40}(\+dirty)?", provenance["git_commit"]))
     assert all(s["seconds"] >= 0 and s["provenance"] == 0 for s in document["seeds"])
     value = document["summary"]["metrics"][0]
     assert value["mean"] == pytest.approx(6.5 / 3) and value["sd"] == pytest.approx(2.0816660)
@@ -369,7 +381,11 @@ def test_a_sweep_runs_one_cell_per_combination_with_statistics_and_plots(tmp_pat
     assert "| offset | choice | the value |" in page
     assert "| 1.0 | doubled | 5.333 ± 4.2 [" in page and "(3/3) |" in page
     assert "1. values grow beyond zero" in page and "| 2.0 | doubled | not supported |" in page
-    assert (tmp_path / "toy-run-sweep-offset-choice-value.png").exists()
+    plot = imread(tmp_path / "toy-run-sweep-offset-choice-value.png")
+    assert plot.shape[:2] == (418, 748)  # one 6.8 x 3.8 inch panel at 110 dpi
+    series = [colour for colour in ("C0", "C1")  # one line per choice, in the colour cycle's order
+              if np.all(np.abs(plot[..., :3] - to_rgb(colour)) < 0.02, axis=-1).sum() > 20]
+    assert series == ["C0", "C1"]
     before = (tmp_path / "toy-run-sweep-offset-choice.md").read_bytes()
     replot_sweeps(TOY, tmp_path)
     assert (tmp_path / "toy-run-sweep-offset-choice.md").read_bytes() == before

@@ -13,18 +13,10 @@ import time
 from pathlib import Path
 
 import pytest
-from typer.testing import CliRunner
 
-from goalagent.cli import create_app
+from tests.conftest import cli
 
 ROOT = Path(__file__).resolve().parents[3]
-APP = create_app()
-
-
-def goalagent(*args: str):
-    result = CliRunner().invoke(APP, list(args), catch_exceptions=False)
-    assert "Traceback" not in result.stderr
-    return result
 
 
 @pytest.fixture(scope="module")
@@ -34,7 +26,7 @@ def cache(tmp_path_factory) -> Path:
 
 
 def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
-    result = goalagent("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--jobs", "2",
+    result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--jobs", "2",
                        "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
     document = json.loads((tmp_path / "xcs-mux.json").read_text())
@@ -46,7 +38,7 @@ def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
 
 
 def test_sweep_writes_one_cell_per_value_each_with_cis(tmp_path, cache):
-    result = goalagent("sweep", "xcs-mux", "--quick", "--grid", "N=200,400", "--seeds", "3",
+    result = cli("sweep", "xcs-mux", "--quick", "--grid", "N=200,400", "--seeds", "3",
                        "--jobs", "2", "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
     assert "seeds run: 4, from the cache: 2" in result.stderr  # N = 400, seeds 0-1: cached
@@ -62,17 +54,17 @@ def test_sweep_writes_one_cell_per_value_each_with_cis(tmp_path, cache):
     for key in ("mux6-final_accuracy", "mux6-problems_to_99", "mux11-final_accuracy"):
         assert f"](xcs-mux-sweep-N-{key}.png)" in page
     before = page
-    assert goalagent("sweep", "xcs-mux", "--replot", "--out", str(tmp_path)).exit_code == 0
+    assert cli("sweep", "xcs-mux", "--replot", "--out", str(tmp_path)).exit_code == 0
     assert (tmp_path / "xcs-mux-sweep-N.md").read_text() == before
 
 
 def test_shards_run_elsewhere_merge_and_replot(tmp_path, cache):
     for offset in ("0", "1"):
-        result = goalagent("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--seeds", "1",
+        result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--seeds", "1",
                            "--seed-offset", offset, "--jobs", "1", "--out",
                            str(tmp_path / offset), "--cache", str(cache))
         assert result.exit_code == 0 and "from the cache: 1" in result.stderr
-    result = goalagent("reproduce", "merge", str(tmp_path / "0" / "xcs-mux.json"),
+    result = cli("reproduce", "merge", str(tmp_path / "0" / "xcs-mux.json"),
                        str(tmp_path / "1" / "xcs-mux.json"), "--out", str(tmp_path / "all"))
     assert result.exit_code == 0, result.stderr
     merged = json.loads((tmp_path / "all" / "xcs-mux.json").read_text())
@@ -81,20 +73,20 @@ def test_shards_run_elsewhere_merge_and_replot(tmp_path, cache):
                                  "--set N=400")
     page = (tmp_path / "all" / "xcs-mux.md").read_text()
     (tmp_path / "all" / "xcs-mux.md").unlink()
-    assert goalagent("reproduce", "xcs-mux", "--replot", "--out",
+    assert cli("reproduce", "xcs-mux", "--replot", "--out",
                      str(tmp_path / "all")).exit_code == 0
     assert (tmp_path / "all" / "xcs-mux.md").read_text() == page
 
 
 def test_list_and_params_describe_the_studies():
-    listed = goalagent("reproduce", "--list").stderr.splitlines()
+    listed = cli("reproduce", "--list").stderr.splitlines()
     assert any(line.startswith("xcs-mux ") and "multiplexer" in line for line in listed)
     modules = [path for path in (ROOT / "robot" / "reproduce" / "studies").glob("*.py")
                if path.name != "__init__.py"]
     assert len(listed) == len(modules)  # one line per study module, each named as its file
     assert sorted(line.split()[0].replace("-", "_") for line in listed) == sorted(
         path.stem for path in modules)
-    params = goalagent("reproduce", "ch4-exploration", "--params").stderr
+    params = cli("reproduce", "ch4-exploration", "--params").stderr
     assert "tolerance" in params and "0.0001" in params and "(eq. 4.10)" in params
 
 
@@ -127,7 +119,7 @@ def test_bad_input_is_one_line_and_exit_2(args, message, tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # nothing may land in ~/.cache
     monkeypatch.chdir(tmp_path)
     (tmp_path / "a-file").write_text("")
-    result = goalagent(*args)
+    result = cli(*args)
     assert result.exit_code == 2, result.stderr
     assert message in result.stderr and result.stderr.count("error:") == 1
 
