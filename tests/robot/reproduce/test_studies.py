@@ -173,7 +173,8 @@ def test_ch4_variant_criteria_are_listed_beside_the_thesis():
             "converged_at": 21, "td_errors": [-0.05] * 100, "averaged": [None] * 19 + [0.05] * 81})
         runs["random"] = runs["random"].model_copy(update={
             "td_errors": spiky, "averaged": [None] * 19 + [0.001] * 81})
-    listing = ch4_exploration.variant_listing(ch4_exploration.ScaledExplorationConfig(), [seed, seed])
+    listing = ch4_exploration.variant_listing(ch4_exploration.ScaledExplorationConfig(),
+                                              [seed, seed])
     assert "VARIANT stop criteria — NOT the thesis's (4.10)" in listing
     assert "| lid-1d | thesis (4.10) | 2/2, 21 | 0/2, — | 2 / 0 / 0 | 0.0500 / — |" in listing
     assert ("| lid-1d | sustained (VARIANT) | 2/2, 40 | 2/2, 75 | 2 / 0 / 0 | 0.0500 / 0.0010 |"
