@@ -24,6 +24,8 @@ from typing import Annotated
 
 import typer
 
+from ondisk import write_atomically
+
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "confinement-review.md"
 PROBE = Path(__file__).with_name("confinement_review.pl")
@@ -189,7 +191,7 @@ def write_doc(rows: list[Row], path: Path = DOC) -> None:
         lines += [f"| `{_cell(row.indicator)}` | {row.exists} | {row.plain} | {row.sandbox} | "
                   f"{row.issue24} |" for row in members]
         lines.append("")
-    path.write_text("\n".join(lines), encoding="utf-8")
+    write_atomically(path, "\n".join(lines))
 
 
 def main(manual: Annotated[Path | None, typer.Option(

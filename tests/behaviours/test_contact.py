@@ -52,7 +52,9 @@ def test_pulling_the_handle_opens_it_until_the_arm_is_contracted(world: GarbageW
         assert contact.action_bounds == [(-0.01, 0.01)] * 3
         states = run(contact, [[-0.01, 0.0, -0.005]] * 9 + [[0.01, 0.0, 0.0]] * 8)
     assert np.all(np.diff(states[:7]) > 0.01) and 0.11 < states[6] < 0.15
-    assert states[6] == states[9]  # fully contracted: pulling on changes nothing
+    # fully contracted: pulling on only takes up the handle's vertical play (o5's give, Table
+    # 5.3: its handle moves when lifted), a small fraction of the opening
+    assert abs(states[9] - states[6]) < 0.02 * states[6]
     assert states[-1] < 0.003
     assert world.opening() < 0.01  # the can stays as the hand left it
 

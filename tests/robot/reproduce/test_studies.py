@@ -142,7 +142,7 @@ def test_ch4_exploration_statistics_on_hand_made_seeds():
     seeds = [exploration({("lid-1d", "active"): 30, ("lid-1d", "random"): None}),
              exploration({("lid-1d", "active"): 41, ("lid-1d", "random"): 25}),
              exploration({("lid-1d", "active"): 35})]
-    config = ch4_exploration.ExplorationConfig()
+    config = ch4_exploration.ScaledExplorationConfig()
     summary = summarize(ch4_exploration.metrics(config), ch4_exploration.claims(config), seeds)
     rows = {row.key: row for row in summary.metrics}
     assert rows["lid-1d.random.converged"].mean == pytest.approx(1 / 3)
@@ -173,7 +173,8 @@ def test_ch4_variant_criteria_are_listed_beside_the_thesis():
             "converged_at": 21, "td_errors": [-0.05] * 100, "averaged": [None] * 19 + [0.05] * 81})
         runs["random"] = runs["random"].model_copy(update={
             "td_errors": spiky, "averaged": [None] * 19 + [0.001] * 81})
-    listing = ch4_exploration.variant_listing(ch4_exploration.ExplorationConfig(), [seed, seed])
+    listing = ch4_exploration.variant_listing(ch4_exploration.ScaledExplorationConfig(),
+                                              [seed, seed])
     assert "VARIANT stop criteria — NOT the thesis's (4.10)" in listing
     assert "| lid-1d | thesis (4.10) | 2/2, 21 | 0/2, — | 2 / 0 / 0 | 0.0500 / — |" in listing
     assert ("| lid-1d | sustained (VARIANT) | 2/2, 40 | 2/2, 75 | 2 / 0 / 0 | 0.0500 / 0.0010 |"
@@ -184,7 +185,7 @@ def test_ch4_variant_criteria_are_listed_beside_the_thesis():
 def test_ch4_budgets_follow_the_thesis_and_shrink_with_the_scale():
     from robot.reproduce.studies.common.ch4 import SETUPS
 
-    config = ch4_exploration.ExplorationConfig()
+    config = ch4_exploration.ScaledExplorationConfig()
     assert [config.budget(SETUPS[name]) for name in CONFIGURATIONS] == [100, 300, 100, 300]
     assert config.model_copy(update={"scale": 0.5}).budget(SETUPS["lid-3d"]) == 150
     assert config.model_copy(update={"scale": 0.05}).budget(SETUPS["lid-1d"]) == 22  # N + 2
