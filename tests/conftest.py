@@ -59,11 +59,13 @@ def _installed_app() -> typer.Typer:
     return create_app()
 
 
-def cli(*args: str, app: typer.Typer | None = None) -> Result:
-    """``goalagent ARGS`` in this process (the installed extensions' commands, or ``app``'s);
-    an exception escaping the command fails the calling test, as a traceback would."""
+def cli(*args: str, app: typer.Typer | None = None, input: str | None = None) -> Result:
+    """``goalagent ARGS`` in this process (the installed extensions' commands, or ``app``'s),
+    ``input`` on its stdin; an exception escaping the command fails the calling test, as a
+    traceback would."""
     from typer.testing import CliRunner
 
-    result = CliRunner().invoke(app or _installed_app(), list(args), catch_exceptions=False)
+    result = CliRunner().invoke(app or _installed_app(), list(args), input=input,
+                                catch_exceptions=False)
     assert "Traceback" not in result.stderr, result.stderr
     return result

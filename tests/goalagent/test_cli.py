@@ -37,8 +37,8 @@ def test_malformed_file_gives_location_and_exit_code_2(tmp_path: Path):
 def test_check_accepts_every_shipped_example():
     files = sorted(str(p) for p in EXAMPLES.glob("*.goal")) + sorted(
         str(p) for p in EXAMPLES.glob("*.mas2g"))
-    result = goalagent("check", *files)
-    assert result.returncode == 0, result.stderr
+    result = cli("check", *files)
+    assert result.exit_code == 0, result.stderr
 
 
 def test_check_reports_unknown_actions_with_position(tmp_path: Path):
@@ -84,8 +84,8 @@ def test_missing_file_is_a_clear_error():
 @pytest.mark.parametrize("state", ["[on(c,a), on(a,table), on(b,table)]",
                                    "[on(a,c), on(c,b), on(b,table)]"])
 def test_blocks_builder_reaches_its_goal_on_the_blocks_world(state: str):
-    result = goalagent("run", str(EXAMPLES / "blocks_builder.goal"), "--env", "blocksworld",
-                       "--env-param", f"state={state}", "--max-cycles", "60")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(EXAMPLES / "blocks_builder.goal"), "--env", "blocksworld",
+                 "--env-param", f"state={state}", "--max-cycles", "60")
+    assert result.exit_code == 0, result.stderr
     assert "blocks_builder: terminated" in result.stderr
     assert "0 goals left" in result.stderr

@@ -331,24 +331,24 @@ def test_cli_runs_hello_world() -> None:
 
 
 def test_cli_runs_the_blocks_builder_with_env_params() -> None:
-    done = goalagent("run", "agents/examples/blocks_builder.goal", "--env", "blocksworld",
-                     "--env-param", f"state={SUSSMAN}", "--max-cycles", "30", "--seed", "3")
-    assert done.returncode == 0, done.stderr
+    done = cli("run", str(EXAMPLES / "blocks_builder.goal"), "--env", "blocksworld",
+               "--env-param", f"state={SUSSMAN}", "--max-cycles", "30", "--seed", "3")
+    assert done.exit_code == 0, done.stderr
     assert done.stdout == ""  # the agent prints nothing; summaries go to stderr
     assert "Traceback" not in done.stderr
 
 
 def test_cli_coffee_system_ends_with_coffee_made() -> None:
-    done = goalagent("run", "agents/examples/coffee.mas2g", "--max-cycles", "40")
-    assert done.returncode == 0, done.stderr
+    done = cli("run", str(EXAMPLES / "coffee.mas2g"), "--max-cycles", "40")
+    assert done.exit_code == 0, done.stderr
     assert done.stdout.splitlines() == ["made(coffee)"]
     summary = done.stderr.splitlines()
     assert any("maker" in line for line in summary) and any("grinder" in line for line in summary)
 
 
 def test_cli_blocks_team_cooperates_to_the_tower() -> None:
-    done = goalagent("run", "agents/examples/blocks_team.mas2g", "--max-cycles", "40")
-    assert done.returncode == 0, done.stderr
+    done = cli("run", str(EXAMPLES / "blocks_team.mas2g"), "--max-cycles", "40")
+    assert done.exit_code == 0, done.stderr
     assert done.stdout.splitlines() == ["finished"]
     summary = done.stderr.splitlines()
     assert any("builder" in line for line in summary) and any("helper" in line for line in summary)
@@ -374,9 +374,9 @@ RUNNABLE = sorted(p.name for p in EXAMPLES.glob("*.goal") if not p.name.startswi
 
 @pytest.mark.parametrize("name", RUNNABLE)
 def test_cli_traces_every_example_to_its_end(name: str) -> None:
-    done = goalagent("run", f"agents/examples/{name}", *ENV_ARGS.get(name, []),
-                     "--max-cycles", "60", "--trace")
-    assert done.returncode == 0, done.stderr
+    done = cli("run", str(EXAMPLES / name), *ENV_ARGS.get(name, []),
+               "--max-cycles", "60", "--trace")
+    assert done.exit_code == 0, done.stderr
     assert "Traceback" not in done.stderr and "warning" not in done.stderr
     assert "fired" in done.stdout  # the trace shows the rules that fired
     summaries = [line for line in done.stderr.splitlines() if " cycles" in line]

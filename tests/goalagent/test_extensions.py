@@ -122,7 +122,7 @@ def test_save_predicate_writes_declared_beliefs_that_load_back(tmp_path: Path):
     agent.write_text(VISITS)
     saved = tmp_path / "saved.pl"
     result = cli("run", str(agent), "--save-beliefs", str(saved),
-                       "--save-predicate", "visited/2", "--save-predicate", "here/1")
+                 "--save-predicate", "visited/2", "--save-predicate", "here/1")
     assert result.exit_code == 0, result.stderr
     assert f"saved 4 afford/6, visited/2, here/1 beliefs to {saved}" in result.stderr
     assert saved.read_text() == (
@@ -136,14 +136,14 @@ def test_save_predicate_writes_declared_beliefs_that_load_back(tmp_path: Path):
     empty.write_text("main: walker { main module [exit=always] { program { "
                      "if true then print(x). } } }")
     result = cli("run", str(empty), "--load-beliefs", str(saved), "--save-beliefs",
-                       str(again), "--save-predicate", "visited/2", "--save-predicate", "here/1")
+                 str(again), "--save-predicate", "visited/2", "--save-predicate", "here/1")
     assert result.exit_code == 0, result.stderr
     assert again.read_text() == saved.read_text()
 
 
 def test_a_bad_save_predicate_is_a_user_error(tmp_path: Path):
     result = cli("run", str(HELLO), "--save-beliefs", str(tmp_path / "x.pl"),
-                       "--save-predicate", "visited")
+                 "--save-predicate", "visited")
     assert result.exit_code == 2
     assert result.stderr.strip() == ("error: --save-predicate 'visited': expected NAME/ARITY, "
                                      "e.g. visited/2")

@@ -12,7 +12,7 @@ from goalagent.debugger import Breakpoint, Debugger, DebuggerError, Stop, answer
 from goalagent.extensions import RunContext
 from goalagent.kb.terms import Atom, Struct, Var
 from goalagent.mas import MultiAgentSystem
-from tests.conftest import goalagent
+from tests.conftest import cli, goalagent
 
 ROOT = Path(__file__).resolve().parents[2]
 BLOCKS = ROOT / "agents" / "examples" / "blocks_builder.goal"
@@ -146,7 +146,7 @@ def test_answers_show_fresh_variables_as_underscores() -> None:
     question = Struct("int", (Struct("canMake", (Var("_G44"), Var("_G45"))),))
     assert answer_text([{"S": Atom("grinder"), "M": question}, {}]) == [
         "S=grinder, M=int(canMake(_,_))", "true"]
-    result = goalagent("run", "agents/examples/coffee.mas2g", "--step",
-                       input="n\nn\nn\nq bel(received(grinder, M))\nc\n")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(ROOT / "agents/examples/coffee.mas2g"), "--step",
+                 input="n\nn\nn\nq bel(received(grinder, M))\nc\n")
+    assert result.exit_code == 0, result.stderr
     assert "M=int(canMake(_,_))" in result.stderr and "_G" not in result.stderr

@@ -68,10 +68,10 @@ def test_every_output_path_shows_brackets_and_quoted_atoms(tmp_path: Path) -> No
 
 
 def test_trace_lines_name_agent_and_cycle_and_show_percept_changes(tmp_path: Path) -> None:
-    result = goalagent("run", "agents/examples/blocks_builder.goal", "--env", "blocksworld",
-                       "--env-param", "state=[on(c,a), on(a,table), on(b,table)]",
-                       "--trace=percepts,rules")
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(ROOT / "agents/examples/blocks_builder.goal"), "--env", "blocksworld",
+                 "--env-param", "state=[on(c,a), on(a,table), on(b,table)]",
+                 "--trace=percepts,rules")
+    assert result.exit_code == 0, result.stderr
     lines = result.stdout.splitlines()
     percepts = [line for line in lines if "percepts" in line]
     assert percepts[0].startswith("blocks_builder #1 ")
@@ -80,16 +80,16 @@ def test_trace_lines_name_agent_and_cycle_and_show_percept_changes(tmp_path: Pat
     assert not any("0 instantiation(s)" in line for line in lines)  # idle rules left out
     assert any("T=[c]" in line for line in lines)  # a macro's variable by its own name
     assert not any("inserted" in line for line in lines)  # beliefs not asked for
-    idle = goalagent("run", "agents/examples/blocks_builder.goal", "--env", "blocksworld",
-                     "--env-param", "state=[on(c,a), on(a,table), on(b,table)]",
-                     "--trace=idle")
+    idle = cli("run", str(ROOT / "agents/examples/blocks_builder.goal"), "--env", "blocksworld",
+               "--env-param", "state=[on(c,a), on(a,table), on(b,table)]",
+               "--trace=idle")
     assert "0 instantiation(s)" in idle.stdout
 
 
 def test_json_lines_trace_file_holds_positions_bindings_and_refusals(tmp_path: Path) -> None:
     target = tmp_path / "coffee.jsonl"
-    result = goalagent("run", "agents/examples/coffee.mas2g", "--trace-file", str(target))
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(ROOT / "agents/examples/coffee.mas2g"), "--trace-file", str(target))
+    assert result.exit_code == 0, result.stderr
     records = [json.loads(line) for line in target.read_text().splitlines()]
     kinds = {record["kind"] for record in records}
     assert {"rule_fired", "message_received", "action_refused"} <= kinds

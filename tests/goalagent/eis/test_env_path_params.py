@@ -15,7 +15,7 @@ from goalagent.eis import ManagementException, PythonEnvironment
 from goalagent.eis.registry import register_environment
 from goalagent.kb.terms import Atom, Struct
 from goalagent.mas import MultiAgentSystem, ParameterText, looks_like_file_name, read_parameter
-from tests.conftest import goalagent
+from tests.conftest import cli
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -97,11 +97,13 @@ def test_a_mas_file_names_a_file_quoted_as_before(tmp_path: Path):
         system.close()
 
 
-def test_the_garbage_objects_database_from_the_command_line(tmp_path: Path):
+def test_the_garbage_objects_database_from_the_command_line(tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch):
     """The issue's command without double quoting (it was refused: "must be a name or
     string, got '.'(db,json)")."""
-    result = goalagent("run", str(ROOT / "agents" / "garbage_disposal.mas2g"),
-                       "--env-param", "objects=db.json", "--env-param", "models=out/models.json",
-                       "--env-param", "learning=transfer", "--max-cycles", "0", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
+    monkeypatch.chdir(tmp_path)  # the relative paths are the user's, from where they run it
+    result = cli("run", str(ROOT / "agents" / "garbage_disposal.mas2g"),
+                 "--env-param", "objects=db.json", "--env-param", "models=out/models.json",
+                 "--env-param", "learning=transfer", "--max-cycles", "0")
+    assert result.exit_code == 0, result.stderr
     assert "robot:" in result.stderr and "must be" not in result.stderr

@@ -27,7 +27,7 @@ def cache(tmp_path_factory) -> Path:
 
 def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
     result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--jobs", "2",
-                       "--out", str(tmp_path), "--cache", str(cache))
+                 "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
     document = json.loads((tmp_path / "xcs-mux.json").read_text())
     assert document["config"]["N"] == 400 and document["config"]["scale"] == 0.05
@@ -39,7 +39,7 @@ def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
 
 def test_sweep_writes_one_cell_per_value_each_with_cis(tmp_path, cache):
     result = cli("sweep", "xcs-mux", "--quick", "--grid", "N=200,400", "--seeds", "3",
-                       "--jobs", "2", "--out", str(tmp_path), "--cache", str(cache))
+                 "--jobs", "2", "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
     assert "seeds run: 4, from the cache: 2" in result.stderr  # N = 400, seeds 0-1: cached
     document = json.loads((tmp_path / "xcs-mux-sweep-N.json").read_text())
@@ -61,11 +61,11 @@ def test_sweep_writes_one_cell_per_value_each_with_cis(tmp_path, cache):
 def test_shards_run_elsewhere_merge_and_replot(tmp_path, cache):
     for offset in ("0", "1"):
         result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--seeds", "1",
-                           "--seed-offset", offset, "--jobs", "1", "--out",
-                           str(tmp_path / offset), "--cache", str(cache))
+                     "--seed-offset", offset, "--jobs", "1", "--out",
+                     str(tmp_path / offset), "--cache", str(cache))
         assert result.exit_code == 0 and "from the cache: 1" in result.stderr
     result = cli("reproduce", "merge", str(tmp_path / "0" / "xcs-mux.json"),
-                       str(tmp_path / "1" / "xcs-mux.json"), "--out", str(tmp_path / "all"))
+                 str(tmp_path / "1" / "xcs-mux.json"), "--out", str(tmp_path / "all"))
     assert result.exit_code == 0, result.stderr
     merged = json.loads((tmp_path / "all" / "xcs-mux.json").read_text())
     assert [record["seed"] for record in merged["seeds"]] == [0, 1]
@@ -74,7 +74,7 @@ def test_shards_run_elsewhere_merge_and_replot(tmp_path, cache):
     page = (tmp_path / "all" / "xcs-mux.md").read_text()
     (tmp_path / "all" / "xcs-mux.md").unlink()
     assert cli("reproduce", "xcs-mux", "--replot", "--out",
-                     str(tmp_path / "all")).exit_code == 0
+               str(tmp_path / "all")).exit_code == 0
     assert (tmp_path / "all" / "xcs-mux.md").read_text() == page
 
 
