@@ -54,6 +54,7 @@ def python(code: str, *args: str, cwd: Path = ROOT, timeout: float = 120,
 
 @cache
 def _installed_app() -> typer.Typer:
+    """The ``goalagent`` app with the installed extensions, made once per session."""
     from goalagent.cli import create_app
 
     return create_app()

@@ -5,15 +5,13 @@ of a large pytest process would report the parent's size)."""
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.conftest import ROOT, python
+
 _LAUNCHER = (
     "import atexit, os, sys\n"
     "def _report():\n"
@@ -45,10 +43,9 @@ def goalagent_measured(*args: str, timeout: float = 120, cwd: Path = ROOT) -> Me
     with tempfile.NamedTemporaryFile(suffix=".rss", delete=False) as handle:
         rss_file = Path(handle.name)
     try:
-        env = {**os.environ, "GOALAGENT_TEST_RSS": str(rss_file)}
         start = time.monotonic()
-        result = subprocess.run([sys.executable, "-c", _LAUNCHER, *args], cwd=cwd, env=env,
-                                capture_output=True, text=True, timeout=timeout)
+        result = python(_LAUNCHER, *args, cwd=cwd, timeout=timeout,
+                        env={"GOALAGENT_TEST_RSS": str(rss_file)})
         seconds = time.monotonic() - start
         text = rss_file.read_text()
         peak = int(text) / 1024 if text else float("nan")
