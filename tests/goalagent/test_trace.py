@@ -52,9 +52,9 @@ def test_every_output_path_shows_brackets_and_quoted_atoms(tmp_path: Path) -> No
     assert "[c]+'[red]'" in result.stderr or "[c]" in result.stderr.split("Prolog error")[1]
     assert "[c]" in result.stderr.split("afford/6 beliefs of markup")[1]
     # the same in a trace file
-    filed = goalagent("run", str(program), "--trace-file", str(trace_file), "--plot",
-                      str(tmp_path / "p2.png"))
-    assert filed.returncode == 0, filed.stderr
+    filed = cli("run", str(program), "--trace-file", str(trace_file), "--plot",
+                str(tmp_path / "p2.png"))
+    assert filed.exit_code == 0, filed.stderr
     assert "L=[c], T='[bold]x[/]'" in trace_file.read_text()
     assert "L=[c]" not in filed.stdout
     # a user error naming a list; check's warnings

@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import re
 import signal
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
+from tests.conftest import python
 from tests.measured import goalagent_measured
 
 KNOWLEDGE = """
@@ -134,8 +133,7 @@ def test_the_guard_holds_for_an_agent_run_in_another_thread(tmp_path: Path):
         thread.start()
         thread.join()
     """)
-    result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
-                            text=True, timeout=120)
+    result = python(code, cwd=tmp_path)
     assert result.returncode == 0, result.stderr  # made in a thread: it was a segfault
     said = [said for _, said in RULES if said] + ["after"]
     lines = result.stdout.splitlines()
@@ -166,8 +164,7 @@ def test_swi_keeps_only_its_stack_guard_and_thread_alert_of_the_signal_handlers(
         for flag in ("signals", "gc_thread"):
             print(engine.call("current_prolog_flag", Atom(flag), None, module="system")[1])
     """)
-    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            timeout=60)
+    result = python(code, timeout=60)
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines() == [
         str(sorted([signal.SIGSEGV.value, signal.SIGUSR2.value])), "true", "false"]
