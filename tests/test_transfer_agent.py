@@ -122,16 +122,23 @@ def test_thesis_cans_after_o1_and_o2(after_o1_o2, tmp_path: Path, can: str):
     n = algorithm6_n(can, folder / "objects.json", tmp_path)
     result = run(can, folder, trials=2)
     check_finished(result, can, 2, n + SLACK)
-    assert len(result.learns()) == 1  # transfer learned the whole can at once
+    assert len(result.learns()) == 1  # the one transfer request found what opens it
 
 
-def test_a_pull_handle_can_of_new_proportions_after_o1_and_o2(after_o1_o2, tmp_path: Path):
+def finished_new_can(after_o1_o2, tmp_path: Path, name: str, text: str) -> tuple[AgentRun, Path]:
+    """The agent on the can file ``text`` after o1 and o2, checked finished within Algorithm
+    6's N + SLACK; its run and the folder of known objects."""
     folder = known_copy(after_o1_o2[0], tmp_path)
-    can = tmp_path / "wide_pull.yaml"
-    can.write_text(NEW_PULL_HANDLE)
+    can = tmp_path / f"{name}.yaml"
+    can.write_text(text)
     n = algorithm6_n(str(can), folder / "objects.json", tmp_path)
     result = run(str(can), folder)
     check_finished(result, str(can), 1, n + SLACK)
+    return result, folder
+
+
+def test_a_pull_handle_can_of_new_proportions_after_o1_and_o2(after_o1_o2, tmp_path: Path):
+    _, folder = finished_new_can(after_o1_o2, tmp_path, "wide_pull", NEW_PULL_HANDLE)
     assert KnownObjectDatabase(folder / "objects.json").get("wide_pull").source == "o2"
 
 
@@ -139,12 +146,7 @@ def test_a_pedal_bin_after_o1_and_o2_transfers_on_the_lid_only(after_o1_o2, tmp_
     """Transfer tries o1's push and the other actions on the lid; the pedal, which no known
     can has, is learned a pair at a time before the body, which is never tried (Algorithm 6
     in full would check the sliding body and explore the pedal in a fixed order)."""
-    folder = known_copy(after_o1_o2[0], tmp_path)
-    can = tmp_path / "pedal_slides.yaml"
-    can.write_text(PEDAL_SLIDING_BODY)
-    n = algorithm6_n(str(can), folder / "objects.json", tmp_path)
-    result = run(str(can), folder)
-    check_finished(result, str(can), 1, n + SLACK)
+    result, _ = finished_new_can(after_o1_o2, tmp_path, "pedal_slides", PEDAL_SLIDING_BODY)
     assert "transferred(opened,o1)" in result.output
     assert "exploration(body," not in result.output
     learned = [text for _, text in result.learns()]
