@@ -11,7 +11,7 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 from goalagent import ast
 from goalagent.agent import ActionFailed, Agent, AgentError, Listener, LocalPostman, Tracer
@@ -29,7 +29,13 @@ from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
-from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
+from goalagent.parser import (
+    GoalSyntaxError,
+    load_agents,
+    parse_agent,
+    parse_agent_file,
+    parse_mas_file,
+)
 
 
 class EntityIO:
@@ -91,7 +97,31 @@ def parse_parameter(text: str) -> Term:
 
 
 class MultiAgentSystem:
-    """Agents, their environment and the message routing between them."""
+    """Agents, their environment and the message routing between them.
+
+    Made from a ``.mas2g`` file (:meth:`from_mas_file`), or from one agent file or text on
+    an environment (:meth:`for_agent_file`, :meth:`for_agent_text`); :meth:`run` runs the
+    agents in turn, one cycle each, until all have stopped; :meth:`close` frees them and
+    kills the environment. A single ``.goal`` file run from the command line is such a system
+    of one agent.
+
+    Args:
+        environment: the environment the agents act in (None: none).
+        seed: agent number i gets seed ``seed + i``.
+        output: where the agents' ``print/1`` writes (default: stdout).
+        tracer: called with (agent, kind, text) for every event of every agent.
+        warn: called with each warning or failure line (default: printed on stderr).
+        listeners: told every event of every agent (``--trace``, the inspector).
+        limits: each agent's bounds (default ``Limits()``), unless its agent file sets its
+            own.
+
+    Attributes:
+        agents: the agents launched so far, in launch order (``system.agents[0]`` is the
+            agent of :meth:`for_agent_file` and :meth:`for_agent_text`). Entity-launched
+            agents join when the environment offers their entity.
+        environment: the environment, or None.
+        failures: agent name -> why it failed, for the agents stopped by an error.
+    """
 
     def __init__(
         self,
@@ -129,10 +159,30 @@ class MultiAgentSystem:
         path: str | Path,
         *,
         env_params: Mapping[str, Term] | None = None,
-        **kwargs,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
     ) -> MultiAgentSystem:
-        """Parse a `.mas2g` file (any GOAL version), start its environment and launch its
-        agents (GOAL 4/5 agent files or GOAL 6+ agent definitions)."""
+        """Parse a ``.mas2g`` file (any GOAL version), start its environment and launch its
+        agents (GOAL 4/5 agent files or GOAL 6+ agent definitions).
+
+        Args:
+            path: the system file.
+            env_params: init parameters that replace or add to the file's
+                (``--env-param``), as terms (``parse_parameter("[0,0,0]")``).
+            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+
+        Returns:
+            The system, its environment started, before any agent's first cycle.
+
+        Raises:
+            GoalSyntaxError: a file is malformed or names what does not exist.
+            AgentError: an agent's program cannot be loaded.
+            EnvironmentInterfaceException: the environment refused its init parameters.
+        """
         mas = parse_mas_file(path)
         programs = load_agents(mas)
         numbers = {agentfile.name: agentfile.number for agentfile in mas.agentfiles}
@@ -142,7 +192,8 @@ class MultiAgentSystem:
                        if mas.environment else None)
         if environment is not None:
             environment.home = Path(path).parent
-        system = cls(environment, **kwargs)
+        system = cls(environment, seed=seed, output=output, tracer=tracer, warn=warn,
+                     listeners=listeners, limits=limits)
         system._programs.update(programs)
         for agentfile in mas.agentfiles:
             if agentfile.limits:
@@ -172,14 +223,75 @@ class MultiAgentSystem:
         *,
         environment: str | None = None,
         env_params: Mapping[str, Term] | None = None,
-        **kwargs,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
     ) -> MultiAgentSystem:
-        """A system of the one agent in ``path``, on ``environment`` if given."""
+        """A system of the one agent in a ``.goal`` file, on ``environment`` if given (as
+        ``goalagent run FILE --env NAME`` makes it).
+
+        Args:
+            path: the agent file.
+            environment: a registered environment name (``blocksworld``) or
+                ``package.module:Class``; None: no environment.
+            env_params: the environment's init parameters, as terms.
+            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+
+        Returns:
+            The system; its agent is ``system.agents[0]``.
+        """
         program = parse_agent_file(path)
-        env = _make_environment(environment, ast.Pos(str(path), 1, 1)) if environment else None
+        return cls._of_one(program, ast.Pos(str(path), 1, 1), Path(path).parent, environment,
+                           env_params, dict(seed=seed, output=output, tracer=tracer,
+                                            warn=warn, listeners=listeners, limits=limits))
+
+    @classmethod
+    def for_agent_text(
+        cls,
+        text: str,
+        *,
+        file: str = "<string>",
+        environment: str | None = None,
+        env_params: Mapping[str, Term] | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
+    ) -> MultiAgentSystem:
+        """A system of one agent given as program text, on ``environment`` if given: the way
+        to put an agent made from a string in an environment (step it as
+        ``system.agents[0].step()``).
+
+        Args:
+            text: the agent program (the single-file ``.goal`` format).
+            file: the name its errors and positions give.
+            environment: a registered environment name or ``package.module:Class``.
+            env_params: the environment's init parameters, as terms.
+            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+
+        Returns:
+            The system; its agent is ``system.agents[0]``.
+        """
+        program = parse_agent(text, file)
+        return cls._of_one(program, ast.Pos(file, 1, 1), None, environment, env_params,
+                           dict(seed=seed, output=output, tracer=tracer, warn=warn,
+                                listeners=listeners, limits=limits))
+
+    @classmethod
+    def _of_one(cls, program: ast.AgentProgram, pos: ast.Pos, home: Path | None,
+                environment: str | None, env_params: Mapping[str, Term] | None,
+                options: dict[str, Any]) -> MultiAgentSystem:
+        """The system of one program on ``environment`` (files it names looked for in
+        ``home``)."""
+        env = _make_environment(environment, pos) if environment else None
         if env is not None:
-            env.home = Path(path).parent
-        system = cls(env, **kwargs)
+            env.home = home
+        system = cls(env, **options)
         system.launch(program.name, program)
         system._start_environment(dict(env_params or {}))
         return system
@@ -228,7 +340,8 @@ class MultiAgentSystem:
         a, b.`` (the first rule whose entity condition fits and that may still launch: all
         its agents on this entity) and plain agents waiting for a body: the first agent
         without an entity gets this one."""
-        if entity not in self.environment.free_entities():
+        environment = self.environment
+        if environment is None or entity not in environment.free_entities():
             return
         groups: dict[int, list[int]] = {}
         for index, rule in enumerate(self._entity_launches):
@@ -238,8 +351,8 @@ class MultiAgentSystem:
             if first.entity_type not in (None, type) or first.entity_name not in (None, entity):
                 continue
             ready = [index for index in indices
-                     if self._entity_launches[index].max is None
-                     or self._launched_per_rule.get(index, 0) < self._entity_launches[index].max]
+                     if (most := self._entity_launches[index].max) is None
+                     or self._launched_per_rule.get(index, 0) < most]
             if not ready:
                 continue
             for index in ready:
@@ -253,12 +366,19 @@ class MultiAgentSystem:
                             limits=self._agent_limits.get(rule.agentfile))
             return
         for agent in self.agents:
-            if not self.environment.associated_entities(agent.name):
-                self.environment.associate_entity(agent.name, entity)
+            if not environment.associated_entities(agent.name):
+                environment.associate_entity(agent.name, entity)
                 return
 
-    def handle_state_change(self, state) -> None:
+    def handle_state_change(self, state: EnvironmentState) -> None:
         """Environment state changes need no action from the scheduler."""
+
+    def handle_free_entity(self, entity: str, agents: list[str]) -> None:
+        """An entity freed by its agents waits for an agent to ask for it: nothing to do."""
+
+    def handle_deleted_entity(self, entity: str, agents: list[str]) -> None:
+        """An entity that left takes its percepts with it: nothing to do (its agents run on
+        without a body, as in GOAL)."""
 
     # ------------------------------------------------------------------ running
     def run(self, max_cycles: int | None = None,

@@ -116,8 +116,10 @@ class _Judge:
         rest = tuple(lit for lit in condition if lit not in positive and lit not in negative)
         candidates: list[Bindings] = [dict(bindings or {})]
         for literal in positive:
+            query = literal.query
+            assert query is not None  # (done(Action) always has its action)
             candidates = [match for candidate in candidates for action in self.done
-                          if (match := ms.unify(literal.query, action, candidate)) is not None]
+                          if (match := ms.unify(query, action, candidate)) is not None]
         results: list[Bindings] = []
         for candidate in candidates:
             solutions = [candidate]
@@ -135,8 +137,9 @@ class _Judge:
         return results
 
     def _done_matches(self, literal: ast.Literal, bindings: Bindings) -> bool:
-        return any(self.agent.ms.unify(literal.query, action, bindings) is not None
-                   for action in self.done)  # type: ignore[union-attr]
+        query = literal.query if isinstance(literal, ast.MentalLiteral) else None
+        return query is not None and any(self.agent.ms.unify(query, action, bindings) is not None
+                                         for action in self.done)
 
     def holds(self, condition: ast.Condition, bindings: Bindings | None = None) -> bool:
         return bool(self.answers(condition, bindings, limit=1))

@@ -80,9 +80,9 @@ def _record(event: Event, text: str) -> dict:
         record["module"] = event.module
     if event.pos is not None:
         record["pos"] = str(event.pos)
-    if event.bindings:
+    if event.instantiations:
         record["bindings"] = [{name: show(value) for name, value in bindings.items()}
-                              for bindings in event.bindings]
+                              for bindings in event.instantiations]
     return record
 
 
@@ -131,7 +131,7 @@ class TracePrinter:
             changes = [f"+{p}" for p in sorted(now - before)]
             changes += [f"-{p}" for p in sorted(before - now)]
             return " ".join(changes) or None
-        if event.kind is EventKind.RULE_TRIED and not event.bindings and not self.idle:
+        if event.kind is EventKind.RULE_TRIED and not event.instantiations and not self.idle:
             return None
         return event.text
 

@@ -51,7 +51,35 @@ IDLE_WARNING_CYCLES = 100
 
 
 class Agent:
-    """A GOAL agent: program + mental state + reasoning cycle."""
+    """A GOAL agent: its program, its mental state in SWI-Prolog and its reasoning cycle.
+
+    Made from a file or a text (:meth:`from_file`, :meth:`from_string`), it runs a cycle at
+    a time (:meth:`step`) or to the end (:meth:`run`) and answers queries on its mental
+    state (:meth:`query`). Alone it has no environment: its user actions only do what their
+    postconditions say. To put one agent in an environment, make a system of it
+    (``MultiAgentSystem.for_agent_text(text, environment="blocksworld")``) and step
+    ``system.agents[0]``; or pass ``io``, any object with ``percepts()`` and ``act(action)``.
+
+    Args:
+        program: the parsed program (``goalagent.parser.parse_agent``).
+        name: the agent's name (default: the program's).
+        io: its environment connection (``AgentIO``); None: no percepts, user actions only
+            change the mental state.
+        postman: delivers its messages (``LocalPostman`` in a system); None: messages go
+            nowhere.
+        seed: seeds the choice among a rule's instantiations, ``random`` orders and
+            Prolog's random numbers.
+        output: where ``print/1`` writes (default: stdout).
+        tracer: called with (agent, kind, text) for every event (as ``--trace`` prints).
+        warn: called with each warning line (default: printed on stderr).
+        idle_warning: cycles without any action, new percept or message after which an
+            agent with goals left is warned about once (None: never).
+        limits: inferences, seconds, beliefs and the sandbox (default: ``Limits()``).
+
+    Raises:
+        AgentError: the program cannot be loaded (a clause SWI-Prolog refuses, a goal that
+            is not ground, ...), with its file, line and column.
+    """
 
     def __init__(
         self,
@@ -111,18 +139,84 @@ class Agent:
 
     # ------------------------------------------------------------------ construction
     @classmethod
-    def from_file(cls, path: str | Path, **kwargs) -> Agent:
-        """Load an agent from a `.goal` file (``GoalSyntaxError`` on a malformed one)."""
-        return cls(parse_agent_file(path), **kwargs)
+    def from_file(
+        cls,
+        path: str | Path,
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        idle_warning: int | None = IDLE_WARNING_CYCLES,
+        limits: Limits | None = None,
+    ) -> Agent:
+        """Load an agent from a ``.goal`` file.
+
+        Args:
+            path: the agent file.
+            name, io, postman, seed, output, tracer, warn, idle_warning, limits: as for
+                :class:`Agent`.
+
+        Returns:
+            The agent, before its first cycle.
+
+        Raises:
+            GoalSyntaxError: the file is malformed (its message is ``file:line:col: ...``).
+            AgentError: the program cannot be loaded.
+        """
+        return cls(parse_agent_file(path), name=name, io=io, postman=postman, seed=seed,
+                   output=output, tracer=tracer, warn=warn, idle_warning=idle_warning,
+                   limits=limits)
 
     @classmethod
-    def from_string(cls, text: str, file: str = "<string>", **kwargs) -> Agent:
-        """Load an agent from program text."""
-        return cls(parse_agent(text, file), **kwargs)
+    def from_string(
+        cls,
+        text: str,
+        file: str = "<string>",
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        idle_warning: int | None = IDLE_WARNING_CYCLES,
+        limits: Limits | None = None,
+    ) -> Agent:
+        """Load an agent from program text (the single-file ``.goal`` format).
+
+        Args:
+            text: the program.
+            file: the name its errors and positions give (default ``<string>``).
+            name, io, postman, seed, output, tracer, warn, idle_warning, limits: as for
+                :class:`Agent`.
+
+        Returns:
+            The agent, before its first cycle.
+
+        Raises:
+            GoalSyntaxError: the text is malformed.
+            AgentError: the program cannot be loaded.
+        """
+        return cls(parse_agent(text, file), name=name, io=io, postman=postman, seed=seed,
+                   output=output, tracer=tracer, warn=warn, idle_warning=idle_warning,
+                   limits=limits)
 
     # ------------------------------------------------------------------ public API
     def step(self) -> CycleReport:
-        """Run one reasoning cycle (the first one also runs the init module)."""
+        """Run one reasoning cycle (the first one also runs the init module).
+
+        Returns:
+            What the cycle did: the rules that fired with their bindings, the actions,
+            percepts, messages and warnings.
+
+        Raises:
+            AgentError: the agent has terminated.
+        """
         if self.terminated:
             raise AgentError(f"agent {self.name} has terminated")
         self.cycle += 1
@@ -131,7 +225,8 @@ class Agent:
             self._perceive()  # (without either, no percepts and no messages: nothing to do)
         if self.focus:
             focus = self.focus[-1]
-            modules = [(self._event, {})] if self._event is not None else []
+            modules: list[tuple[ast.Module, Bindings]] = (
+                [(self._event, {})] if self._event is not None else [])
             modules.append((focus.module, focus.bindings))
             outcome = self._rules.run_modules(modules, count_last=True)
             exit_option = focus.module.exit or "always"
@@ -173,21 +268,44 @@ class Agent:
         return self.report
 
     def run(self, max_cycles: int | None = None) -> RunResult:
-        """Cycle until the agent terminates or ``max_cycles`` cycles have run."""
+        """Cycle until the agent terminates or has run ``max_cycles`` cycles in all.
+
+        Args:
+            max_cycles: the most cycles (counted from its first); None: no bound.
+
+        Returns:
+            The cycles run, whether it terminated, its actions and the goals left.
+        """
         while not self.terminated and (max_cycles is None or self.cycle < max_cycles):
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
     def query(self, op: str, text: str, *, confined: bool = False) -> list[Bindings]:
-        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values;
-        ``confined``: checked as the agent's own code is, in its sandbox if it has one (a
-        query a user types in the debugger or the inspector)."""
+        """The answers of a mental-state query, as Python values.
+
+        Args:
+            op: ``bel``, ``goal``, ``a-goal``, ``goal-a`` or ``percept``.
+            text: the query in Prolog (``count(X)``, ``on(X, Y), X \\= a``).
+            confined: check it as the agent's own code is, in its sandbox if it has one (a
+                query a user typed); False: the query is trusted.
+
+        Returns:
+            One mapping per answer, from each variable of ``text`` to its value (``Atom``
+            for an atom, ``str`` for a string, ``Struct`` for a compound, numbers and lists
+            as themselves); ``[]`` when there is none, ``[{}]`` for a yes without variables.
+
+        Raises:
+            KBError: the query is not valid Prolog or raised an error.
+        """
         return self.ms.query(op, text, trusted=not confined)
 
     def beliefs(self) -> list[Term]:
+        """The agent's beliefs (its belief base's facts), in order."""
         return self.ms.beliefs()
 
     def goals(self) -> list[list[Term]]:
+        """The agent's goals, each as the list of its facts (``on(a,b), on(b,c)`` is one goal
+        of two facts)."""
         return self.ms.goals()
 
     def close(self) -> None:
