@@ -17,7 +17,6 @@ from importlib import metadata
 from pathlib import Path
 from typing import Annotated, Any
 
-import click
 import typer
 from rich.console import Console
 from typer.core import TyperCommand
@@ -35,6 +34,7 @@ from goalagent.extensions import (
     SavedPredicate,
     installed_extensions,
 )
+from goalagent.extras import install_hint
 from goalagent.kb.engine import KBError
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Term
@@ -102,7 +102,7 @@ class _RunCommand(TyperCommand):
     """``run``, where ``--trace`` alone means ``--trace=all`` (Typer has no option whose
     value may be left out, and ``--trace`` was a plain flag before it took kinds)."""
 
-    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:
         return super().parse_args(ctx, ["--trace=all" if arg == "--trace" else arg
                                         for arg in args])
 
@@ -379,6 +379,10 @@ def main() -> None:
     except Exception as error:  # noqa: BLE001 - the last guard of the command line
         if os.environ.get("GOALAGENT_DEBUG"):
             raise
+        hint = install_hint(error.name) if isinstance(error, ModuleNotFoundError) else None
+        if hint is not None:  # an extra that is not installed
+            err_console.print(f"error: this command {hint}", markup=False)
+            sys.exit(USER_ERROR)
         err_console.print(f"error: internal error, please report it: {type(error).__name__}: "
                           f"{error}", markup=False)
         sys.exit(1)
