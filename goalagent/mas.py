@@ -173,7 +173,12 @@ class MultiAgentSystem:
             path: the system file.
             env_params: init parameters that replace or add to the file's
                 (``--env-param``), as terms (``parse_parameter("[0,0,0]")``).
-            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
 
         Returns:
             The system, its environment started, before any agent's first cycle.
@@ -238,7 +243,12 @@ class MultiAgentSystem:
             environment: a registered environment name (``blocksworld``) or
                 ``package.module:Class``; None: no environment.
             env_params: the environment's init parameters, as terms.
-            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
 
         Returns:
             The system; its agent is ``system.agents[0]``.
@@ -272,7 +282,12 @@ class MultiAgentSystem:
             file: the name its errors and positions give.
             environment: a registered environment name or ``package.module:Class``.
             env_params: the environment's init parameters, as terms.
-            seed, output, tracer, warn, listeners, limits: as for :class:`MultiAgentSystem`.
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
 
         Returns:
             The system; its agent is ``system.agents[0]``.

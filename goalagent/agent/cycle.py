@@ -157,8 +157,15 @@ class Agent:
 
         Args:
             path: the agent file.
-            name, io, postman, seed, output, tracer, warn, idle_warning, limits: as for
-                :class:`Agent`.
+            name: the agent's name (default: the program's).
+            io: its environment connection (None: none).
+            postman: delivers its messages (None: messages go nowhere).
+            seed: seeds its choices among instantiations and Prolog's random numbers.
+            output: where ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event.
+            warn: called with each warning line (default: printed on stderr).
+            idle_warning: idle cycles before the one warning about them (None: never).
+            limits: inferences, seconds, beliefs and the sandbox (default ``Limits()``).
 
         Returns:
             The agent, before its first cycle.
@@ -192,8 +199,15 @@ class Agent:
         Args:
             text: the program.
             file: the name its errors and positions give (default ``<string>``).
-            name, io, postman, seed, output, tracer, warn, idle_warning, limits: as for
-                :class:`Agent`.
+            name: the agent's name (default: the program's).
+            io: its environment connection (None: none).
+            postman: delivers its messages (None: messages go nowhere).
+            seed: seeds its choices among instantiations and Prolog's random numbers.
+            output: where ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event.
+            warn: called with each warning line (default: printed on stderr).
+            idle_warning: idle cycles before the one warning about them (None: never).
+            limits: inferences, seconds, beliefs and the sandbox (default ``Limits()``).
 
         Returns:
             The agent, before its first cycle.
