@@ -24,7 +24,7 @@ from rich.table import Table  # noqa: E402
 
 from behaviours.part_learning import CanUnderTest  # noqa: E402
 from behaviours.perception import make_perception  # noqa: E402
-from robot.transfer_study import THESIS_CANS, transfer_seed  # noqa: E402
+from robot.reproduce.studies.common.ch5 import THESIS_CANS, transfer_run  # noqa: E402
 from sim.scene import CANS  # noqa: E402
 from sim.world import GarbageWorld  # noqa: E402
 
@@ -50,9 +50,9 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     seed = parser.parse_args().seed
     started = time.perf_counter()
-    runs = transfer_seed(seed, THESIS_CANS, "truth").values()
+    runs = transfer_run(seed, THESIS_CANS, "truth").values()
     study = time.perf_counter() - started
-    actions = sum(r["n_with"] + r["n_without"] for r in runs)
+    actions = sum(r.n_with + r.n_without for r in runs)
     baseline = physics_baseline(actions)
     table = Table("measure", "seconds", "actions", "ms / action", title="ch5-transfer, truth")
     table.add_row("ch5-transfer (5 cans, with and without transfer)", f"{study:.1f}",

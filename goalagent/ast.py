@@ -86,12 +86,12 @@ class Macro:
     pos: Pos
 
 
+# GOAL 7's timer and channel actions (goalagent.agent.timers)
+GOAL7_ACTIONS = frozenset({"starttimer", "canceltimer", "subscribe", "unsubscribe"})
 BUILTIN_ACTIONS = frozenset(
     {"insert", "delete", "adopt", "drop", "print", "log", "exit-module", "send", "sendonce",
      "sleep"}
-)
-# GOAL 7's built-in actions goalagent does not have (a program using one is told so).
-UNSUPPORTED_ACTIONS = frozenset({"starttimer", "canceltimer", "subscribe", "unsubscribe"})
+) | GOAL7_ACTIONS
 
 Mood = TypingLiteral[":", "!", "?"]
 
@@ -189,6 +189,7 @@ class Module:
     goals: tuple[PrologText, ...] = ()
     actionspecs: tuple[ActionSpec, ...] = ()
     declared: str | None = None
+    has_program: bool = True  # False: written without a program section
 
     @property
     def arity(self) -> int:
@@ -301,6 +302,7 @@ class MasProgram:
     pos: Pos
     definitions: tuple[AgentDefinition, ...] = ()
     env_pos: Pos | None = None
+    warnings: tuple[str, ...] = field(default=(), compare=False)  # GOAL's MAS warnings
 
 
 def iter_rules(rules: Iterable[Rule]) -> Iterator[Rule]:
@@ -320,7 +322,8 @@ class TestCondition:
     C``, ``always C``, ``never C``, ``atend C`` (the last state) or ``C leadsto D`` (after
     a state where C holds, D holds in that one or a later one). ``text`` as written."""
 
-    kind: TypingLiteral["eventually", "always", "never", "atend", "leadsto"]
+    kind: TypingLiteral["eventually", "always", "never", "atend", "leadsto", "atstart",
+                        "watch"]
     condition: Condition
     pos: Pos
     text: str
@@ -353,6 +356,7 @@ class TestStep:
     condition: Condition | None = None
     conditions: tuple[TestCondition, ...] = ()
     message: str | None = None
+    actions: tuple[Action, ...] = ()  # do a + b: every action of the step
 
 
 @dataclass(frozen=True)

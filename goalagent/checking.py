@@ -15,7 +15,10 @@ from pathlib import Path
 
 from goalagent import ast
 from goalagent.agent import Agent, AgentError, validate_program
+from goalagent.agent.checks import program_errors
+from goalagent.agent.validator import structure_warnings
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.interface import Environment
 from goalagent.eis.registry import known_environments, load_environment
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.limits import Limits
@@ -25,11 +28,15 @@ from goalagent.parser import (
     load_agents,
     load_module_as_agent,
     parse_action_file,
+    parse_agent,
     parse_agent_file,
+    parse_mas,
     parse_mas_file,
     parse_prolog_file,
     parse_test_file,
 )
+from goalagent.parser.recovery import later_errors
+from goalagent.parser.source import read_program_file
 
 SYSTEM_SUFFIXES = (".goal", ".mas2g", ".test2g")
 # Control constructs whose arguments are goals (argument positions), and meta-calls.
@@ -78,20 +85,29 @@ def check_environment(mas: ast.MasProgram) -> list[str]:
         environment = load_environment(mas.environment)
     except EnvironmentInterfaceException as err:
         if mas.environment.lower().endswith(".jar"):
+            where = ("" if (Path(mas.file).parent / mas.environment).is_file() else
+                     " (and no such file is next to the system)")
             return [f"{pos}: warning: environment '{mas.environment}' is a GOAL environment "
-                    "goalagent does not ship: the system checks, but cannot run here"]
+                    f"goalagent does not ship{where}: the system checks, but cannot run here"]
         hint = did_you_mean(mas.environment, known_environments())
         raise GoalSyntaxError.at(pos, f"{err}{hint}") from None
-    parameters = getattr(environment, "parameters", None)
-    if parameters is None:
-        return []
     for key, value in mas.env_init:
-        if key not in parameters:
-            known = sorted(parameters)
-            raise GoalSyntaxError.at(
-                value.pos, f"environment '{mas.environment}' has no init parameter {key!r}"
-                f"{did_you_mean(key, known)}; its parameters: {', '.join(known) or 'none'}")
+        problem = unknown_parameter(environment, mas.environment, key)
+        if problem is not None:
+            raise GoalSyntaxError.at(value.pos, problem)
     return []
+
+
+def unknown_parameter(environment: type[Environment], name: str, key: str) -> str | None:
+    """What is wrong with init parameter ``key`` of ``environment`` (registered as
+    ``name``), with the closest known name; None when it takes it (or declares nothing)."""
+    parameters = environment.init_parameters()
+    if parameters is None or environment.init_key(key) in parameters:
+        return None
+    known = sorted(parameters)
+    return (f"environment '{name}' has no init parameter {key!r}"
+            f"{did_you_mean(environment.init_key(key), known)}; its parameters: "
+            f"{', '.join(known) or 'none'}")
 
 
 def undefined_calls(agent: Agent) -> list[str]:
@@ -155,19 +171,33 @@ def _calls(term: Term) -> Iterator[tuple[str, int]]:
         yield from _calls(args[index])
 
 
+MAX_REPORTED = 20
+"""Errors ``check`` prints per file; the rest are counted ("and N more")."""
+
+
 def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool:
-    """Checks one program file, telling ``report`` every warning and error line; True when
-    it has no error. Each agent is loaded as ``run`` would (``sandbox``: as ``--sandbox``
-    would) but runs none of its code (``Limits.runs_code``): its directives are checked,
-    not run, and its goals are not adopted."""
+    """Checks one program file, telling ``report`` every warning and every error line (up to
+    ``MAX_REPORTED``, then how many more); True when it has no error. Each agent is loaded
+    as ``run`` would (``sandbox``: as ``--sandbox`` would) but runs none of its code
+    (``Limits.runs_code``): its directives are checked, not run, and its goals are not
+    adopted."""
+    errors: list[GoalSyntaxError] = []
     try:
         if path.suffix == ".mas2g":
-            for warning in check_environment(parse_mas_file(path)):
+            mas = parse_mas_file(path)
+            for warning in mas.warnings:
                 report(warning)
+            try:
+                for warning in check_environment(mas):
+                    report(warning)
+            except GoalSyntaxError as err:
+                errors.append(err)
         for program in programs_to_check(path, report):
-            validate_program(program)
-            for warning in program.warnings:
+            errors += program_errors(program)
+            for warning in (*program.warnings, *structure_warnings(program)):
                 report(warning)
+            if errors:
+                continue
             if path.suffix == ".mod2g" and not sandbox:
                 continue  # a module alone lacks its agent's knowledge: no calls to look up
             agent = Agent(program, output=io.StringIO(), warn=lambda message: None,
@@ -178,10 +208,32 @@ def check_file(path: Path, sandbox: bool, report: Callable[[str], None]) -> bool
                         report(warning)
             finally:
                 agent.close()
-    except (GoalSyntaxError, AgentError) as err:
-        report(str(err))
-        return False
-    return True
+    except GoalSyntaxError as err:
+        errors += [err, *_later_syntax_errors(path, err)]
+    except AgentError as err:
+        errors += [err]  # type: ignore[list-item]
+    for error in errors[:MAX_REPORTED]:
+        report(str(error))
+    if len(errors) > MAX_REPORTED:
+        report(f"{path}: and {len(errors) - MAX_REPORTED} more errors")
+    return not errors
+
+
+def _later_syntax_errors(path: Path, first: GoalSyntaxError) -> list[GoalSyntaxError]:
+    """The syntax errors of a .goal or .mas2g file after its first (none for other files,
+    or when the first is in a file it uses)."""
+    def parse(text: str, file: str) -> object:
+        if path.suffix == ".mas2g":
+            return parse_mas(text, file)
+        return program_errors(parse_agent(text, file))
+
+    if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g") or first.file != str(path):
+        return []
+    try:
+        text = read_program_file(path)
+    except GoalSyntaxError:
+        return []
+    return later_errors(text, str(path), first, parse)
 
 
 def programs_to_check(path: Path, report: Callable[[str], None] = lambda line: None

@@ -23,10 +23,11 @@ from typer.core import TyperCommand
 
 from goalagent.agent import AgentError
 from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
-from goalagent.checking import check_file, files_to_check
+from goalagent.checking import check_file, did_you_mean, files_to_check, unknown_parameter
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.registry import known_environments, load_environment
 from goalagent.extensions import (
     Extension,
     RunContext,
@@ -36,12 +37,10 @@ from goalagent.extensions import (
 )
 from goalagent.extras import install_hint
 from goalagent.kb.engine import KBError
-from goalagent.kb.limits import Limits
+from goalagent.kb.limits import Limits, default_module_depth
 from goalagent.kb.terms import Term
 from goalagent.mas import MultiAgentSystem, parse_parameter
-from goalagent.parser import (
-    GoalSyntaxError,
-)
+from goalagent.parser import GoalSyntaxError, parse_mas_file
 from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
 from goalagent.testing import run_test_file
@@ -161,6 +160,9 @@ def _language_run_options(
     sandbox: Annotated[bool, typer.Option(
         help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
     ] = False,
+    max_module_depth: Annotated[int, typer.Option(
+        help="How deep module calls may nest before the agent is stopped (default: as deep "
+             "as the C stack safely allows).")] = default_module_depth(),
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -213,7 +215,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise user_error("--max-cycles must be 0 or more")
     try:
         limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"])
+                        values["max_beliefs"], values["sandbox"],
+                        max_module_depth=values["max_module_depth"])
     except ValueError as err:
         raise user_error(f"--{str(err).replace('_', '-')}") from None
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
@@ -254,9 +257,35 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise typer.Exit(code=code or 1)
 
 
+def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> None:
+    """``--env`` names an environment and ``--env-param`` keys it takes, with the closest
+    name when not (said of the option, not of a place in the agent file)."""
+    name = env
+    if name is None and path.suffix == ".mas2g" and params:
+        try:
+            name = parse_mas_file(path).environment
+        except GoalSyntaxError:
+            return  # said where it is when the system is built
+    if name is None:
+        return
+    try:
+        environment = load_environment(name)
+    except EnvironmentInterfaceException as err:
+        if env is None:
+            return
+        raise user_error(f"--env {env}: {err}{did_you_mean(env, known_environments())}"
+                         ) from None
+    for key in params:
+        problem = unknown_parameter(environment, name, key)
+        if problem is not None:
+            raise user_error(f"--env-param {key}: {problem}")
+
+
 def _build_system(path: Path, env: str | None, params: dict[str, Term],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
+    if path.suffix != ".mas2g" or env is None:
+        _check_env_options(path, env, params)
     try:
         if path.suffix == ".mas2g":
             if env is not None:

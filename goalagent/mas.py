@@ -319,9 +319,10 @@ class MultiAgentSystem:
     def launch(self, name: str, program: ast.AgentProgram, entity: str | None = None, *,
                limits: Limits | None = None) -> Agent:
         """Create an agent (bounded by ``limits``, default the system's), register it for
-        messages and (if any) with the environment."""
-        if any(agent.name == name for agent in self.agents):
-            raise AgentError(f"there is already an agent called {name}")
+        messages and (if any) with the environment. A name already taken is made unique as
+        GOAL's runtime does, numbering the later ones: the first of ``name2``, ``name3``, ...
+        that is free (as entity launches number theirs)."""
+        name = self._unique_name(name)
         io = None
         if self.environment is not None:
             self.environment.register_agent(name)
@@ -338,6 +339,12 @@ class MultiAgentSystem:
         self._directory.add(name)
         agent.ms.join(name, self._directory)
         return agent
+
+    def _unique_name(self, name: str) -> str:
+        taken = {agent.name for agent in self.agents}
+        if name not in taken:
+            return name
+        return next(f"{name}{n}" for n in range(2, len(taken) + 3) if f"{name}{n}" not in taken)
 
     def _start_environment(self, params: dict[str, Term]) -> None:
         if self.environment is None:
@@ -411,13 +418,14 @@ class MultiAgentSystem:
                     after_cycle(agent)
         return self.summaries()
 
-    def step(self, agent: Agent) -> None:
-        """One cycle of ``agent``; whatever it raises (an error of its program, of the
+    def step(self, agent: Agent, cycle: Callable[[], object] | None = None) -> None:
+        """One cycle of ``agent`` (``cycle``: what to run instead of ``agent.step``, a test's
+        step); whatever it raises (an error of its program, of the
         environment serving it, or of Python while serving it, e.g. a recursion too deep)
         is that agent's failure: it is reported and stopped, the others go on."""
         self.current = agent  # left set when a signal stops the run: it says where
         try:
-            agent.step()
+            (cycle or agent.step)()
         except (AgentError, KBError, GoalSyntaxError, EnvironmentInterfaceException) as err:
             self._fail(agent, str(err))
         except Exception as err:  # noqa: BLE001 - one agent's failure is never the system's

@@ -166,7 +166,7 @@ class Run:
         if agent is not None:
             where = f" in agent {agent.name}, cycle {agent.cycle}"
             if rule is not None:
-                where += f", module {rule.module}, rule at {rule.rule.pos}"
+                where += f", module {rule.shown}, rule at {rule.rule.pos}"
         elif self._last is not None:
             where = f" after agent {self._last.name}'s cycle {self._last.cycle}"
         else:

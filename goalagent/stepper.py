@@ -48,7 +48,7 @@ class TerminalStepper:
         if agent is not None and not stop.inside and agent.last_report is not None:
             for fired in agent.last_report.fired:
                 bindings = ", ".join(f"{k}={show_term(v)}" for k, v in fired.bindings.items())
-                self.say(f"   fired {fired.module} {fired.pos} [{bindings}] -> "
+                self.say(f"   fired {fired.shown} {fired.pos} [{bindings}] -> "
                          f"{' + '.join(fired.actions) or '(block)'}")
         while True:
             self.console.print("(goalagent) ", end="", markup=False)

@@ -14,6 +14,7 @@ goalagent's mental states.
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -62,8 +63,8 @@ class TestReport:
 
     @property
     def passed(self) -> bool:
-        """Every item passed (and there was at least one)."""
-        return bool(self.verdicts) and all(verdict.passed for verdict in self.verdicts)
+        """Every item passed (a test block with no tests passes, as in GOAL)."""
+        return all(verdict.passed for verdict in self.verdicts)
 
     def text(self) -> str:
         """The report as lines: per section its items, then the totals."""
@@ -156,6 +157,7 @@ class _Monitor:
         self.pending: dict[str, tuple[int, Bindings]] = {}  # leadsto instances waiting
         self.broken: tuple[int, Bindings] | None = None
         self.error = ""  # a Prolog error evaluating the condition: it fails, judged no more
+        self.held: list[int] = []  # watch: the cycles in which it held
 
     def observe(self, cycle: int) -> None:
         if self.error:
@@ -171,6 +173,10 @@ class _Monitor:
         judge = self.judge
         if kind == "eventually" and self.at is None and judge.holds(condition):
             self.at = cycle
+        elif kind == "atstart" and self.seen == 1:
+            self.at = cycle if judge.holds(condition) else None
+        elif kind == "watch" and judge.holds(condition):
+            self.held.append(cycle)
         elif kind == "always" and self.at is None and not judge.holds(condition):
             self.at = cycle
         elif kind == "never" and self.at is None and judge.holds(condition):
@@ -194,16 +200,23 @@ class _Monitor:
             return Verdict(text, pos, self.at is not None,
                            f"held at cycle {self.at}" if self.at is not None
                            else f"never held in {states}")
+        if kind == "atstart":
+            return Verdict(text, pos, self.at is not None, "" if self.at is not None else
+                           "did not hold at the start")
+        if kind == "watch":  # only watched: reported, never failed
+            held = self.held
+            return Verdict(text, pos, True, f"held in {len(held)} of {states}"
+                           + (f" (cycles {', '.join(map(str, held[:10]))})" if held else ""))
         if kind in ("always", "never"):
             broken = "did not hold" if kind == "always" else "held"
             return Verdict(text, pos, self.at is None,
                            f"{broken} at cycle {self.at}" if self.at is not None else states)
         if kind == "atend":
             try:
-                held = self.judge.holds(self.condition.condition)
+                at_end = self.judge.holds(self.condition.condition)
             except KBError as err:
                 return Verdict(text, pos, False, f"a Prolog error at the end: {err}")
-            return Verdict(text, pos, held, "" if held else "did not hold at the end")
+            return Verdict(text, pos, at_end, "" if at_end else "did not hold at the end")
         if self.pending:
             cycle, answer = next(iter(self.pending.values()))
             shown = ", ".join(f"{n}={format_term(v)}" for n, v in answer.items())
@@ -299,15 +312,18 @@ class _Script:
         return init is not None and _module_matches(init, step.target) and step.until is None
 
     def _do(self, step: ast.TestStep, monitors: list[_Monitor]) -> Iterator[None]:
-        """``do main [until C]``: cycles until C holds, the agent stops or time is up."""
-        main = self.agent.program.module("main")
-        if main is None or not _module_matches(main, step.target):
-            raise GoalSyntaxError.at(step.pos, f"do {step.target}: goalagent tests can do "
-                                     "the agent's main module (by any of its names) and, "
-                                     "in GOAL 5 tests, init")
-        what = f"do {step.target}" + (" until ..." if step.until else "")
+        """``do main [until C]``: cycles until C holds, the agent stops or time is up; the
+        conditions are judged in the state main starts from and after every cycle. ``do a
+        + b`` of other actions or modules: they are done once."""
         if self.agent.cycle == 0 and not self.agent.initialized_apart:
             self.run.initialize(self.agent)  # GOAL enters main once init has run
+        for monitor in monitors:
+            monitor.observe(self.agent.cycle)
+        main = self.agent.program.module("main")
+        if main is None or not _module_matches(main, step.target):
+            yield from self._do_once(step, monitors)
+            return
+        what = f"do {step.target}" + (" until ..." if step.until else "")
         start = self.agent.cycle
         while True:
             if step.until is not None and self.judge.holds(step.until):
@@ -325,6 +341,16 @@ class _Script:
             yield
             for monitor in monitors:
                 monitor.observe(self.agent.cycle)
+
+    def _do_once(self, step: ast.TestStep, monitors: list[_Monitor]) -> Iterator[None]:
+        """A step doing actions or a module other than main: once, in a turn of its own."""
+        actions = step.actions or ((step.action,) if step.action is not None else ())
+        self.run.pending[self.agent.name] = (actions, step.pos)
+        yield
+        for monitor in monitors:
+            monitor.observe(self.agent.cycle)
+        self.section.verdicts.append(Verdict(f"do {step.target}", step.pos, True,
+                                             f"done in cycle {self.agent.cycle}"))
 
     def advance(self) -> bool:
         """Take the steps up to the next cycle; False when the script is over."""
@@ -351,6 +377,7 @@ class _TestRun:
         self.entered: dict[str, set[str]] = {}  # per agent: modules entered this cycle
         self.judges = {agent.name: _Judge(agent) for agent in system.agents}
         self.watches: dict[str, list[_ModuleWatch]] = {}
+        self.pending: dict[str, tuple] = {}  # per agent: a step's actions to do next turn
         for agent in system.agents:
             agent.listen(self._listener(agent.name))
 
@@ -404,7 +431,9 @@ class _TestRun:
                     continue  # its steps are over
                 for watch in self.watches.get(agent.name, []):
                     watch.before_cycle()
-                self.system.step(agent)
+                pending = self.pending.pop(agent.name, None)
+                self.system.step(agent, None if pending is None else
+                                 functools.partial(agent.perform, *pending))
                 self._observe(agent)
                 script = waiting.get(agent.name)
                 if script is not None and not script.advance():

@@ -2,10 +2,11 @@
 
 Every command here exists twice: at the top level (``goalagent snapshot``, the spelling users
 already know) and under ``goalagent robot`` (``goalagent robot snapshot``). A new command of the
-robot application (``reproduce NAME``, ``objects list|show|forget``) is one more function in
+robot application (``objects list|show|forget``) is one more function in
 ``COMMANDS``; one that grows sub-commands of its own gets a Typer sub-app added in
-``add_commands``. Heavy imports (MuJoCo, OpenCV) stay inside the command functions, so loading
-this module for ``goalagent check`` costs nothing.
+``add_commands``. ``reproduce`` and ``sweep`` are the research workbench's
+(``robot/reproduce/commands.py``). Heavy imports (MuJoCo, OpenCV) stay inside the
+command functions, so loading this module for ``goalagent check`` costs nothing.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import typer
 
 from goalagent.console import err_console, user_error
 from robot.objects import objects_app
+from robot.reproduce.commands import reproduce, sweep
 from sim.headless import use_headless_rendering
 
 
@@ -48,87 +50,7 @@ def snapshot(
                       markup=False)
 
 
-def reproduce(
-    name: Annotated[str | None, typer.Argument(
-        help="Which reproduction (see --list).", show_default=False)] = None,
-    seeds: Annotated[int | None, typer.Option(
-        help="Number of seeds, 0 .. K-1 (default: the reproduction's, 10; 2 with --quick)",
-        show_default=False)] = None,
-    out: Annotated[Path, typer.Option(
-        help="Folder for NAME.json, NAME.md and the figures.")] = Path("results"),
-    jobs: Annotated[int | None, typer.Option(
-        help="Seeds run in parallel processes (default: the number of CPUs)",
-        show_default=False)] = None,
-    scale: Annotated[float, typer.Option(
-        help="Run size in (0, 1]; 1 is the full size of the thesis's or paper's runs.")] = 1.0,
-    quick: Annotated[bool, typer.Option(
-        "--quick", help="A small run: the reproduction's quick scale (and 2 seeds).")] = False,
-    list_: Annotated[bool, typer.Option(
-        "--list", help="List the reproductions, one line each, and stop.")] = False,
-    replot: Annotated[bool, typer.Option(
-        "--replot", help="Redraw NAME.md and the figures from --out's NAME.json, run "
-                         "nothing.")] = False,
-) -> None:
-    """Run a named reproduction of the thesis's results: seeds in parallel, then NAME.json
-    (summary and per-seed numbers), NAME.md (measured beside the reference, with the gap) and
-    PNG figures in --out."""
-    import os
-
-    from robot.reproduce.framework import UnknownReproduction, find, registered
-
-    if list_:
-        reproductions = registered()
-        width = max((len(reproduction.name) for reproduction in reproductions), default=0)
-        for reproduction in reproductions:
-            err_console.print(f"{reproduction.name:<{width}}  {reproduction.description}",
-                              markup=False)
-        return
-    if name is None:
-        raise user_error("name a reproduction (goalagent reproduce --list shows them)")
-    try:
-        reproduction = find(name)
-    except UnknownReproduction as err:
-        raise user_error(str(err)) from None
-    seeds = seeds if seeds is not None else 2 if quick else reproduction.default_seeds
-    jobs = jobs if jobs is not None else os.cpu_count() or 1
-    scale = reproduction.quick_scale if quick else scale
-    if seeds < 1:
-        raise user_error(f"--seeds must be at least 1, got {seeds}")
-    if jobs < 1:
-        raise user_error(f"--jobs must be at least 1, got {jobs}")
-    if not 0.0 < scale <= 1.0:
-        raise user_error(f"--scale must be in (0, 1], got {scale}")
-    if out.exists() and not out.is_dir():
-        raise user_error(f"--out {out} exists and is not a folder")
-    _run_reproduction(reproduction, seeds, scale, jobs, out, replot)
-
-
-def _run_reproduction(reproduction: object, seeds: int, scale: float, jobs: int,
-                      out: Path, replot: bool) -> None:
-    """Run it with a progress bar (or redraw it); print the table and where the files went."""
-    from rich.table import Table
-
-    from robot.reproduce import runner
-    from robot.reproduce.report import gap_text, measured_text, number
-
-    try:
-        if replot:
-            outcome = runner.replot(reproduction, out)
-        else:
-            outcome = runner.run(reproduction, seeds=seeds, scale=scale, jobs=jobs, out=out,
-                                 console=err_console)
-    except runner.ReproductionFailed as err:
-        err_console.print(f"error: {err}", markup=False)
-        raise typer.Exit(code=1) from None
-    table = Table("quantity", "measured", "reference", "gap", "source")
-    for row in outcome.comparisons:
-        table.add_row(row.quantity, measured_text(row), number(row.reference), gap_text(row),
-                      row.source or "—")
-    err_console.print(table, markup=False)
-    err_console.print("wrote " + ", ".join(str(path) for path in outcome.files), markup=False)
-
-
-COMMANDS: tuple[Callable[..., None], ...] = (snapshot, reproduce)
+COMMANDS: tuple[Callable[..., None], ...] = (snapshot, reproduce, sweep)
 """The robot application's commands, in the order ``goalagent --help`` lists them."""
 
 

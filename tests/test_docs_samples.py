@@ -184,8 +184,10 @@ def test_every_python_sample_runs(tmp_path: Path, page: Page,
     page.save(tmp_path)
     monkeypatch.chdir(tmp_path)
     namespace: dict[str, object] = {"__name__": f"docs_{page.path.stem}"}
-    for block in page.python:
-        exec(compile(block, str(page.path), "exec"), namespace)
+    for index, block in enumerate(page.python):
+        source = tmp_path / f"sample_{index}.py"  # (code that reads its own source finds it)
+        source.write_text(block)
+        exec(compile(block, str(source), "exec"), namespace)
     for name, value in list(namespace.items()):
         if name.startswith("test_") and callable(value):
             value()

@@ -8,6 +8,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from goalagent.agent import Agent
@@ -20,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 MAS = ROOT / "agents" / "garbage_disposal.mas2g"
 TAU = 0.6
 R2 = 0.05
-SEEDS = [0, 1, 2, 3, 4]
+SEEDS = [0, 1, 2]
 
 
 @dataclass
@@ -106,23 +107,17 @@ def exploratory_actions(system: MultiAgentSystem) -> int:
 
 
 @pytest.mark.parametrize("seed", SEEDS)
-def test_experiment_1_learns_in_trial_one_and_then_uses_the_lid(tmp_path: Path, seed: int):
-    system, trail = run("o1", seed, tmp_path / "models.json")
+def test_experiment_1_learns_once_and_experiment_2_relearns_from_its_beliefs(tmp_path: Path,
+                                                                            seed: int):
+    """Experiment 1 on o1, then Experiment 2 on o2 from the beliefs Experiment 1 saved."""
+    models, saved = tmp_path / "models.json", tmp_path / "exp1.pl"
+    first, trail = run("o1", seed, models)
     try:
-        check_experiment_1(system, trail)
-        assert exploratory_actions(system) >= 4 * len(trail.parts_learned())  # n_min = 4
+        check_experiment_1(first, trail)
+        assert exploratory_actions(first) >= 4 * len(trail.parts_learned())  # n_min = 4
+        save_beliefs(first.agents, [AFFORD], saved)
     finally:
-        system.close()
-
-
-@pytest.mark.parametrize("seed", SEEDS)
-def test_experiment_2_relearns_on_the_handle_after_the_lid_fails(tmp_path: Path, seed: int):
-    models = tmp_path / "models.json"
-    first, _ = run("o1", seed, models)
-    saved = tmp_path / "exp1.pl"
-    save_beliefs(first.agents, [AFFORD], saved)
-    first.close()
-
+        first.close()
     system, trail = run("o2", seed, models, beliefs=saved)
     try:
         check_experiment_2(system, trail)
@@ -151,7 +146,10 @@ def test_both_experiments_end_the_same_when_the_agent_learns_actively(tmp_path: 
 
 
 def test_experiments_from_the_command_line(tmp_path: Path):
-    """The README's commands: Experiment 1 saves its beliefs, Experiment 2 starts from them."""
+    """The README's commands: Experiment 1 saves its beliefs and plots its reliabilities,
+    Experiment 2 starts from them (one trial here: all its learning happens in the first)."""
+    from matplotlib.image import imread
+
     saved = tmp_path / "exp1.pl"
     models = f"models={tmp_path / 'models.json'}"
     common = [sys.executable, "-m", "goalagent", "run", str(MAS), "--env-param", models]
@@ -160,10 +158,17 @@ def test_experiments_from_the_command_line(tmp_path: Path):
                            capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert first.returncode == 0, first.stderr
     assert "afford(lid,extend_arm,opened,5,5,1.0)." in saved.read_text()
-    assert (tmp_path / "exp1.png").stat().st_size > 10_000
-    second = subprocess.run([*common, "--env-param", "can=o2", "--load-beliefs", str(saved),
-                             "--plot", str(tmp_path / "exp2.png")],
+    plot = imread(tmp_path / "exp1.png")
+    assert plot.shape[:2] == (550, 990)  # 9 x 5 inches at 110 dpi
+    from matplotlib import colormaps
+
+    drawn = [colour for colour in colormaps["tab20"].colors
+             if np.all(np.abs(plot[..., :3] - colour) < 0.02, axis=-1).sum() > 20]
+    assert len(drawn) >= 3  # several affordances' reliability steps, one tab20 colour each
+    second = subprocess.run([*common, "--env-param", "can=o2", "--env-param", "trials=1",
+                             "--load-beliefs", str(saved)],
                             capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert second.returncode == 0, second.stderr
     assert "robot: terminated" in second.stderr
-    assert "handle" in second.stderr and "lift_up" in second.stderr
+    table = [line for line in second.stderr.splitlines() if "lift_up" in line]
+    assert any("handle" in line and "1.000" in line for line in table), second.stderr

@@ -199,7 +199,6 @@ def test_cli_reports_and_exits_with_the_outcome(tmp_path: Path) -> None:
     ("use sys.\nlength = 3.\n", "unknown test option 'length'"),
     ("use sys.\ntest nothing with in { eventually true. }\ncounter { do main. }\n",
      "test nothing: no agent of the test has a module"),
-    ("use sys.\ncounter { do start. do tick(1). }\n", "do tick: goalagent tests can do"),
 ])
 def test_mistakes_in_test_files_are_located(tmp_path: Path, text: str, message: str) -> None:
     path = counter(tmp_path, text)
@@ -207,6 +206,7 @@ def test_mistakes_in_test_files_are_located(tmp_path: Path, text: str, message: 
         run_test_file(path)
 
 
-def test_a_test_step_does_one_action_at_a_time() -> None:
-    with pytest.raises(GoalSyntaxError, match="one action or module at a time"):
-        parse_test("use sys.\na { do insert(x) + insert(y). }\n", "t.test2g")
+def test_a_test_step_may_do_several_actions(tmp_path: Path) -> None:
+    path = counter(tmp_path, "use sys.\ncounter { do insert(x) + insert(y). }\n")
+    step = parse_test(path.read_text(), str(path)).agent_tests[0]
+    assert [action.name for action in step.steps[0].actions] == ["insert", "insert"]

@@ -101,12 +101,13 @@ def test_a_fifo_or_a_huge_sparse_file_is_refused_before_reading(tmp_path: Path):
         assert result.peak_mb < PEAK_MB
 
 
-def test_text_that_is_not_utf8_is_located_at_its_first_bad_byte(tmp_path: Path):
+def test_text_that_is_not_utf8_is_read_as_latin1_as_goal_read_it(tmp_path: Path):
     path = tmp_path / "latin.goal"
-    path.write_bytes(b"main module {\n  program { if bel(caf\xe9) then print(x). }\n}\n")
-    result = goalagent_measured("check", str(path))
-    assert result.returncode == 2
-    assert result.stderr.strip() == f"{path}:2:23: not UTF-8 text (byte 0xe9)"
+    path.write_bytes(b"% caf\xe9 au lait\nmain module [exit=always] {\n"
+                     b"  program { if true then print('caf\xe9'). }\n}\n")
+    result = goalagent_measured("run", str(path))
+    assert result.returncode == 0
+    assert result.stdout.strip() == "caf\u00e9"
 
 
 def test_a_huge_integer_is_accepted_and_printed_whole(tmp_path: Path):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from robot.reproduce.lcs_problems import (
+from robot.reproduce.studies.common.lcs_problems import (
     MAZE4,
     MAZE_CODES,
     WOODS2,

@@ -6,10 +6,8 @@ import io
 import time
 from pathlib import Path
 
-import pytest
-
 from goalagent.mas import MultiAgentSystem
-from goalagent.parser import GoalSyntaxError, parse_agent
+from goalagent.parser import parse_agent, parse_mas_file
 
 COUNTER = """
 init module { beliefs { n(0). } }
@@ -106,14 +104,21 @@ def test_agents_cannot_see_each_others_beliefs(tmp_path: Path) -> None:
     assert holder.query("bel", "secret(X)") == [{"X": 42}]
 
 
-def test_launch_of_an_unknown_agent_file_is_a_located_error(tmp_path: Path) -> None:
-    with pytest.raises(GoalSyntaxError, match="unknown agent 'nobody'"):
-        system(tmp_path, """
-            agentfiles { "counter.goal" [name = c]. }
-            launchpolicy {
-                launch x : nobody.
-            }
-        """, counter=COUNTER)
+def test_launch_of_an_unknown_agent_file_is_a_warning_and_launches_nothing(tmp_path: Path):
+    # GOAL's validator: AGENTFILE_NONEXISTANT_REFERENCE is a warning
+    mas = system(tmp_path, """
+        agentfiles { "counter.goal" [name = c]. }
+        launchpolicy {
+            launch x : nobody.
+            launch y : c.
+        }
+    """, counter=COUNTER)
+    try:
+        assert [agent.name for agent in mas.agents] == ["y"]
+    finally:
+        mas.close()
+    warnings = parse_mas_file(tmp_path / "sys.mas2g").warnings
+    assert len(warnings) == 1 and "launch refers to unknown agent 'nobody'" in warnings[0]
 
 
 def test_every_agent_sees_every_agent_also_those_launched_later() -> None:

@@ -1,5 +1,5 @@
-"""mypy finds no error in the public API's modules, nor in the Python samples of the
-documentation site used as a user would (against the package's own types: ``py.typed``)."""
+"""mypy finds no error in the public API's modules, nor in the documentation site's Python
+samples that use it as a user would (against the package's own types: ``py.typed``)."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def test_the_documented_python_samples_type_check(tmp_path: Path) -> None:
     samples = []
     for page in sorted((ROOT / "docs").rglob("*.md")):
         blocks = re.findall(r"^```python\n(.*?)^```", page.read_text(), re.M | re.S)
-        if blocks:
+        if any("from goalagent" in block for block in blocks):  # samples of this API
             target = tmp_path / f"sample_{page.stem.replace('-', '_')}.py"
             target.write_text("\n".join(blocks))
             samples.append(str(target))

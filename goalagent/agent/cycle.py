@@ -35,6 +35,7 @@ from goalagent.agent.modules import Focus, leave_focus
 from goalagent.agent.problems import warning_text
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
+from goalagent.agent.timers import Timer, due_percepts
 from goalagent.events import EventKind, ProblemKind
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter_requests import Problem
@@ -112,6 +113,7 @@ class Agent:
         self.last_report: CycleReport | None = None
         self.report = CycleReport(0)  # the cycle in progress (the last one between cycles)
         self.focus: list[Focus] = []  # user modules the agent stays in, innermost last
+        self.timers: dict[str, Timer] = {}  # GOAL 7's running timers, by name
         self.idle_warning = idle_warning
         self.idle_cycles = 0  # cycles in a row without action, new percept or message
         self._warned: dict[str, int] = {}  # each warning given: how often
@@ -235,8 +237,8 @@ class Agent:
             raise AgentError(f"agent {self.name} has terminated")
         self.cycle += 1
         self.report = CycleReport(self.cycle)
-        if self.io is not None or self.postman is not None:
-            self._perceive()  # (without either, no percepts and no messages: nothing to do)
+        if self.io is not None or self.postman is not None or self.timers:
+            self._perceive()  # (without them, no percepts and no messages: nothing to do)
         if self.focus:
             focus = self.focus[-1]
             modules: list[tuple[ast.Module, Bindings]] = (
@@ -277,6 +279,22 @@ class Agent:
         init = self.program.module("init")
         if init is not None:
             self._rules.run_modules([(init, {})])
+        self._blind_commitment()
+        self.last_report = self.report
+        return self.report
+
+    def perform(self, actions: tuple[ast.Action, ...], pos: ast.Pos) -> CycleReport:
+        """A test's ``do a + b`` of actions or modules other than main: percepts and messages
+        are read, the actions done once (as the rule ``if true then a + b``), the goals
+        achieved dropped; it counts as a cycle."""
+        if self.terminated:
+            raise AgentError(f"agent {self.name} has terminated")
+        self.cycle += 1
+        self.report = CycleReport(self.cycle)
+        if self.io is not None or self.postman is not None or self.timers:
+            self._perceive()
+        rule = ast.Rule("if", (ast.MentalLiteral("true", None, pos),), pos, actions=actions)
+        self._rules.run_once(ast.Module("do", "user", pos, rules=(rule,), order="linear"))
         self._blind_commitment()
         self.last_report = self.report
         return self.report
@@ -367,6 +385,8 @@ class Agent:
             except ActionFailed as err:
                 self.warn(warning_text(Problem(ProblemKind.PERCEPTS_UNAVAILABLE, str(err)),
                                        self.program))
+        if self.timers:
+            percepts = percepts + due_percepts(self)
         self.ms.set_percepts(percepts)
         self.report.percepts = percepts
         if percepts and self.listeners:

@@ -90,11 +90,12 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
     """The event for a step the interpreter told."""
     kind, rule = step.kind, step.rule
     module = rule.module if rule is not None else None
+    shown = rule.shown if rule is not None else None  # the name the user gave the module
     pos = rule.rule.pos if rule is not None else None
     if kind is EventKind.RULE_TRIED:
         assert rule is not None
         count = len(step.bindings)
-        text = f"{module} {pos}: {count} instantiation(s)"
+        text = f"{shown} {pos}: {count} instantiation(s)"
         named = [f"[{_shown(b)}]" for b in step.bindings[:_SHOWN_INSTANTIATIONS] if b]
         if named:
             more = " ..." if count > _SHOWN_INSTANTIATIONS else ""
@@ -103,7 +104,7 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
         assert rule is not None
         bindings = step.bindings[0]
         actions = describe_firing(rule, bindings, step.done, step.terms)
-        text = f"{module} {pos} [{_shown(bindings)}] -> {' + '.join(actions) or '(block)'}"
+        text = f"{shown} {pos} [{_shown(bindings)}] -> {' + '.join(actions) or '(block)'}"
     elif kind is EventKind.ACTION_REFUSED:
         assert rule is not None and step.action_index is not None
         action = rule.rule.actions[step.action_index]

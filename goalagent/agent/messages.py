@@ -30,6 +30,7 @@ class LocalPostman:
 
     def __init__(self) -> None:
         self._boxes: dict[str, list[tuple[str, str, Term]]] = {}
+        self._channels: dict[str, set[str]] = {}  # GOAL 7's channels: their subscribers
 
     def register(self, name: str) -> None:
         """Gives ``name`` a mailbox."""
@@ -38,8 +39,19 @@ class LocalPostman:
     def agents(self) -> list[str]:
         return list(self._boxes)
 
+    def subscribe(self, agent: str, channel: str) -> None:
+        """GOAL 7's ``subscribe(Channel)``: messages sent to the channel reach ``agent``."""
+        self._channels.setdefault(channel, set()).add(agent)
+
+    def unsubscribe(self, agent: str, channel: str) -> None:
+        self._channels.get(channel, set()).discard(agent)
+
     def deliver(self, sender: str, receivers: list[str], mood: str, content: Term) -> None:
         for receiver in receivers:
+            if receiver not in self._boxes and self._channels.get(receiver):
+                for member in sorted(self._channels[receiver]):
+                    self._boxes[member].append((sender, mood, content))
+                continue
             if receiver not in self._boxes:
                 raise ActionFailed(f"no agent called {receiver!r} to send to")
             self._boxes[receiver].append((sender, mood, content))

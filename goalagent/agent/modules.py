@@ -47,6 +47,8 @@ def call_module(agent: Agent, rules: RuleApplication, firing: Firing, index: int
         agent.tell(module_event(agent.name, EventKind.MODULE_ENTERED, module, description))
     own_goal_base = _enter_goal_focus(agent.ms, module, firing.rule.rule.condition,
                                       firing.bindings)
+    for goal in module.goals:  # adopted on entry, the parameters instantiating them
+        agent.ms.adopt(goal, bindings)
     exit_option = (module.exit or "always") if module.kind == "user" else "always"
     rules.split_at(entries, position)
     outcome = rules.run_modules([(module, bindings)])
@@ -65,7 +67,7 @@ def leave_focus(agent: Agent) -> None:
         agent.ms.pop_goal_base()
     if agent.listeners:
         agent.tell(module_event(agent.name, EventKind.MODULE_LEFT, focus.module,
-                                focus.module.name))
+                                focus.module.declared or focus.module.name))
 
 
 def _enter_goal_focus(ms: MentalState, module: ast.Module, condition: ast.Condition,

@@ -15,15 +15,15 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
     kind, detail = problem.kind, problem.detail
     if kind is ProblemKind.CONDITION_ERROR:
         assert problem.rule is not None
-        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: Prolog error "
+        return (f"module {problem.rule.shown}, rule at {problem.rule.rule.pos}: Prolog error "
                 f"in the condition: {detail}; the rule is not applicable")
     if kind is ProblemKind.PROLOG_WARNING:
         assert problem.rule is not None
-        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: SWI-Prolog "
+        return (f"module {problem.rule.shown}, rule at {problem.rule.rule.pos}: SWI-Prolog "
                 f"warning: {detail}")
     if kind is ProblemKind.LIMIT_EXCEEDED:
         assert problem.rule is not None
-        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: ran "
+        return (f"module {problem.rule.shown}, rule at {problem.rule.rule.pos}: ran "
                 f"{detail}; the rule is not applicable")
     if kind is ProblemKind.PRECONDITION_ERROR:
         assert problem.spec_index is not None

@@ -68,6 +68,11 @@ class FiredRule:
         return self._entry.rule.module
 
     @property
+    def shown(self) -> str:
+        """The module's name as its file gives it (a GOAL 6 main module: its own name)."""
+        return self._entry.rule.shown
+
+    @property
     def pos(self) -> ast.Pos:
         """Where the rule is written."""
         return self._entry.rule.rule.pos

@@ -5,11 +5,12 @@ and whose journals become the cycle report's spans."""
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 from goalagent import ast
-from goalagent.agent import actions, messages, modules
+from goalagent.agent import actions, messages, modules, timers
 from goalagent.agent.errors import AgentError
 from goalagent.agent.events import interpreter_event
 from goalagent.agent.problems import warning_text
@@ -21,10 +22,9 @@ from goalagent.kb.terms import Term
 if TYPE_CHECKING:
     from goalagent.agent.cycle import Agent
 
-MAX_MODULE_DEPTH = 24
-"""How deep module calls may nest (each level is a Prolog query inside a Python callback
-inside a Prolog query: without a bound a module calling itself ends in Python's recursion
-limit, or worse, the C stack)."""
+FRAMES_PER_LEVEL = 60
+"""Python frames one nested module call uses (Python's recursion limit is raised by as many
+for each level, so a term deep inside the last level meets the same limit as at the top)."""
 
 
 class _CyclePlans(dict):
@@ -66,18 +66,28 @@ class RuleApplication:
         the last module's actions."""
         agent = self._agent
         names = " + ".join(module.name for module, _ in modules)
-        if len(self._calls) >= MAX_MODULE_DEPTH:
+        depth = agent.ms.limits.max_module_depth
+        if len(self._calls) > depth:
             chain = " -> ".join(self._called[-6:])
-            raise AgentError(f"module calls nested more than {MAX_MODULE_DEPTH} deep (... -> "
-                             f"{chain} -> {names}): a module that calls itself without end? "
-                             "The agent is stopped")
+            raise AgentError(f"module calls nested more than {depth} deep (... -> {chain} -> "
+                             f"{names}): a module that calls itself without end? The agent "
+                             "is stopped (--max-module-depth)")
         plan = self._code.plan(modules, environment=agent.io is not None,
                                listen=bool(agent.listeners), count_last=count_last)
         self._called.append(names)
+        limit = sys.getrecursionlimit()
+        if self._calls:  # each nested level is given Python frames of its own
+            sys.setrecursionlimit(limit + FRAMES_PER_LEVEL)
         try:
             return self.run_plan(plan)
         finally:
+            sys.setrecursionlimit(limit)
             self._called.pop()
+
+    def run_once(self, module: ast.Module) -> RunOutcome:
+        """One pass over a module made outside the program (see ``add_module``)."""
+        self._code.add_module(module)
+        return self.run_modules([(module, {})], count_last=True)
 
     def run_plan(self, plan: Term) -> RunOutcome:
         """Runs a plan (see ``CompiledProgram.plan``; ``cycle_plans`` has the cycles') in
@@ -133,6 +143,9 @@ class RuleApplication:
         agent = self._agent
         return modules.call_module(agent, self, firing, index, agent.program.modules[module],
                                    args, entries, position)
+
+    def goal7(self, name: str, args: list[Term]) -> None:
+        timers.perform(self._agent, name, args)
 
     def problem(self, problem: Problem) -> None:
         self._agent.warn(warning_text(problem, self._agent.program))

@@ -110,6 +110,17 @@ class Environment(EntityRelations):
 
     # ---- hooks for subclasses ------------------------------------------------------------
 
+    @classmethod
+    def init_parameters(cls) -> Mapping[str, str] | None:
+        """The init parameters the environment takes (name -> what it does), so that a
+        program's can be checked before it runs (``goalagent check``); None: not declared."""
+        return None
+
+    @classmethod
+    def init_key(cls, key: str) -> str:
+        """An init parameter's name as the environment reads it (some ignore case)."""
+        return key
+
     def do_init(self, params: dict[str, Parameter]) -> None:
         """Build the world from ``params``; raise ManagementException on a bad parameter."""
 

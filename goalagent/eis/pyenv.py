@@ -30,7 +30,7 @@ from __future__ import annotations
 import inspect
 import types
 import typing
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar, TypeVar
 
@@ -290,6 +290,13 @@ class PythonEnvironment(Environment):
             self.notify_agents(percept)
 
     # ---- the Environment hooks ----------------------------------------------------------
+
+    @classmethod
+    def init_parameters(cls) -> Mapping[str, str] | None:
+        """The declared ``parameters`` (name -> its type), if any."""
+        if cls.parameters is None:
+            return None
+        return {key: getattr(hint, "__name__", str(hint)) for key, hint in cls.parameters.items()}
 
     @classmethod
     def action_names(cls) -> list[str]:

@@ -152,6 +152,12 @@ class CompiledProgram:
         forget = lambda _: _compiled_programs.pop(key, None)  # noqa: E731 - when it dies
         _compiled_programs[key] = (weakref.ref(program, forget), self._directives, self._codes)
 
+    def add_module(self, module: ast.Module) -> None:
+        """Compiles a module made outside the program (a test step's actions, run as a
+        rule ``if true then A``): its rules may call the program's actions and modules."""
+        if id(module) not in self._codes:
+            self._codes[id(module)] = self._compile_module(module)
+
     def code(self, module: ast.Module) -> ModuleCode:
         """The compiled pass of one of the program's modules."""
         return self._codes[id(module)]
@@ -232,6 +238,9 @@ class CompiledProgram:
         if action.builtin:
             if action.name == "exit-module":
                 return "exit_module"
+            if action.name in ast.GOAL7_ACTIONS:
+                args = ", ".join(f"({arg.text}\n)" for arg in action.args)
+                return f"goal7({action.name}, [{args}])"
             return f"{action.name}(({action.args[0].text}\n))"
         head = format_term(Atom(action.name))
         if action.args:

@@ -96,6 +96,9 @@ class Requests(Protocol):
         not match. ``entries`` firings and ``position`` actions precede this call in the
         running call's journal."""
 
+    def goal7(self, name: str, args: list[Term]) -> None:
+        """GOAL 7's starttimer, canceltimer, subscribe or unsubscribe with ``args``."""
+
     def problem(self, problem: Problem) -> None:
         """A warning."""
 
@@ -133,6 +136,9 @@ class Answerer:
             sent = requests.send(_firing(firing), int(index), once == "true",  # type: ignore
                                  _MOOD_SIGNS[str(mood)], receiver, content)
             return _TRUE if sent else _FALSE
+        if name == "goal7":
+            requests.goal7(str(args[0]), list(args[1]))  # type: ignore[arg-type]
+            return None
         if name == "call":
             firing, index, module, call_args, entries, position = args
             called = requests.call_module(_firing(firing), int(index), int(module),  # type: ignore

@@ -1,6 +1,6 @@
 """How much Prolog work one agent may cause, and what it may call: the bounds the runtime
 puts on an agent (``goalagent run --max-inferences/--max-query-seconds/--max-beliefs``,
-``--sandbox``, or per agent file in a .mas2g).
+``--max-module-depth``, ``--sandbox``, or per agent file in a .mas2g).
 
 Defaults are generous: measured on every shipped agent and the benchmarks (see
 docs in README "Limits"), the busiest rule makes a few hundred thousand inferences
@@ -12,14 +12,30 @@ holding more beliefs and goals than ``max_beliefs`` is stopped with a message.
 
 from __future__ import annotations
 
+import resource
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from goalagent import ast
 from goalagent.kb.errors import KBError, LimitError, PrologRuntimeError
 from goalagent.kb.terms import Struct, Term, format_term
 
 __all__ = ["Limits", "limit_text", "refused_precondition", "stopping_error"]
+
+
+BYTES_PER_MODULE_LEVEL = 8 * 1024
+"""C stack one nested module call takes, with a margin: each level is a Prolog query inside
+a Python callback inside a Prolog query (measured: an 8 MiB stack overflows between 1,500
+and 2,000 levels, about 4.5 KiB a level)."""
+
+
+def default_module_depth() -> int:
+    """How deep module calls may nest by default: as deep as the process's C stack safely
+    allows (``ulimit -s``; 1,024 levels for Linux's usual 8 MiB, at most 10,000)."""
+    soft, _ = resource.getrlimit(resource.RLIMIT_STACK)
+    if soft == resource.RLIM_INFINITY or soft <= 0:
+        return 10_000
+    return max(24, min(10_000, soft // BYTES_PER_MODULE_LEVEL))
 
 
 @dataclass(frozen=True)
@@ -36,8 +52,11 @@ class Limits:
     max_beliefs: int = 2_000_000
     sandbox: bool = False
     runs_code: bool = True
+    max_module_depth: int = field(default_factory=default_module_depth)
 
     def __post_init__(self) -> None:
+        if not 0 < self.max_module_depth <= 100_000:
+            raise ValueError("max_module_depth must be a whole number from 1 to 100000")
         if not 0 < self.max_inferences <= 2**62:
             raise ValueError("max_inferences must be a positive whole number")
         if not 0 < self.max_query_seconds <= 10**7:

@@ -24,6 +24,7 @@ class RuleInfo:
     rule: ast.Rule
     names: tuple[str, ...]
     recorded: frozenset[int] = frozenset()  # actions whose closed form the journal keeps
+    shown: str = ""  # the module's name as its file gives it (traces and warnings say it)
 
 
 RULES: list[RuleInfo] = []
@@ -38,7 +39,8 @@ def register_rule(module: ast.Module, rule: ast.Rule, names: tuple[str, ...],
     rule_id = _rule_ids.get(key)
     if rule_id is None:
         rule_id = len(RULES)
-        RULES.append(RuleInfo(rule_id, module.name, rule, names, recorded))
+        RULES.append(RuleInfo(rule_id, module.name, rule, names, recorded,
+                              module.declared or module.name))
         _rule_ids[key] = rule_id
     return RULES[rule_id]
 

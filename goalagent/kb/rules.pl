@@ -205,7 +205,8 @@ stops_action(E) :- passes_on(E, none).
 %   Actions: insert(F), delete(F), adopt(F), drop(F); do(Action, Open) for a user action
 %   (Open = true: record its closed form in the journal); print(T), log(T);
 %   send(Once, Mood, Receiver, Content); module(Index, Args) (a call of the program's
-%   module Index); exit_module; sleep(Millis) (GOAL 6+, performed without waiting).
+%   module Index); exit_module; sleep(Millis) (GOAL 6+, performed without waiting);
+%   goal7(Name, Args): GOAL 7's timers and channels, done in Python.
 %
 %   Asserts Name(Ctx, Given, J0, J, Status), which computes every instantiation of
 %   the condition first, in the state the rule starts in (GOAL's semantics; a Prolog error
@@ -411,6 +412,7 @@ action_goal(send(Once, Mood, Receiver, Content), K, Firing, _,
 action_goal(module(Index, Args), K, Firing, v(Ctx, _, _, _, _),
             ga_kb:module_call(Ctx, K, Firing, Index, Args), called).
 action_goal(sleep(_), _, _, _, true, done).   % agents take turns: nothing to wait for
+action_goal(goal7(Name, Args), _, _, _, ga_kb:'$ga_py'(goal7(Name, Args), _), done).
 action_goal(exit_module, _, _, _, true, exit).
 
 %   update_goal(+Mode, +Formula, +K, +Firing, +B, +G, +Listen, +CB, -Goal): insert or

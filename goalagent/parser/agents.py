@@ -14,6 +14,7 @@ environment, and turns its percept rules (``replace p/1.``) into event rules.
 from __future__ import annotations
 
 import difflib
+import glob
 from dataclasses import replace
 from pathlib import Path
 
@@ -61,6 +62,18 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
     close = difflib.get_close_matches(Path(ref).stem, present, n=1)
     hint = f"; did you mean {close[0]}?" if close else ""
     raise GoalSyntaxError.at(use.pos, f"use {use.ref}{how}: no such file ({tried}){hint}")
+
+
+def _wildcard_matches(use: ast.UseClause, base: Path) -> list[Path]:
+    """The files a quoted reference with ``*`` names (``use 'util/*.pl' as knowledge.``),
+    sorted; a wildcard that matches nothing is an error at the use clause."""
+    if not use.quoted or "*" not in use.ref:
+        return []
+    matches = sorted(Path(p).resolve() for p in glob.glob(str(base / use.ref))
+                     if Path(p).is_file())
+    if not matches:
+        raise GoalSyntaxError.at(use.pos, f"use {use.ref}: no file matches")
+    return matches
 
 
 def parse_module_file(path: str | Path, *, plain_beliefs: bool = False) -> ModuleFile:
@@ -172,22 +185,26 @@ class _AgentLoader:
                 raise GoalSyntaxError.at(use.pos, f"use {use.ref} as {use.case}: a module "
                                          "file uses files as knowledge, beliefs, goals, "
                                          "actionspec or module")
-            path = resolve_reference(use, base)
-            case = use.case or {".pl": "knowledge", ".act2g": "actionspec"}.get(
-                path.suffix, "module")
-            if (path, case) in self._done:
-                continue
-            self._done.add((path, case))
-            if case == "module":
-                self.users[path] = self._module_file(path).module
-            elif case == "actionspec":
-                action_file = parse_action_file(path)
-                self._uses(action_file.uses, path.parent)
-                self.top["actionspecs"].extend(action_file.specs)
-            elif case == "goals":
-                self.top["goals"].extend(parse_clause_file(path, split_facts=False))
-            else:
-                self.top[case].extend(parse_clause_file(path))
+            for path in _wildcard_matches(use, base) or [resolve_reference(use, base)]:
+                self._use(use, path)
+
+    def _use(self, use: ast.UseClause, path: Path) -> None:
+        """Reads the file ``path`` that ``use`` names (once per file and use)."""
+        case = use.case or {".pl": "knowledge", ".act2g": "actionspec"}.get(
+            path.suffix, "module")
+        if (path, case) in self._done:
+            return
+        self._done.add((path, case))
+        if case == "module":
+            self.users[path] = self._module_file(path).module
+        elif case == "actionspec":
+            action_file = parse_action_file(path)
+            self._uses(action_file.uses, path.parent)
+            self.top["actionspecs"].extend(action_file.specs)
+        elif case == "goals":
+            self.top["goals"].extend(parse_clause_file(path, split_facts=False))
+        else:
+            self.top[case].extend(parse_clause_file(path))
 
     def add_percept_rules(self, rules: tuple[ast.PerceptRule, ...]) -> None:
         """The newest dialect's percept rules as forall rules first in the event module."""

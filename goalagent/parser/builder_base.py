@@ -47,8 +47,13 @@ class BuilderBase(Transformer_NonRecursive):
         self.source = source
         self.engine = get_engine()
         self.split_facts = True  # `a, b.` in a Prolog file is two facts (not for goal files)
+        self.warnings: list[str] = []  # what GOAL warns about but accepts, as located lines
 
     # --- helpers ------------------------------------------------------------------------
+    def warn(self, pos: ast.Pos, message: str) -> None:
+        """A located warning (the file is still accepted)."""
+        self.warnings.append(f"{pos}: warning: {message}")
+
     def _pos(self, meta) -> ast.Pos:
         """The position where a tree node starts."""
         return self.source.pos(meta.start_pos)
@@ -66,12 +71,11 @@ class BuilderBase(Transformer_NonRecursive):
         """Read ``fragment`` with SWI-Prolog; a syntax error is reported at its position.
         Text that SWI-Prolog 7+ rejects only for a blank between a name and its arguments
         (``in ('DropZone')``, which the SWI-Prolog of GOAL 4/5 read as ``in('DropZone')``)
-        is read without those blanks."""
+        or for an infix bar in an argument is read as those read it."""
         try:
             variables = self._read(fragment.text, clause)
         except PrologSyntaxError as err:
-            lenient = _GLUED_ARGUMENTS.sub(self._glue, fragment.text)
-            if lenient != fragment.text:
+            for lenient in self._lenient_readings(fragment.text, clause):
                 try:
                     variables = self._read(lenient, clause)
                     return ast.PrologText(lenient, fragment.pos, tuple(variables))
@@ -80,6 +84,18 @@ class BuilderBase(Transformer_NonRecursive):
             offset = fragment.pos.offset + min(max(err.offset, 0), len(fragment.text))
             raise self.source.error(offset, f"Prolog syntax error: {err.message}") from None
         return ast.PrologText(fragment.text, fragment.pos, tuple(variables))
+
+    def _lenient_readings(self, text: str, clause: bool) -> list[str]:
+        """Readings of a text SWI-Prolog 9 refuses that the SWI-Prolog of GOAL 4/5 took:
+        without a blank between a name and its arguments, and an argument holding SWI-7's
+        infix bar (``print("a:"|X)``) in parentheses, where the bar may stand."""
+        readings = []
+        glued = _GLUED_ARGUMENTS.sub(self._glue, text)
+        if glued != text:
+            readings.append(glued)
+        if "|" in text and not clause:
+            readings.append(f"({text}\n)")
+        return readings
 
     def _read(self, text: str, clause: bool) -> tuple[str, ...]:
         return tuple(self.engine.check_clause(text) if clause else self.engine.check_query(text))

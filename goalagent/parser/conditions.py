@@ -153,10 +153,35 @@ class ConditionParts(BuilderBase):
         return ast.MentalLiteral("bel", self.check(query), self._pos(meta))
 
     def selector_literal(self, meta, children):
-        """GOAL's selectors (``(A).bel(φ)``, ``allother.goal(φ)``): not supported."""
-        raise GoalSyntaxError.at(self._pos(meta), f"selectors on mental literals "
-                                 f"({str(children[0]).strip()}{children[1]}(..)) are not "
-                                 "supported by goalagent; write the literal without it")
+        """GOAL's selectors on mental literals: ``self.bel(φ)`` / ``this.bel(φ)`` is the
+        agent's own ``bel(φ)``; ``(S).bel(φ)`` with S this agent (``me(S)``) is its own
+        literal, with another agent what that agent told it (``received(S, φ)``; for goal
+        literals the goals it asked it to adopt, ``received(S, imp(φ))``): goalagent keeps no
+        other model of other agents' minds. ``all``/``allother``/``some``/``someother``
+        (quantified models) are not supported."""
+        raw = str(children[0]).strip()[:-1].strip()
+        op = {"a-goal": "a-goal", "goal-a": "goal-a"}.get(str(children[1]), str(children[1]))
+        content = children[2]
+        if raw in ("self", "this"):
+            return self._mental(op, meta, [None, content])
+        if raw in ("all", "allother", "some", "someother"):
+            raise GoalSyntaxError.at(self._pos(meta), f"the selector {raw}.{op}(..) (a "
+                                     "quantified mental model) is not supported by goalagent; "
+                                     "query received/2 for what other agents told")
+        selector = raw[1:-1].strip() if raw.startswith("(") else raw
+        told = "imp(" + content.text + "\n)" if op != "bel" else "(" + content.text + "\n)"
+        own = "true" if op != "bel" else "(" + content.text + "\n)"
+        text = f"(me({selector}) -> {own} ; received({selector}, {told}))"
+        literal = ast.MentalLiteral("bel", self.check(ast.PrologText(text, content.pos)),
+                                    self._pos(meta))
+        if op == "bel":
+            return literal
+        # own goals when the selector is this agent, else the told goal (the bel above)
+        own_goal = ast.MentalLiteral(op, self.check(content), self._pos(meta))  # type: ignore
+        me = self.check(ast.PrologText(f"me({selector})", content.pos))
+        return (literal, ast.NotLiteral((ast.MentalLiteral("bel", me, self._pos(meta)),
+                                         ast.NotLiteral((own_goal,), self._pos(meta))),
+                                        self._pos(meta)))
 
     def macro_call(self, meta, children):
         name = str(children[0])

@@ -9,6 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from goalagent import ast
+from goalagent.kb.engine import get_engine
 from goalagent.parser.ast_builder import AstBuilder, build
 from goalagent.parser.builder_base import ParsedSection
 from goalagent.parser.conditions import condition_texts
@@ -56,6 +57,8 @@ def _program_from_items(name: str | None, items: list, file: str,
                     modules.append(module)
             elif item.kind == "program":
                 top_program = item
+            elif item.kind == "perceptrules":
+                builder.percept_rules.extend(item.items)
             else:
                 top[item.kind].extend(item.items)
     if top_program is not None:
@@ -64,7 +67,23 @@ def _program_from_items(name: str | None, items: list, file: str,
                                      "a program section outside modules and a main module")
         modules.append(ast.Module("main", "main", top_program.pos, rules=top_program.items,
                                   order=top_program.options.get("order")))
-    return finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+    modules.extend(builder.nested_modules)
+    if builder.percept_rules:
+        modules = _with_percept_rules(modules, tuple(builder.percept_rules))
+    program = finish_program(name or Path(file).stem, file, modules, builder.macro_list, top)
+    if builder.warnings:
+        program = replace(program, warnings=(*builder.warnings, *program.warnings))
+    return program
+
+
+def _with_percept_rules(modules: list[ast.Module],
+                        rules: tuple[ast.Rule, ...]) -> list[ast.Module]:
+    """GOAL 3's percept rules run first in the event module (one is made if needed)."""
+    for index, module in enumerate(modules):
+        if module.kind == "event":
+            modules[index] = replace(module, rules=rules + module.rules)
+            return modules
+    return [*modules, ast.Module("event", "event", rules[0].pos, rules=rules)]
 
 
 def finish_program(name: str, file: str, modules: list[ast.Module], macros: list[ast.Macro],
@@ -72,15 +91,20 @@ def finish_program(name: str, file: str, modules: list[ast.Module], macros: list
     """The agent program of ``modules`` (whatever format they were read from) with what is
     global to the agent gathered from them and ``top`` (knowledge, beliefs, goals and
     actionspecs written outside modules), ``@env`` overrides marked and singleton variables
-    warned about."""
+    warned about. A user module's goals stay its own: adopted when it is entered, its
+    parameters instantiating them (GOAL's semantics)."""
     everything = [top, *({"knowledge": list(m.knowledge), "beliefs": list(m.beliefs),
-                          "goals": list(m.goals), "actionspecs": list(m.actionspecs)}
+                          "goals": list(m.goals) if m.kind != "user" else [],
+                          "actionspecs": list(m.actionspecs)}
                          for m in modules)]
     gathered = {key: tuple(x for part in everything for x in part[key]) for key in top}
     overriding = {(spec.name, spec.arity) for spec in gathered["actionspecs"]
                   if spec.name in ast.BUILTIN_ACTIONS}
     if overriding:
         modules = [replace(m, rules=_mark_overrides(m.rules, overriding)) for m in modules]
+    selecting = {(m.name, m.arity) for m in modules if m.kind == "user" and m.focus == "select"}
+    if selecting:
+        modules = [replace(m, rules=_in_one_goal(m.rules, selecting)) for m in modules]
     program = ast.AgentProgram(
         name=name,
         file=file,
@@ -107,6 +131,33 @@ def _mark_overrides(rules: tuple[ast.Rule, ...],
         inner = _mark_overrides(rule.rules, overriding) if rule.rules else rule.rules
         marked.append(replace(rule, actions=actions, rules=inner))
     return tuple(marked)
+
+
+def _in_one_goal(rules: tuple[ast.Rule, ...],
+                 selecting: set[tuple[str, int]]) -> tuple[ast.Rule, ...]:
+    """A rule that enters a ``focus=select`` module selects one goal: its goal literals
+    (goal, a-goal, goal-a) must hold in that one goal together, as in GOAL (its runtime
+    test testselect.goal). The rule's condition gets the literal ``goal((φ1, ..., φn))``
+    after its last goal literal."""
+    result = []
+    for rule in rules:
+        inner = _in_one_goal(rule.rules, selecting) if rule.rules else rule.rules
+        enters = any(isinstance(a, ast.ActionCall) and (a.name, a.arity) in selecting
+                     for a in rule.actions)
+        positions = [i for i, literal in enumerate(rule.condition)
+                     if isinstance(literal, ast.MentalLiteral)
+                     and literal.op in ("goal", "a-goal", "goal-a")]
+        condition = rule.condition
+        if enters and len(positions) > 1:
+            last = rule.condition[positions[-1]]
+            texts = ", ".join(f"({rule.condition[i].query.text}\n)"  # type: ignore[union-attr]
+                              for i in positions)
+            text = f"({texts})"
+            joint = ast.MentalLiteral("goal", ast.PrologText(
+                text, last.pos, tuple(get_engine().check_query(text))), last.pos)
+            condition = (*condition[:positions[-1] + 1], joint, *condition[positions[-1] + 1:])
+        result.append(replace(rule, condition=condition, rules=inner))
+    return tuple(result)
 
 
 def _rule_texts(rule: ast.Rule) -> Iterator[ast.PrologText]:

@@ -3,6 +3,7 @@ rules and modules (conditions and macros are in ``conditions.py``)."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from lark import Token, v_args
@@ -10,8 +11,10 @@ from lark import Token, v_args
 from goalagent import ast
 from goalagent.extensions import prolog_library
 from goalagent.parser.builder_base import MOODS, BuilderBase, ParsedSection
+from goalagent.parser.conditions import condition_texts
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.mas_sections import reference_path
+from goalagent.parser.variables import variable_occurrences
 
 _MODULE_OPTIONS = {
     "exit": ("always", "never", "nogoals", "noaction"),
@@ -19,6 +22,9 @@ _MODULE_OPTIONS = {
 }
 _PROGRAM_OPTIONS = {"order": ("linear", "linearall", "random", "randomall", "adaptive",
                               "linearrandom", "linearallrandom")}
+_CONTEXT_OPTIONS = {"focusmethod": ("none", "new", "select", "filter", "filtergoals")}
+_FOCUS_METHODS = {"none": None, "new": "new", "select": "select", "filter": "filter",
+                  "filtergoals": "filter"}
 _ORDER_NAMES = {"linearrandom": "random", "linearallrandom": "randomall"}  # GOAL 6's names
 _CONJUNCTION_ACTIONS = frozenset({"insert", "delete", "adopt", "drop"})
 
@@ -35,6 +41,11 @@ def program_options(options: dict[str, str]) -> dict[str, str]:
 class GoalParts(BuilderBase):
     """Tree nodes of a `.goal` program. ``#import`` parses another file through
     ``self._import_prolog_file``, which the composed ``AstBuilder`` provides."""
+
+    def __init__(self, source) -> None:
+        super().__init__(source)
+        self.nested_modules: list[ast.Module] = []  # GOAL 3's modules inside programs
+        self.percept_rules: list[ast.Rule] = []  # GOAL 3's percept rules, wherever written
 
     # --- sections -------------------------------------------------------------------------
     def knowledge(self, meta, children):
@@ -75,10 +86,13 @@ class GoalParts(BuilderBase):
         return self._pre_or_post_text(children)
 
     def _pre_or_post_text(self, children) -> ast.PrologText:
-        """The checked text of ``pre { .. }`` / ``post { .. }``; ``true`` when empty."""
+        """The checked text of ``pre { .. }`` / ``post { .. }``; ``true`` when empty (GOAL
+        warns: an empty precondition or postcondition is more likely forgotten than meant)."""
         if len(children) > 1:
             return self.check(children[1])
-        return ast.PrologText("true", self._token_pos(children[0]), ())
+        pos = self._token_pos(children[0])
+        self.warn(pos, f"empty {children[0]} {{ }}: read as true")
+        return ast.PrologText("true", pos, ())
 
     def actionspec(self, meta, children):
         name = children[0]
@@ -226,6 +240,9 @@ class GoalParts(BuilderBase):
             if item.kind == "modules":
                 raise GoalSyntaxError.at(item.pos, "#import of a module file belongs outside "
                                          "modules, next to them")
+            if item.kind == "perceptrules":
+                self.percept_rules.extend(item.items)
+                continue
             if item.kind == "program":
                 if seen_program:
                     raise GoalSyntaxError.at(item.pos, f"module {name} has two program sections")
@@ -238,7 +255,41 @@ class GoalParts(BuilderBase):
             exit=opts.get("exit"), focus=opts.get("focus"), order=order, rules=rules,
             knowledge=tuple(fields["knowledge"]), beliefs=tuple(fields["beliefs"]),
             goals=tuple(fields["goals"]), actionspecs=tuple(fields["actionspecs"]),
+            has_program=seen_program,
         )
+
+    # --- GOAL 3 -------------------------------------------------------------------------
+    def perceptrules(self, meta, children):
+        """GOAL 3's percept rules: applied every cycle before the program, each for every
+        instantiation of its condition (GOAL 4 made them the event module's forall rules)."""
+        rules = tuple(replace(rule, kind="forall") if rule.kind == "if" else rule
+                      for rule in children[1:] if isinstance(rule, ast.Rule))
+        return ParsedSection("perceptrules", rules, self._pos(meta))
+
+    def context(self, meta, children):
+        options = next((c for c in children if isinstance(c, list)), None)
+        condition = next((c for c in children if isinstance(c, tuple)), None)
+        return ("context", self._options(options, _CONTEXT_OPTIONS), condition)
+
+    def nested_module(self, meta, children):
+        """GOAL 3's ``module name { context[focusmethod=F] { MSC } goals{..} program{..} }``
+        inside a program: a rule ``if MSC then name(Vars)`` entering a module whose
+        parameters are the context's variables (they instantiate its goals), focused as F
+        says, staying in it until its goals are achieved (when it has a goal focus)."""
+        name = str(children[1])
+        _, options, condition = children[2]
+        pos = self._pos(meta)
+        condition = condition or (ast.MentalLiteral("true", None, pos),)
+        names = list(dict.fromkeys(var for text in condition_texts(condition)
+                                   for var in variable_occurrences(text.text)
+                                   if var != "_" and not var.startswith("_")))
+        params = tuple(self.check(ast.PrologText(var, pos)) for var in names)
+        focus = _FOCUS_METHODS.get(options.get("focusmethod", "none"))
+        module = self.module(meta, [("user", name, params, None, meta), *children[3:]])
+        exit_option = "nogoals" if focus in ("filter", "select", "new") or module.goals else None
+        self.nested_modules.append(replace(module, focus=focus, exit=exit_option))
+        args = tuple(self.check(ast.PrologText(var, pos)) for var in names)
+        return ast.Rule("if", condition, pos, actions=(ast.ActionCall(name, args, pos),))
 
     def wrapper(self, meta, children):
         return ("wrapper", str(children[1]), children[2:])

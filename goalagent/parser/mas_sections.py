@@ -7,6 +7,7 @@ newest dialect's ``define a { use m for decisions. replace p/1. }``."""
 from __future__ import annotations
 
 import itertools
+import re
 from pathlib import Path
 
 from lark import Token, v_args
@@ -20,9 +21,24 @@ LIMIT_OPTIONS = ("sandbox", "max_inferences", "max_query_seconds", "max_beliefs"
 MAX_NUMBER = 100_000
 """The largest ``number`` (agents launched from one file) or ``max`` a .mas2g may ask for."""
 
+_LANGUAGES = ("swiprolog", "swi-prolog", "prolog")
 _AGENT_ROLES = ("init", "main", "event", "shutdown")
 _PURPOSES = {"decisions": "main", "updates": "event"}
 _PERCEPT_RULES = ("add", "replace", "update")
+
+
+_QUOTED = re.compile(r'"((?:\\.|""|[^"\\])*)"')
+
+
+def verbatim_strings(text: str) -> str:
+    """Init values as GOAL reads them: a backslash in a double-quoted string is itself
+    (``"C:\\Starcraft"`` is a Windows path, not an escape), but before a quote."""
+
+    def double(match: re.Match[str]) -> str:
+        body = re.sub(r'\\(?!")', r"\\\\", match.group(1))
+        return f'"{body}"'
+
+    return _QUOTED.sub(double, text)
 
 
 def reference_path(text: str) -> str:
@@ -40,7 +56,9 @@ class MasParts(BuilderBase):
 
     # --- GOAL 4/5 ----------------------------------------------------------------------
     def env_item(self, meta, children):
-        return (str(children[0]), self.check(children[1]), self._token_pos(children[0]))
+        value = children[1]
+        value = ast.PrologText(verbatim_strings(value.text), value.pos)
+        return (str(children[0]), self.check(value), self._token_pos(children[0]))
 
     def env_string(self, meta, children):
         """``env = "x.jar".`` (the file as written: GOAL reads no escapes in it, so
@@ -49,7 +67,8 @@ class MasParts(BuilderBase):
         key, value = children[0], children[1]
         if str(key) == "env":
             return self.env_file(meta, [value])
-        return (str(key), self.check(ast.PrologText(str(value), self._token_pos(value))),
+        return (str(key), self.check(ast.PrologText(verbatim_strings(str(value)),
+                                                    self._token_pos(value))),
                 self._token_pos(key))
 
     def env_file(self, meta, children):
@@ -66,7 +85,8 @@ class MasParts(BuilderBase):
                                      f"unknown environment entry {key}[...]; expected init[...]")
         start, end = children[1].start_pos, children[-2].end_pos
         text, offset = self.source.fragment(start, end)
-        return ("init", self.check(ast.PrologText(text, self.source.pos(offset))),
+        return ("init", self.check(ast.PrologText(verbatim_strings(text),
+                                                  self.source.pos(offset))),
                 self._token_pos(key))
 
     def environment(self, meta, children):
@@ -75,7 +95,18 @@ class MasParts(BuilderBase):
     def agentfile(self, meta, children):
         path = reference_path(str(children[0])[1:-1])
         options = next((c for c in children[1:] if isinstance(c, list)), [])
-        values = {str(k): (str(v), k) for k, v in options}
+        values: dict[str, tuple[str, Token]] = {}
+        for key, value in options:
+            if str(key) in values:
+                self.warn(self._token_pos(key), f"agent file option {key} is given twice; "
+                          "the first is used")
+                continue
+            values[str(key)] = (str(value), key)
+        language = values.pop("language", None)
+        if language is not None and language[0].lower() not in _LANGUAGES:
+            raise GoalSyntaxError.at(self._token_pos(language[1]), f"language = {language[0]}:"
+                                     " goalagent's knowledge representation is SWI-Prolog "
+                                     "(language = swiprolog)")
         unknown = [key for key in values if key not in ("name", "number", *LIMIT_OPTIONS)]
         if unknown:
             raise GoalSyntaxError.at(self._token_pos(values[unknown[0]][1]),
@@ -198,6 +229,8 @@ class MasParts(BuilderBase):
         for child in children[1:]:
             if isinstance(child, Token) and child.type in ("NAME", "VAR"):
                 file = child
+            elif isinstance(child, Token) and child.type == "NUMBER":  # GOAL 4: launch a[3]:f.
+                options.append((Token("NAME", "number"), child))
             elif isinstance(child, tuple):
                 options.append(child)
         return (name, file, options, self._pos(meta))
@@ -227,8 +260,14 @@ class MasParts(BuilderBase):
         """One launch rule per instruction; those of one ``when`` share a group."""
         entity: dict[str, str] = {}
         limit = None
+        seen: set[str] = set()
         for key_token, value_token in condition:
             key = str(key_token)
+            if key in seen:
+                self.warn(self._token_pos(key_token), f"entity condition {key} is given "
+                          "twice; the first is used")
+                continue
+            seen.add(key)
             if key in ("type", "name"):
                 entity[key] = self._plain(value_token)
             elif key == "max":
@@ -245,6 +284,10 @@ class MasParts(BuilderBase):
                 raise GoalSyntaxError.at(self._token_pos(values[unknown[0]][1]),
                                          f"unknown launch option {unknown[0]!r} "
                                          "(name, number, max)")
+            if str(name_token) == "*" and not on_entity:
+                self.warn(pos, "launch * takes the name of an entity: it belongs in a "
+                          "conditional rule (when ... do launch *); this one launches nothing")
+                continue
             agentfile = str(file_token) if file_token is not None else str(name_token)
             agent_name = values.get("name", (str(name_token), None))[0]
             number = self._whole_number_option(values, "number") or 1

@@ -133,8 +133,9 @@ class Source:
 
 
 def read_program_file(path: str | Path, limit: int = MAX_PROGRAM_BYTES) -> str:
-    """The text of a program file (UTF-8, a regular file of at most ``limit`` bytes); a
-    missing, unreadable or undecodable file is a located error."""
+    """The text of a program file (a regular file of at most ``limit`` bytes), UTF-8 or else
+    Latin-1 (GOAL's Windows users wrote comments in cp1252/Latin-1); a missing or unreadable
+    file is a located error."""
     try:
         data = read_bounded(path, limit)
     except FileNotFoundError:
@@ -144,9 +145,5 @@ def read_program_file(path: str | Path, limit: int = MAX_PROGRAM_BYTES) -> str:
         raise GoalSyntaxError(str(path), 1, 1, f"cannot read file: {reason}") from None
     try:
         return data.decode("utf-8")
-    except UnicodeDecodeError as err:
-        before = data[:err.start].decode("utf-8", errors="replace")
-        line = before.count("\n") + 1
-        col = len(before) - (before.rfind("\n") + 1) + 1
-        raise GoalSyntaxError(str(path), line, col, "not UTF-8 text (byte "
-                              f"0x{data[err.start]:02x})") from None
+    except UnicodeDecodeError:  # GOAL read files in the platform's 8-bit encoding
+        return data.decode("latin-1")

@@ -13,7 +13,8 @@ from goalagent.parser.source import read_program_file
 
 def parse_test(text: str, file: str = "<string>") -> ast.TestProgram:
     """Parse the text of a `.test2g` file; its system is resolved next to ``file``."""
-    result, _ = build(text, file, "test_file")
+    # a knowledge predicate may stand bare in a test condition (GOAL 5 tests)
+    result, _ = build(text, file, "test_file", plain_beliefs=True)
     _, mas, mas_pos, timeout, module_tests, agent_tests = result  # type: ignore[misc]
     quoted = mas.endswith(".mas2g") or "/" in mas
     use = ast.UseClause(mas, "mas", mas_pos, quoted)

@@ -19,7 +19,8 @@ class TestParts(BuilderBase):
     def _condition(self, kind: str, meta, children) -> ast.TestCondition:
         text, _ = self.source.fragment(meta.start_pos, meta.end_pos)
         text = text.rstrip(".").strip()
-        conditions = [c for c in children if isinstance(c, tuple)]
+        conditions = [c if isinstance(c, tuple) else (c,) for c in children
+                      if isinstance(c, (tuple, ast.MentalLiteral, ast.NotLiteral))]
         then = conditions[1] if len(conditions) > 1 else None
         return ast.TestCondition(kind, conditions[0], self._pos(meta), text,  # type: ignore
                                  then)
@@ -36,7 +37,14 @@ class TestParts(BuilderBase):
     def atend(self, meta, children):
         return self._condition("atend", meta, children)
 
+    def atstart(self, meta, children):
+        return self._condition("atstart", meta, children)
+
+    def watch(self, meta, children):
+        return self._condition("watch", meta, children)
+
     def leadsto(self, meta, children):
+        """``C leadsto D``, GOAL 5's ``always C -> eventually D`` and ``reactTo(C, D)``."""
         return self._condition("leadsto", meta, children)
 
     def test_condition(self, meta, children):
@@ -60,24 +68,23 @@ class TestParts(BuilderBase):
 
     # --- steps -------------------------------------------------------------------------
     def do_target(self, meta, children):
-        child = children[0]
-        if isinstance(child, Token):  # a module written with a capital: do MapAgent
-            return (str(child), None)
-        if len(child) != 1:
-            raise GoalSyntaxError.at(self._pos(meta), "a test does one action or module "
-                                     "at a time: write one do step per action")
-        action = child[0]
-        return (getattr(action, "name", ""), action)
+        """``do a``, ``do a + b`` (GOAL 5: several actions in one step): the first one's
+        name, and the actions."""
+        actions = tuple(children[0])
+        return (getattr(actions[0], "name", ""), actions)
 
     def _until(self, children) -> ast.Condition | None:
         for index, child in enumerate(children):
             if isinstance(child, Token) and child.type == "UNTIL":
                 return children[index + 1]
+            if isinstance(child, Token) and child.type == "WHILE":  # while C: until not C
+                return (ast.NotLiteral(children[index + 1], self._token_pos(child)),)
         return None
 
     def do_step(self, meta, children):
-        target, action = children[1]
-        return ast.TestStep("do", self._pos(meta), target, action, self._until(children))
+        target, actions = children[1]
+        return ast.TestStep("do", self._pos(meta), target, actions[0], self._until(children),
+                            actions=actions)
 
     def assert_step(self, meta, children):
         message = next((str(c)[1:-1] for c in children[2:]
@@ -86,11 +93,11 @@ class TestParts(BuilderBase):
 
     def evaluate_step(self, meta, children):
         conditions = tuple(c for c in children if isinstance(c, ast.TestCondition))
-        target, action = next(c for c in children if isinstance(c, tuple) and len(c) == 2
-                              and not isinstance(c[0], ast.TestCondition)
-                              and isinstance(c[0], str))
-        return ast.TestStep("evaluate", self._pos(meta), target, action,
-                            self._until(children), conditions=conditions)
+        target, actions = next(c for c in children if isinstance(c, tuple) and len(c) == 2
+                               and not isinstance(c[0], ast.TestCondition)
+                               and isinstance(c[0], str))
+        return ast.TestStep("evaluate", self._pos(meta), target, actions[0],
+                            self._until(children), conditions=conditions, actions=actions)
 
     def agent_steps(self, meta, children):
         name = children[0]
@@ -127,10 +134,12 @@ class TestParts(BuilderBase):
         return tuple(c for c in children if isinstance(c, ast.TestStep))
 
     def mastest_agent(self, meta, children):
-        name = children[0]
-        steps = tuple(step for block in children[1:] if isinstance(block, tuple)
+        """``a, b { before { .. } test { .. } after { .. } }``: the blocks (any names) in
+        order, for each agent named."""
+        names = [c for c in children if isinstance(c, Token)]
+        steps = tuple(step for block in children if isinstance(block, tuple)
                       for step in block)
-        return ast.AgentTest(str(name), self._token_pos(name), steps)
+        return [ast.AgentTest(str(name), self._token_pos(name), steps) for name in names]
 
     def mastest_file(self, meta, children):
         mas, mas_pos, timeout = None, self.source.pos(0), None
@@ -149,4 +158,4 @@ class TestParts(BuilderBase):
             raise GoalSyntaxError.at(self._pos(meta), "masTest names no system: add "
                                      'mas = "file.mas2g".')
         return ("test", mas, mas_pos, timeout, (),
-                tuple(c for c in children if isinstance(c, ast.AgentTest)))
+                tuple(test for c in children if isinstance(c, list) for test in c))

@@ -35,6 +35,10 @@ class Hanoi(PythonEnvironment):
     entity_names = ("entity",)
     default_entity_type = "hanoicontroller"
 
+    @classmethod
+    def init_parameters(cls) -> dict[str, str]:
+        return KNOWN_PARAMETERS
+
     def on_init(self, params: dict[str, object]) -> None:
         """Stack the discs as ``discs`` says: disc i on pin discs[i-1], in order."""
         check_known(self.name, params, KNOWN_PARAMETERS)

@@ -71,6 +71,14 @@ class BW4T(PythonEnvironment):
 
     # ---- life cycle --------------------------------------------------------------------
 
+    @classmethod
+    def init_parameters(cls) -> dict[str, str]:
+        return KNOWN_PARAMETERS
+
+    @classmethod
+    def init_key(cls, key: str) -> str:
+        return key.lower()  # read in any case, as GOAL programs write them
+
     def on_init(self, params: dict[str, object]) -> None:
         """Load the map, spawn the robots, read the options."""
         params = {key.lower(): value for key, value in params.items()}

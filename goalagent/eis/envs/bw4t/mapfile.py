@@ -211,10 +211,13 @@ def shipped_maps() -> list[str]:
 
 
 def load_map(spec: str) -> MapSpec:
-    """A map by file path, or by the name of a shipped map (``TwoRooms``, ``TwoRooms.map``)."""
+    """A map by file path, or by the name of a shipped map (``TwoRooms``, ``TwoRooms.map``;
+    BW4T's standard maps ``Random``, ``Banana``, ... also under the path a BW4T setup keeps
+    them at, ``environments/maps/Random``)."""
     path = Path(spec)
     if not path.is_file():
-        shipped = MAPS_DIR / (spec if spec.endswith(".map") else f"{spec}.map")
+        name = path.name
+        shipped = MAPS_DIR / (name if name.endswith(".map") else f"{name}.map")
         if not shipped.is_file():
             raise ManagementException(
                 f"bw4t: no map file '{spec}' and no shipped map of that name "

@@ -51,6 +51,14 @@ class Elevator(PythonEnvironment):
     name = "elevator"
     default_entity_type = "car"
 
+    @classmethod
+    def init_parameters(cls) -> dict[str, str]:
+        return KNOWN_PARAMETERS
+
+    @classmethod
+    def init_key(cls, key: str) -> str:
+        return key.lower()  # read in any case, as GOAL programs write them
+
     def on_init(self, params: dict[str, object]) -> None:
         """Build the chosen simulation from the settings."""
         params = {key.lower(): value for key, value in params.items()}
