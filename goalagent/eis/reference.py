@@ -23,7 +23,7 @@ from goalagent.eis.interface import Environment
 from goalagent.eis.pyenv import PythonEnvironment, describe_hint
 from goalagent.eis.registry import known_environments, load_environment
 from goalagent.kb.engine import get_engine
-from goalagent.kb.terms import Struct, format_term
+from goalagent.kb.terms import Atom, Struct, format_term
 
 _READER = "reader"  # the agent registered to read the first percepts
 _MISSING = object()
@@ -69,13 +69,9 @@ def _summary(cls: type) -> str:
 
 
 def _declared(cls: type[Environment]) -> dict[str, str]:
-    """Init parameter -> what it does (or its type), as the class declares them."""
-    declared = getattr(cls, "init_parameters", None)
-    if declared is not None:
-        return dict(declared() or {})
-    if issubclass(cls, PythonEnvironment) and cls.parameters is not None:
-        return {key: describe_hint(hint) for key, hint in cls.parameters.items()}
-    return {}
+    """Init parameter -> what it does (or its type), as the class declares them
+    (``Environment.init_parameters``)."""
+    return dict(cls.init_parameters() or {})
 
 
 def _value(node: ast.expr, cls: type, module_globals: dict[str, object]) -> object:
@@ -87,6 +83,13 @@ def _value(node: ast.expr, cls: type, module_globals: dict[str, object]) -> obje
         pass
     if isinstance(node, ast.Name):
         return module_globals.get(node.id, _MISSING)
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and \
+            isinstance(node.slice, ast.Constant):  # CONSTANTS[0]
+        table = module_globals.get(node.value.id)
+        try:
+            return table[node.slice.value] if table is not None else _MISSING  # type: ignore
+        except (IndexError, KeyError, TypeError):
+            return _MISSING
     if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
             and node.value.id in ("self", "cls"):
         return getattr(cls, node.attr, _MISSING)
@@ -114,17 +117,17 @@ def _defaults_in(source_of: type, cls: type) -> Iterator[tuple[str, object]]:
             continue
         if isinstance(key, ast.Constant) and isinstance(key.value, str):
             value = _value(default, cls, vars(module))
-            if value is not _MISSING:
+            if value is not _MISSING and value != "":  # ("": none, as a text parameter's)
                 yield key.value, value
 
 
 def _shown(value: object) -> str:
-    """A default as an agent programmer would write it."""
+    """A default as an agent programmer writes it (Prolog text that reads back as it)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, float, list)):
         return format_term(value)
-    return str(value)
+    return format_term(Atom(str(value)))
 
 
 def _parameters(cls: type[Environment]) -> tuple[Parameter, ...]:
@@ -135,9 +138,6 @@ def _parameters(cls: type[Environment]) -> tuple[Parameter, ...]:
         if isinstance(base, type) and issubclass(base, Environment) and base is not Environment:
             for key, value in _defaults_in(base, cls):
                 defaults.setdefault(key, value)
-    own = getattr(cls, "init_defaults", None)
-    if own is not None:
-        defaults.update(own())
     return tuple(Parameter(key, meaning, _shown(defaults[key]) if key in defaults else None)
                  for key, meaning in _declared(cls).items())
 
