@@ -15,7 +15,7 @@ from typing import Any, TextIO
 
 from goalagent import ast
 from goalagent.agent import ActionFailed, Agent, AgentError, Listener, LocalPostman, Tracer
-from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.exceptions import ActException, ActExceptionKind, EnvironmentInterfaceException
 from goalagent.eis.interface import Environment, EnvironmentState
 from goalagent.eis.registry import load_environment
 from goalagent.eis.terms import (
@@ -36,6 +36,12 @@ from goalagent.parser import (
     parse_agent_file,
     parse_mas_file,
 )
+
+_CANNOT_TAKE = frozenset({ActExceptionKind.UNKNOWN_ACTION, ActExceptionKind.WRONG_PARAMETERS,
+                          ActExceptionKind.NOT_REGISTERED, ActExceptionKind.WRONG_ENTITY,
+                          ActExceptionKind.NO_ENTITIES})
+"""Why an environment cannot take an action at all: GOAL's runtime stops the agent then
+(``RunState.doPerformAction``); a refusal or failure is a warning and the agent goes on."""
 
 
 class EntityIO:
@@ -59,7 +65,7 @@ class EntityIO:
         try:
             per_entity = self.environment.get_all_percepts(self.agent)
         except EnvironmentInterfaceException as err:
-            raise ActionFailed(str(err)) from None
+            raise ActionFailed(str(err)) from err
         current = [p for percepts in per_entity.values() for p in percepts]
         return [percept_to_term(p) for p in current + pushed]
 
@@ -67,7 +73,8 @@ class EntityIO:
         try:
             self.environment.perform_action(self.agent, action_from_term(action))
         except EnvironmentInterfaceException as err:
-            raise ActionFailed(str(err)) from None
+            fatal = isinstance(err, ActException) and err.kind in _CANNOT_TAKE
+            raise ActionFailed(str(err), fatal=fatal) from err
 
 
 @dataclass(frozen=True)

@@ -6,9 +6,11 @@ Conventions of the pages (docs/index.md says them to writers):
   ``pl``, ``test2g``; the site shows NAME above the block) is saved under NAME (a path under
   the page's folder) and checked as ``goalagent check`` checks it.
 - ```` ```text title="output of NAME" ```` is exactly what running NAME prints on stdout:
-  a ``.goal`` or ``.mas2g`` run for at most 20 cycles, without a warning, or the report of a
-  ``.test2g`` file (``goalagent test``). A ``% run: ARGS`` first line of a ``.goal`` file gives its
-  ``--env``, ``--env-param`` and ``--trace`` options.
+  a ``.goal`` or ``.mas2g`` run for at most 20 cycles, or the report of a ``.test2g`` file
+  (``goalagent test``). The run gives no warning unless a block
+  ```` ```text title="warnings of NAME" ```` lists them, one a line (paths as NAME's folder).
+  A ``% run: ARGS`` first line of a ``.goal`` file gives its ``--env``, ``--env-param`` and
+  ``--trace`` options.
 - ```` ```python ```` blocks run, in order, in one namespace per page, in the page's folder
   (where its files are saved); then every ``test_*`` function they define is called.
 - In ```` ```sh ```` blocks every ``goalagent`` command is parsed by the command line itself
@@ -54,6 +56,7 @@ class Page:
         self.path = path
         self.files: dict[str, str] = {}
         self.outputs: dict[str, str] = {}
+        self.warnings: dict[str, str] = {}
         self.python: list[str] = []
         self.shell: list[str] = []
         for language, info, body in _FENCE.findall(path.read_text()):
@@ -64,6 +67,8 @@ class Page:
                 self.files[name] = body
             elif language == "text" and name is not None and name.startswith("output of "):
                 self.outputs[name.removeprefix("output of ")] = body
+            elif language == "text" and name is not None and name.startswith("warnings of "):
+                self.warnings[name.removeprefix("warnings of ")] = body
             elif language == "python":
                 self.python.append(body)
             elif language == "sh":
@@ -111,6 +116,7 @@ def test_the_site_has_the_samples_the_issue_asks_for() -> None:
     assert testing.python, "testing.md shows pytest tests with the Python API"
     for page in SITE:
         assert set(page.outputs) <= set(page.files), page.name
+        assert set(page.warnings) <= set(page.outputs), page.name
 
 
 @pytest.mark.parametrize(("page", "name"), FILES, ids=_id)
@@ -153,7 +159,8 @@ def test_every_sample_prints_what_the_page_says(tmp_path: Path, page: Page, name
         system.run(MAX_CYCLES)
     finally:
         system.close()
-    assert warnings == []
+    shown = [warning.replace(f"{tmp_path}{os.sep}", "") for warning in warnings]
+    assert shown == page.warnings.get(name, "").splitlines()
     assert output.getvalue() == page.outputs[name]
 
 

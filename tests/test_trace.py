@@ -133,7 +133,8 @@ def test_refused_actions_and_warnings_are_traced_with_fresh_variables_as_undersc
     text = console.export_text()
     assert "refuser #1 " in text
     assert "refused adopt(g(1)) not enabled (already a goal) at <string>:4:26" in text
-    assert "fired main" in text and "Y=f(_)" in text and "_G" not in text
+    assert "action print(f(_))" in text and "_G" not in text  # actions without rules
+    assert "fired" not in text and "rule main" not in text
     assert "warning module main, rule at <string>:6:" in text
     assert EventKind.WARNING.value == "warning"
 

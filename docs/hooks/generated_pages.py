@@ -10,6 +10,8 @@ drift from it.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 
 from mkdocs.config.defaults import MkDocsConfig
@@ -35,22 +37,26 @@ PowerShell), or `goalagent --show-completion` to see the script.
 """
 
 
+def _help(command: object, args: list[str]) -> str:
+    """What ``goalagent ARGS --help`` prints, 100 columns wide."""
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        try:
+            command.main([*args, "--help"], prog_name="goalagent")  # type: ignore[attr-defined]
+        except SystemExit:
+            pass
+    return out.getvalue().rstrip()
+
+
 def _cli_page() -> str:
     """Every command's help text, the top level first."""
-    from typer.testing import CliRunner
+    from goalagent.cli import command
 
-    from goalagent.cli import create_app
-
-    app = create_app()
-    runner = CliRunner()
-    environment = {"COLUMNS": "100", "TERM": "dumb", "NO_COLOR": "1"}
-    top = runner.invoke(app, ["--help"], env=environment, prog_name="goalagent")
-    names = [command.name for command in app.registered_commands if command.name]
-    names += [group.name for group in app.registered_groups if group.name]
-    parts = [CLI_INTRO, "```text", top.output.rstrip(), "```", ""]
-    for name in names:
-        result = runner.invoke(app, [name, "--help"], env=environment, prog_name="goalagent")
-        parts += [f"## `goalagent {name}`", "", "```text", result.output.rstrip(), "```", ""]
+    os.environ["COLUMNS"] = "100"
+    built = command()
+    parts = [CLI_INTRO, "```text", _help(built, []), "```", ""]
+    for name in built.commands:
+        parts += [f"## `goalagent {name}`", "", "```text", _help(built, [name]), "```", ""]
     return "\n".join(parts)
 
 

@@ -28,11 +28,11 @@ from goalagent.agent.events import (
     message_event,
     percepts_event,
     plain_variables,
-    readable_text,
+    readable,
 )
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
-from goalagent.agent.problems import warning_text
+from goalagent.agent.problems import cause_traceback, warning_text
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.agent.timers import Timer, due_percepts
@@ -351,7 +351,7 @@ class Agent:
     def tell(self, event: Event) -> None:
         """Tell the listeners an event (stamped with the current cycle; fresh variables in its
         text shown as ``_``)."""
-        event = dataclasses.replace(event, cycle=self.cycle, text=readable_text(event))
+        event = dataclasses.replace(readable(event), cycle=self.cycle)
         for listener in self.listeners:
             listener(event)
 
@@ -385,6 +385,9 @@ class Agent:
             except ActionFailed as err:
                 self.warn(warning_text(Problem(ProblemKind.PERCEPTS_UNAVAILABLE, str(err)),
                                        self.program))
+                shown = cause_traceback(err)
+                if shown is not None:
+                    self.log(shown)
         if self.timers:
             percepts = percepts + due_percepts(self)
         self.ms.set_percepts(percepts)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 from goalagent import ast
@@ -40,6 +40,7 @@ class Event:
         instantiations: every instantiation of a tried rule's condition (``RULE_TRIED``), in
             the order they were tried; the one of a firing or refused action; else empty.
         term: the percept list, belief, goal (its facts) or message content concerned.
+        actions: the actions a firing performed (``RULE_FIRED``), as its text shows them.
         cycle: the agent's cycle (set when the agent tells the event).
     """
 
@@ -51,6 +52,7 @@ class Event:
     bindings: Bindings = field(default_factory=dict)
     instantiations: tuple[Bindings, ...] = ()
     term: Term | None = None
+    actions: tuple[str, ...] = ()
     cycle: int = 0
 
 
@@ -89,6 +91,7 @@ def _goal_text(goal: Term) -> str:
 def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Event:
     """The event for a step the interpreter told."""
     kind, rule = step.kind, step.rule
+    performed: tuple[str, ...] = ()  # a firing's actions
     module = rule.module if rule is not None else None
     shown = rule.shown if rule is not None else None  # the name the user gave the module
     pos = rule.rule.pos if rule is not None else None
@@ -104,6 +107,7 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
         assert rule is not None
         bindings = step.bindings[0]
         actions = describe_firing(rule, bindings, step.done, step.terms)
+        performed = actions
         text = f"{shown} {pos} [{_shown(bindings)}] -> {' + '.join(actions) or '(block)'}"
     elif kind is EventKind.ACTION_REFUSED:
         assert rule is not None and step.action_index is not None
@@ -123,7 +127,8 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
         assert step.term is not None
         text = _goal_text(step.term)
     chosen = step.bindings[0] if kind is not EventKind.RULE_TRIED and step.bindings else {}
-    return Event(kind, agent, text, module, pos, chosen, tuple(step.bindings), step.term)
+    return Event(kind, agent, text, module, pos, chosen, tuple(step.bindings), step.term,
+                 performed)
 
 
 def percepts_event(agent: str, percepts: Sequence[Term]) -> Event:
@@ -174,16 +179,24 @@ def _fresh_names(term: Term | None) -> Iterable[str]:
             yield from _fresh_names(arg)
 
 
-def readable_text(event: Event) -> str:
-    """The event's text with the fresh variable names of its bindings and term (a message's
-    ``?canMake(_G31,_G32)``, a firing's ``Y=f(_G7)``) shown as ``_``."""
+def readable(event: Event) -> Event:
+    """The event with the fresh variable names of its bindings and term (a message's
+    ``?canMake(_G31,_G32)``, a firing's ``Y=f(_G7)``) shown as ``_`` in its text and in its
+    actions."""
     names = {name for bindings in event.instantiations for value in bindings.values()
              for name in _fresh_names(value)}
     names.update(_fresh_names(event.term))
-    text = event.text
-    for name in sorted(names, key=len, reverse=True):  # _G123 before _G12
-        text = text.replace(name, "_")
-    return text
+    if not names:
+        return event
+    ordered = sorted(names, key=len, reverse=True)  # _G123 before _G12
+
+    def shown(text: str) -> str:
+        for name in ordered:
+            text = text.replace(name, "_")
+        return text
+
+    return replace(event, text=shown(event.text),
+                               actions=tuple(shown(action) for action in event.actions))
 
 
 _PROLOG_VARIABLE = re.compile(r"(?<![\w'])_G?\d+\b")  # _123 or _G123, not in an atom

@@ -4,6 +4,9 @@ closed) and those of the environment and messaging seams. The agent goes on afte
 
 from __future__ import annotations
 
+import os
+import traceback
+
 from goalagent import ast
 from goalagent.events import ProblemKind
 from goalagent.kb.interpreter_requests import Problem
@@ -45,3 +48,22 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
     if kind is ProblemKind.DELIVERY_FAILED:
         return f"{action.pos}: {detail}"
     return f"{action.pos}: {action.name} failed: {detail}"
+
+
+DEBUG_VARIABLE = "GOALAGENT_DEBUG"
+"""Set (to anything but empty) to see tracebacks: of an internal error (the command line) and
+of an exception raised in an environment's own Python code (below)."""
+
+
+def cause_traceback(error: BaseException) -> str | None:
+    """With ``GOALAGENT_DEBUG`` set, the traceback of the exception at the root of ``error``
+    (an environment's own code that raised, behind the failure it was reported as), to find
+    the bug in that code; None otherwise, or when nothing is behind ``error``."""
+    if not os.environ.get(DEBUG_VARIABLE):
+        return None
+    root = error
+    while root.__cause__ is not None:
+        root = root.__cause__
+    if root is error:
+        return None
+    return "".join(traceback.format_exception(type(root), root, root.__traceback__)).rstrip()
