@@ -9,18 +9,32 @@ counts every action it performs.
 
 ``learn_by_transfer`` is the ``learn(..., transfer)`` behaviour: Algorithm 6 on the can against
 the known-object database, with afford/model evidence for every pair it tried, after which the
-can joins the database.
+can joins the database. When no known object is relevant (Algorithm 5 finds no source), the
+transfer would be Algorithm 4 on every part and action; an agent that asks about one pair gets
+``PairEpisode`` instead: Algorithm 4 one pair at a time, as the agent's rule 6.4 asks, so that
+transfer mode costs no more than the agent's own random learning, and the can still joins the
+database (with the pairs explored) once its functional pair is known.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from sklearn.utils import check_random_state
 
+from behaviours.learners.baseline import PartBasedLearner, Session, SessionParams
 from behaviours.learners.known_objects import KnownObject, KnownObjectDatabase
-from behaviours.learners.protocol import ObjectView, Outcome
+from behaviours.learners.part_models import (
+    Bounds,
+    FunctionalPair,
+    OpeningGoal,
+    Pair,
+    PartActionModel,
+)
+from behaviours.learners.protocol import ObjectView, Outcome, Trial
+from behaviours.learners.similarity import rank_sources
 from behaviours.learners.transfer import TransferLearner
 from behaviours.learning import AffordanceEvidence
 from behaviours.perception import Perception, part_displacement
@@ -94,23 +108,37 @@ class TransferResult:
         return self.learner.n_actions_
 
 
-def _pair_report(learner: TransferLearner, pair: tuple[str, str], effect_name: str,
-                 delta: float, r1: float, r2: float) -> PairReport:
-    """The evidence and (θ_max, e_max) of one pair the learner tried."""
-    model = learner.models_[pair]
-    low, high = learner.bounds_[pair[1]]
+def _pair_report(models: Mapping[Pair, PartActionModel], bounds: Mapping[str, Bounds],
+                 found: FunctionalPair | None, trials: Sequence[Trial], pair: Pair,
+                 effect_name: str, delta: float, r1: float, r2: float) -> PairReport:
+    """The evidence and (θ_max, e_max) of one pair tried, from the pair's model, the
+    functional pair found (if any) and the trials that were on the pair."""
+    model = models[pair]
+    low, high = bounds[pair[1]]
     ends = model.predict([high, low + (high - low) * 1e-3])
     theta_max = high if ends[0] >= ends[1] else low + (high - low) * 1e-3
     e_max = float(max(ends))
-    found = learner.functional_
     if found is not None and (found.part, found.action) == pair:
         evidence = AffordanceEvidence(pair[0], pair[1], effect_name, 1, 1, 1)
         theta_max = found.theta
     else:
         evidence = AffordanceEvidence(pair[0], pair[1], effect_name, 0, 0,
                                       r1 if e_max >= delta else r2)
-    actions = sum((t.part, t.action) == pair for t in learner.trials_)
+    actions = sum((t.part, t.action) == pair for t in trials)
     return PairReport(evidence, float(theta_max), e_max, actions)
+
+
+def relevant_sources(world: GarbageWorld, perception: Perception,
+                     database: KnownObjectDatabase, *, delta: float = 0.1) -> list[str]:
+    """Algorithm 5 on the can as it stands: the known objects it could transfer from, most
+    similar first (what ``TransferLearner`` would choose from, with its parameters)."""
+    p = TransferLearner(database=list(database), goal=delta).get_params()
+    view = CanUnderTest(world, perception).perceive()
+    candidates = rank_sources(
+        p["database"], view, OpeningGoal(p["goal"], p["delta1"]), delta2=p["delta2"],
+        similarity_params={"n_neighbors": p["n_neighbors"], "max_distance": p["max_distance"],
+                           "weights": p["weights"]})
+    return [candidate.known.name for candidate in candidates]
 
 
 def learn_by_transfer(world: GarbageWorld, perception: Perception,
@@ -132,5 +160,59 @@ def learn_by_transfer(world: GarbageWorld, perception: Perception,
     database.add(KnownObject.learned(world.can, learner,
                                      extra={"can_file": world.spec.source}))
     tried = list(dict.fromkeys((t.part, t.action) for t in learner.trials_))
-    reports = tuple(_pair_report(learner, pair, effect_name, delta, r1, r2) for pair in tried)
+    reports = tuple(_pair_report(learner.models_, learner.bounds_, learner.functional_,
+                                 learner.trials_, pair, effect_name, delta, r1, r2)
+                    for pair in tried)
     return TransferResult(learner, reports)
+
+
+class PairEpisode:
+    """Algorithm 4 on a can one pair at a time, in the order an agent asks about them.
+
+    Each ``explore(part, action)`` is Algorithm 4's lines 3-8 for that pair (random θ until n
+    samples or the pair's model settles as moving nothing, §5.4.2), stopping early once an
+    action opens the can (5.9), on the can as learning found it. The report is the one a
+    transfer run gives for a pair it tried. Once the functional pair is known (an explored
+    action opened the can, or ``verified`` says a use of a pair did), the can joins
+    ``database`` with every pair explored, so that later cans can transfer from it.
+    """
+
+    def __init__(self, world: GarbageWorld, perception: Perception,
+                 database: KnownObjectDatabase, *, delta: float = 0.1,
+                 random_state: int | np.random.RandomState | None = None,
+                 r1: float = 0.3, r2: float = 0.05) -> None:
+        self.world = world
+        self.database = database
+        self.delta, self.r1, self.r2 = delta, r1, r2
+        self.can = CanUnderTest(world, perception)
+        rng = check_random_state(random_state)
+        params = SessionParams.from_estimator(PartBasedLearner(goal=delta, random_state=rng))
+        self.session = Session(self.can, params, rng)
+        self.functional: FunctionalPair | None = None
+
+    def explore(self, part: str, action: str, effect_name: str = "opened") -> PairReport:
+        """Explore (part, action) as Algorithm 4 does; the pair's evidence (§6.3.4)."""
+        done = len(self.session.trials)
+        try:
+            self.session.explore_pair(part, action, stop_at_goal=True)
+        finally:
+            self.can.restore()
+        success = self.session.success
+        if self.functional is None and success is not None:
+            self.verified(success.part, success.action, success.theta)
+        return _pair_report(self.session.models, self.session.bounds, self.functional,
+                            self.session.trials[done:], (part, action), effect_name,
+                            self.delta, self.r1, self.r2)
+
+    def verified(self, part: str, action: str, theta: float) -> None:
+        """(part, action) with θ opened the can: remember the can with its functional pair
+        (once; pairs never explored here are not this episode's to record)."""
+        if self.functional is not None or (part, action) not in self.session.models:
+            return
+        self.functional = FunctionalPair(part, action, theta)
+        view = self.session.view
+        self.database.add(KnownObject(
+            name=self.world.can, parts=dict(view.parts), above=frozenset(view.above),
+            bounds=dict(self.session.bounds), models=dict(self.session.models),
+            functional=self.functional, n_actions=len(self.session.trials),
+            extra={"can_file": self.world.spec.source}))

@@ -14,8 +14,8 @@ experiments can swap one for the other (``make_perception("camera" | "truth")``)
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol
 
 import cv2
@@ -337,12 +337,42 @@ def filled_hull(pixels: np.ndarray, width: int, height: int,
     return mask
 
 
-def make_perception(mode: str, camera: str = "head") -> Perception:
+class NoisyPerception:
+    """Another perception with Gaussian sensor noise on what chapter 5 measures: σ metres on
+    the opening s_o (eq. 5.14) and on each part's position (σ/α pixels on its image centre,
+    α the observation's metres per pixel), so e_o and e_ψ (eqs 5.3, 5.15) are noisy as the
+    NAO's were (§5.6.2: "Due to sensory noise ..."). The same for camera and ground truth."""
+
+    def __init__(self, perception: Perception, sigma: float,
+                 random_state: int | Sequence[int] | np.random.Generator | None = None):
+        if not (np.isfinite(sigma) and sigma >= 0):
+            raise ValueError(f"sigma must be a finite number >= 0, got {sigma!r}")
+        self.perception, self.sigma = perception, float(sigma)
+        self.rng = (random_state if isinstance(random_state, np.random.Generator)
+                    else np.random.default_rng(random_state))
+
+    def observe(self, world: GarbageWorld) -> Observation:
+        """The wrapped perception's observation, its opening and part centres perturbed."""
+        seen = self.perception.observe(world)
+        pixels = self.sigma / seen.scale if seen.scale > 0 else 0.0
+        parts = {}
+        for name, part in seen.parts.items():
+            dx, dy = self.rng.normal(0.0, 1.0, size=2) * pixels
+            parts[name] = replace(part, centre=(part.centre[0] + dx, part.centre[1] + dy))
+        opening = seen.opening + float(self.rng.normal(0.0, 1.0)) * self.sigma
+        return replace(seen, parts=parts, opening=opening)
+
+
+def make_perception(mode: str, camera: str = "head", sigma: float = 0.0,
+                    random_state: int | Sequence[int] | None = None) -> Perception:
     """The perception of a mode name: "camera" (rendered frames) or "truth" (ground truth),
-    through ``camera``."""
+    through ``camera``; with ``sigma`` > 0, with that sensor noise (``NoisyPerception``,
+    seeded by ``random_state``)."""
     if mode == "camera":
-        return CameraPerception(camera)
-    if mode == "truth":
-        return TruthPerception(camera)
-    raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
+        seen: Perception = CameraPerception(camera)
+    elif mode == "truth":
+        seen = TruthPerception(camera)
+    else:
+        raise ValueError(f"unknown perception mode {mode!r}; use camera or truth")
+    return NoisyPerception(seen, sigma, random_state) if sigma > 0 else seen
 

@@ -23,11 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sim.scene import BALL_RADIUS, GRIP_OFFSET, HAND_RADIUS, WALL
+from sim.scene import ARM_RANGE, BALL_RADIUS, GRIP_OFFSET, HAND_RADIUS, WALL
 from sim.world import GarbageWorld
 
-__all__ = ["ACTION_DIRECTIONS", "ACTION_TYPES", "THETA_BOUNDS", "SkillError", "SkillResult",
-           "check_skill", "drop_ball", "grasp_ball", "perform_skill"]
+__all__ = ["ACTION_DIRECTIONS", "ACTION_TYPES", "THETA_BOUNDS", "DropResult", "SkillError",
+           "SkillResult", "ball_within_reach", "check_skill", "drop_ball", "grasp_ball",
+           "perform_skill"]
 
 ACTION_TYPES: tuple[str, ...] = (
     "extend_arm", "contract_arm", "sweep_left", "sweep_right", "lift_up", "sweep_down",
@@ -51,6 +52,8 @@ LID_PRESS_INSET = 0.03
 """How far behind the lid's front edge the hand presses a lid down (m)."""
 CLEAR_X = -0.12
 """x (m) of the free corridor in front of every can the hand travels through."""
+GRASP_CLEARANCE = 0.08
+"""How far above the ball (m) the hand comes down from to grasp it."""
 
 
 class SkillError(ValueError):
@@ -156,13 +159,26 @@ def perform_skill(world: GarbageWorld, action: str, part: str, theta: float) -> 
     )
 
 
+def ball_within_reach(world: GarbageWorld) -> bool:
+    """Whether the hand can take the ball where it lies: the grip point and the point above it
+    it comes down from are inside the arm's reach, and the ball is not in the can."""
+    state = world.state()
+    if state.ball_in_can:
+        return False
+    grip = np.array(state.ball_pos) - np.array([GRIP_OFFSET, 0.0, 0.0])
+    low = np.array([bound[0] for bound in ARM_RANGE])
+    high = np.array([bound[1] for bound in ARM_RANGE])
+    above = grip + np.array([0.0, 0.0, GRASP_CLEARANCE])
+    return bool(np.all(grip >= low) and np.all(above <= high))
+
+
 def grasp_ball(world: GarbageWorld) -> bool:
     """Reach the ball from above, close the hand on it and lift it; True if it is held."""
     if world.state().holding_ball:
         return True
     ball = np.array(world.state().ball_pos)
     grip = ball - np.array([GRIP_OFFSET, 0.0, 0.0])
-    world.move_arm_to(grip + np.array([0.0, 0.0, 0.08]))
+    world.move_arm_to(grip + np.array([0.0, 0.0, GRASP_CLEARANCE]))
     world.move_arm_to(grip)
     held = world.grasp()
     world.move_arm(0.0, 0.0, 0.10)
@@ -170,23 +186,35 @@ def grasp_ball(world: GarbageWorld) -> bool:
     return held and world.state().holding_ball
 
 
-def drop_ball(world: GarbageWorld) -> bool:
-    """Carry the held ball into the can's front gap and let go; True if it lands in the can.
+@dataclass(frozen=True)
+class DropResult:
+    """What became of a dropped ball: ``landed`` in the can, or not; ``blocked`` if the can
+    stopped the ball at its front edge before it was over the opening."""
 
-    The hand slides the ball in just above the rim; the move is guarded, so a closed (or not
-    open enough) lid stops the ball at the lid and it is dropped there, outside the can.
-    Without a ball in hand nothing moves and the answer is False.
+    landed: bool
+    blocked: bool
+
+
+def drop_ball(world: GarbageWorld) -> DropResult:
+    """Carry the held ball into the can's opening and let go.
+
+    The hand slides the ball in just above the rim, at the stretch of the front edge the lid
+    leaves most open (``GarbageWorld.free_rim_y``: the middle for a lid that lifts, the
+    uncovered side for one that slides away); the move is guarded, so a closed (or not open
+    enough) lid stops the ball at the can and it is dropped there, outside. Without a ball in
+    hand nothing moves (neither landed nor blocked).
     """
     if not world.state().holding_ball:
-        return False
+        return DropResult(landed=False, blocked=False)
+    y = world.free_rim_y()
     z = world.spec.rim + BALL_RADIUS + 0.006
-    inside = np.array([WALL + BALL_RADIUS + 0.006 - GRIP_OFFSET, 0.0, z])
-    outside = np.array([CLEAR_X + 0.04 - GRIP_OFFSET, 0.0, z])
+    inside = np.array([WALL + BALL_RADIUS + 0.006 - GRIP_OFFSET, y, z])
+    outside = np.array([CLEAR_X + 0.04 - GRIP_OFFSET, y, z])
     world.move_arm_to(outside)
     world.set_ball_collisions(True)
-    world.move_arm_to(inside, stop_if=world.ball_touches_can)
+    blocked = not world.move_arm_to(inside, stop_if=world.ball_touches_can)
     world.drop()
-    world.move_arm_to(np.array([outside[0], 0.0, world.effector_pos[2]]))
+    world.move_arm_to(np.array([outside[0], y, world.effector_pos[2]]))
     world.home()
     world.settle()
-    return world.state().ball_in_can
+    return DropResult(landed=world.state().ball_in_can, blocked=blocked)

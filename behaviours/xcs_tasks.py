@@ -2,7 +2,10 @@
 
 A task turns one action index into world calls (Table 3.1's behaviours, App. A's head moves),
 perceives the state before and after it, and returns the reward (eqs. 3.14, 3.15, App. A),
-whether the trial is over, and the push effect for the affordance table (§3.5.2). Trials start
+whether the trial is over, and the push effect for the affordance table (§3.5.2). ``applicable``
+gives each state's actions whose preconditions hold (§3.2.2: preconditions are domain
+knowledge; §3.5.4: the NAO confirmed that the requested object was in front before trying to
+push it), so stacking pushes only with an object in front. Trials start
 from the same setting each time (§3.5.7); ``reset(trial)`` also makes the world's change of
 the experiment: the boxes exchanged after ``exchange_after`` trials, the target moved after
 ``move_after``.
@@ -13,9 +16,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
+import numpy as np
+
 from behaviours.blob_grid import GridPerception, centre_seen
 from behaviours.object_state import ObjectPerception, ObjectState, push_effect
-from sim.navigation import NavigationWorld
+from sim.navigation import LANES, START_LANE, NavigationWorld
 from sim.search import SearchWorld
 from sim.stacking import StackingWorld
 
@@ -30,6 +35,9 @@ NAVIGATION_ACTIONS = {"000": "walk_left", "001": "walk_ahead", "011": "walk_righ
 STACKING_ACTIONS = {"100": "push_stand", "101": "push_squat", "110": "choose_box",
                     "111": "choose_foam"}
 """Table 3.1: the navigation task uses the first four actions, stacking the latter four."""
+NAVIGATION_STARTS = ("right_lane", "anywhere")
+"""Where a navigation trial starts: the right-most lane (facing the right box), or a lane drawn
+per trial (§3.5.7: "anywhere on one side of the area")."""
 SEARCH_ACTIONS = {"00": "look_up", "01": "look_right", "10": "look_down", "11": "look_left"}
 """App. A: one bit per head motor and direction."""
 
@@ -82,6 +90,7 @@ class Task(Protocol):
     def reset(self, trial: int) -> View: ...
     def perform(self, action: int) -> tuple[StepResult, View]: ...
     def view(self) -> View: ...
+    def applicable(self, view: View) -> tuple[int, ...] | None: ...
 
 
 def _view(state: ObjectState) -> View:
@@ -95,20 +104,43 @@ class NavigationTask:
     actions = tuple(NAVIGATION_ACTIONS)
 
     def __init__(self, world: NavigationWorld, perception: ObjectPerception,
-                 exchange_after: int = 10):
-        """Drive ``world`` and perceive it with ``perception``."""
+                 exchange_after: int = 10, start: str = "right_lane", seed: int = 0):
+        """Drive ``world`` and perceive it with ``perception``. ``start``: every trial in the
+        right-most lane, or ``anywhere`` (§3.5.7): a lane drawn for each trial from ``seed``."""
+        if start not in NAVIGATION_STARTS:
+            raise ValueError(f"unknown start {start!r}; use {' or '.join(NAVIGATION_STARTS)}")
         self.world, self.perception, self.exchange_after = world, perception, exchange_after
+        self.start, self.seed = start, seed
         self.state = perception.observe(world)
 
     def view(self) -> View:
         """What the robot perceived after its last action."""
         return _view(self.state)
 
+    def applicable(self, view: View) -> None:
+        """Every action applies anywhere (walking into a box or off the table is allowed)."""
+        return None
+
     def reset(self, trial: int) -> View:
         """Start trial ``trial`` (0-based): the boxes are exchanged from ``exchange_after`` on."""
-        self.world.reset(exchanged=trial >= self.exchange_after)
+        self.world.reset(exchanged=trial >= self.exchange_after, lane=self.start_lane(trial))
         self.state = self.perception.observe(self.world)
         return _view(self.state)
+
+    @staticmethod
+    def best_payoff(lane: float, exchanged: bool) -> float:
+        """The most payoff (eq. 3.16) a trial starting in ``lane`` can earn: a punished step
+        sideways (eq. 3.14) per lane to the nearest one facing the movable box, which is on
+        the right (-y) until the exchange, then pushes to the destination (+1000)."""
+        facing = [i for i, y in enumerate(LANES) if (y < 0) != exchanged]
+        steps = min(abs(LANES.index(lane) - i) for i in facing)
+        return GOAL_REWARD + PUNISHMENT * steps
+
+    def start_lane(self, trial: int) -> float:
+        """Where trial ``trial`` starts: the right-most lane, or one drawn from (seed, trial)."""
+        if self.start == "right_lane":
+            return START_LANE
+        return LANES[int(np.random.default_rng([self.seed, trial]).integers(len(LANES)))]
 
     def perform(self, action: int) -> tuple[StepResult, View]:
         """Walk or push, then reward by eq. 3.14; falling off the table ends the trial."""
@@ -132,10 +164,19 @@ class StackingTask:
     names = STACKING_ACTIONS
     actions = tuple(STACKING_ACTIONS)
 
-    def __init__(self, world: StackingWorld, perception: ObjectPerception):
-        """Drive ``world`` and perceive it with ``perception``."""
+    def __init__(self, world: StackingWorld, perception: ObjectPerception,
+                 push_needs_object: bool = True):
+        """Drive ``world`` and perceive it with ``perception``; with ``push_needs_object``
+        (§3.5.4) a push applies only when an object is perceived in front."""
         self.world, self.perception = world, perception
+        self.push_needs_object = push_needs_object
         self.state = perception.observe(world)
+        self._choices = tuple(i for i, a in enumerate(self.actions)
+                              if self.names[a].startswith("choose"))
+
+    def applicable(self, view: View) -> tuple[int, ...] | None:
+        """Only the choices while nothing is perceived in front (§3.5.4), else every action."""
+        return self._choices if self.push_needs_object and view.obj is None else None
 
     def view(self) -> View:
         """What the robot perceived after its last action."""
@@ -180,6 +221,10 @@ class SearchTask:
         self.world.place_target(self.places[int(trial >= self.move_after)])
         self.world.rest()
         return self.view()
+
+    def applicable(self, view: View) -> None:
+        """Every look applies anywhere (past the boundary the head is reset)."""
+        return None
 
     def view(self) -> View:
         """What the head camera sees now."""

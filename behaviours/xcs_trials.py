@@ -5,7 +5,9 @@ ends at the goal, when the robot falls, or after ``n_step`` actions (n_step = 10
 N_s = 20 in App. A's search), and the task is set up as before for the next one. The payoff
 of a trial is the sum of its rewards (eq. 3.16). Every action that has an effect on the object
 in front updates the affordance table, in explore and exploit trials alike (Algorithm 2, line
-11); XCS itself learns in explore trials only (App. A, "Performance Component").
+11); XCS itself learns in explore trials only (App. A, "Performance Component") unless it is
+made with ``learn_in_exploit``. A task's ``applicable`` actions (preconditions) bound each
+choice.
 """
 
 from __future__ import annotations
@@ -43,12 +45,14 @@ class TrialRecord:
 
 
 def make_learner(actions: tuple[str, ...], method: str, seed: int,
-                 **overrides: float | int | bool) -> AffordanceXCS:
-    """XCS with Table 7.1's parameters (and ``overrides``), filtered or not by affordances."""
+                 filter_scope: str = "choice", **overrides: float | int | bool) -> AffordanceXCS:
+    """XCS with Table 7.1's parameters (and ``overrides``), filtered or not by affordances
+    (``filter_scope``: see ``AffordanceXCS``)."""
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; use {' or '.join(METHODS)}")
     xcs = XCS(len(actions), **{**TABLE_7_1, **overrides}, random_state=seed)
-    return AffordanceXCS(xcs, actions, use_affordances=method == "affordance_xcs")
+    return AffordanceXCS(xcs, actions, use_affordances=method == "affordance_xcs",
+                         filter_scope=filter_scope)
 
 
 def run_trial(task: Task, learner: AffordanceXCS, trial: int, explore: bool,
@@ -57,7 +61,7 @@ def run_trial(task: Task, learner: AffordanceXCS, trial: int, explore: bool,
     view = task.reset(trial)
     payoff, done, success, taken = 0.0, False, False, []
     while not done and len(taken) < n_step:
-        action = learner.act(view.bits, view.obj, explore)
+        action = learner.act(view.bits, view.obj, explore, task.applicable(view))
         before = view
         outcome, view = task.perform(action)
         if outcome.effect is not None and before.obj is not None:

@@ -24,7 +24,11 @@ from rich.table import Table  # noqa: E402
 
 from behaviours.part_learning import CanUnderTest  # noqa: E402
 from behaviours.perception import make_perception  # noqa: E402
-from robot.reproduce.studies.common.ch5 import THESIS_CANS, transfer_run  # noqa: E402
+from robot.reproduce.studies.common.ch5 import (  # noqa: E402
+    THESIS_CANS,
+    PartLearningConfig,
+    transfer_run,
+)
 from sim.scene import CANS  # noqa: E402
 from sim.world import GarbageWorld  # noqa: E402
 
@@ -50,7 +54,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     seed = parser.parse_args().seed
     started = time.perf_counter()
-    runs = transfer_run(seed, THESIS_CANS, "truth").values()
+    runs = transfer_run(seed, PartLearningConfig(), "truth").values()
     study = time.perf_counter() - started
     actions = sum(r.n_with + r.n_without for r in runs)
     baseline = physics_baseline(actions)

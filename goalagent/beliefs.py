@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from goalagent.extensions import RunContext, RunHook, SavedPredicate, saved_predicates
+from goalagent.kb.errors import KBError
 from goalagent.kb.facts import FactCheck, FactFile, FactFileError, read_facts
 from goalagent.kb.terms import Atom, Struct, Term, format_term, quote_atom
 from goalagent.parser import GoalSyntaxError
@@ -88,14 +89,30 @@ def knows(agent: Agent, predicate: SavedPredicate) -> bool:
                                    f"{predicate.arity})"))
 
 
+def _may_know(agent: Agent, predicate: SavedPredicate) -> bool:
+    """:func:`knows`, or True when the agent cannot be asked (the save then says why)."""
+    try:
+        return knows(agent, predicate)
+    except KBError:
+        return True
+
+
 def beliefs_of(agent: Agent, predicate: SavedPredicate) -> list[Term]:
-    """The agent's current beliefs of ``predicate`` as terms, in belief-base order."""
+    """The agent's current beliefs of ``predicate`` as terms, in belief-base order. Facts
+    taking more memory than the agent's --max-memory (an agent stopped for holding too
+    much) are not read: a KBError says so (writing them would take minutes)."""
     if not knows(agent, predicate):
         return []
+    names = [f"A{index}" for index in range(predicate.arity)]
+    text = f"{quote_atom(predicate.name)}({', '.join(names)})" if names else quote_atom(
+        predicate.name)
+    size = agent.query("bel", f"predicate_property({text}, size(Size))")
+    most = agent.ms.limits.max_memory_bytes
+    if size and isinstance(size[0]["Size"], int) and size[0]["Size"] > most:
+        raise KBError(f"its facts take {size[0]['Size'] >> 20:,} MB, more than its "
+                      f"--max-memory of {most >> 20:,} MB")
     if predicate.arity == 0:
         return [Atom(predicate.name) for _ in agent.query("bel", quote_atom(predicate.name))]
-    names = [f"A{index}" for index in range(predicate.arity)]
-    text = f"{quote_atom(predicate.name)}({', '.join(names)})"
     facts: list[Term] = []
     for answer in agent.query("bel", text):
         args = tuple(answer[name] for name in names)
@@ -105,19 +122,46 @@ def beliefs_of(agent: Agent, predicate: SavedPredicate) -> list[Term]:
     return facts
 
 
+@dataclass(frozen=True)
+class Saved:
+    """What a save wrote: ``count`` facts, and the agents some of whose facts it could not
+    write (name -> why; the file says so in a comment where those facts would be)."""
+
+    count: int
+    unsaved: dict[str, str]
+
+
 def save_beliefs(agents: Iterable[Agent], predicates: Sequence[SavedPredicate],
-                 path: Path) -> int:
-    """Write every agent's beliefs of ``predicates`` as Prolog facts; returns how many."""
+                 path: Path) -> Saved:
+    """Write every agent's beliefs of ``predicates`` as Prolog facts. The facts of a
+    predicate an agent holds that cannot be read or written (one nested too deeply for
+    Python, a cyclic one, too many for its limits) are left out with the reason: one bad
+    agent never costs the others' save."""
     lines = [f"% {predicate.heading} saved by goalagent" for predicate in predicates]
     count = 0
+    unsaved: dict[str, str] = {}
     for agent in agents:
         lines.append(f"% agent {agent.name}")
         for predicate in predicates:
-            facts = beliefs_of(agent, predicate)
-            lines.extend(format_term(fact) + "." for fact in facts)
-            count += len(facts)
+            try:
+                text = [format_term(fact) + "." for fact in beliefs_of(agent, predicate)]
+            except (KBError, RecursionError) as error:
+                reason = (f"{predicate.indicator}: "
+                          + ("a fact nested too deeply to write"
+                             if isinstance(error, RecursionError) else _one_line(str(error))))
+                unsaved[agent.name] = "; ".join(filter(None, [unsaved.get(agent.name), reason]))
+                lines.append(f"% not saved: {reason}")
+                continue
+            lines.extend(text)
+            count += len(text)
     write_atomically(path, "\n".join(lines) + "\n")
-    return count
+    return Saved(count, unsaved)
+
+
+def _one_line(text: str) -> str:
+    """``text`` on one line, short enough for a comment in a saved file."""
+    line = " ".join(text.split())
+    return line if len(line) <= 200 else line[:200] + "..."
 
 
 @dataclass(frozen=True)
@@ -170,6 +214,7 @@ class BeliefSaver(RunHook):
         self._cycles = 0
         self._last = time.monotonic()
         self._failed = False
+        self._unsaved: dict[str, str] = {}  # agents whose facts a save left out, told once
 
     def start(self, run: RunContext) -> None:
         """The interval starts with the run."""
@@ -185,7 +230,7 @@ class BeliefSaver(RunHook):
         if not due:
             return
         try:
-            self.save(run.system.agents)
+            self._tell_unsaved(run, self.save(run.system.agents))
         except OSError as error:
             if not self._failed:
                 run.console.print(f"warning: cannot save beliefs to {self.path}: "
@@ -193,24 +238,33 @@ class BeliefSaver(RunHook):
             self._failed = True
         self._last = time.monotonic()
 
-    def save(self, agents: Iterable[Agent]) -> int:
-        """Write the saved predicates of ``agents`` now (the offered ones some agent has);
-        how many facts."""
+    def save(self, agents: Iterable[Agent]) -> Saved:
+        """Write the saved predicates of ``agents`` now (the offered ones some agent has)."""
         group = list(agents)
         self.written = self.predicates + tuple(
             predicate for predicate in self.offered
-            if any(knows(agent, predicate) for agent in group))
-        count = save_beliefs(group, self.written, self.path)
+            if any(_may_know(agent, predicate) for agent in group))
+        saved = save_beliefs(group, self.written, self.path)
         self.saves += 1
         self._failed = False
-        return count
+        return saved
 
     def finish(self, run: RunContext) -> None:
-        """Save and say how many beliefs of which predicates went where."""
-        count = self.save(run.system.agents)
+        """Save and say how many beliefs of which predicates went where (and whose not)."""
+        saved = self.save(run.system.agents)
+        self._tell_unsaved(run, saved)
         which = ", ".join(predicate.indicator for predicate in self.written)
         if which:
-            run.console.print(f"saved {count} {which} beliefs to {self.path}", markup=False)
+            run.console.print(f"saved {saved.count} {which} beliefs to {self.path}",
+                              markup=False)
         else:
             run.console.print(f"saved no beliefs to {self.path}: no agent has a predicate to "
                               "save (name one with --save-predicate NAME/ARITY)", markup=False)
+
+    def _tell_unsaved(self, run: RunContext, saved: Saved) -> None:
+        """A warning for each agent a save left out (once per agent and reason)."""
+        for name, reason in saved.unsaved.items():
+            if self._unsaved.get(name) != reason:
+                run.console.print(f"warning: beliefs of agent {name} not saved to "
+                                  f"{self.path}: {reason}", markup=False)
+        self._unsaved.update(saved.unsaved)

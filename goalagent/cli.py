@@ -39,8 +39,7 @@ from goalagent.extensions import (
 from goalagent.extras import install_hint
 from goalagent.kb.engine import KBError
 from goalagent.kb.limits import Limits, default_module_depth
-from goalagent.kb.terms import Term
-from goalagent.mas import MultiAgentSystem, parse_parameter
+from goalagent.mas import MultiAgentSystem, ParameterText
 from goalagent.parser import GoalSyntaxError, parse_mas_file
 from goalagent.runner import Run
 from goalagent.stepper import TerminalStepper
@@ -51,14 +50,34 @@ from ondisk import check_target
 HELP = "Run GOAL agent programs whose beliefs live in SWI-Prolog."
 MAX_SAVED_ARITY = 255  # --save-predicate: larger arities are surely mistakes
 
+# The limits and confinement options of run and test (goalagent.kb.limits).
+MaxInferences = Annotated[int, typer.Option(
+    help="Inferences one rule of an agent may make before it is not applicable.")]
+MaxQuerySeconds = Annotated[float, typer.Option(
+    help="Seconds Prolog may run for an agent without returning (then the rule is not "
+         "applicable).")]
+MaxBeliefs = Annotated[int, typer.Option(
+    help="Beliefs and goals an agent may hold before it is stopped.")]
+MaxMemory = Annotated[int, typer.Option(
+    help="Megabytes an agent's clauses (with their atoms) may hold, and one of its calls take "
+         "outside Prolog's stacks, before it is stopped.")]
+Sandbox = Annotated[bool, typer.Option(
+    help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")]
+DEFAULT_MODULE_DEPTH = default_module_depth()  # (as the C stack allows: read once)
+MaxModuleDepth = Annotated[int, typer.Option(
+    help="How deep module calls may nest before the agent is stopped (default: as deep as "
+         "the C stack safely allows).")]
 
-def _env_params(pairs: list[str]) -> dict[str, Term]:
-    params: dict[str, Term] = {}
+
+def _env_params(pairs: list[str]) -> dict[str, ParameterText]:
+    """``--env-param KEY=VALUE`` pairs, each value kept as typed until the environment says
+    whether it is a path (``goalagent.mas.read_parameter``)."""
+    params: dict[str, ParameterText] = {}
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
             raise user_error(f"--env-param {pair!r}: expected KEY=VALUE")
-        params[key.strip()] = parse_parameter(value.strip())
+        params[key.strip()] = ParameterText(value.strip())
     return params
 
 
@@ -104,7 +123,8 @@ def _language_run_options(
     env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
     env_param: Annotated[
         list[str] | None,
-        typer.Option("--env-param", help="KEY=VALUE environment init parameter (Prolog term)."),
+        typer.Option("--env-param", help="KEY=VALUE environment init parameter (a Prolog "
+                                          "term; a file name for a path parameter)."),
     ] = None,
     max_cycles: Annotated[int | None, typer.Option(help="Stop after this many cycles.")] = None,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
@@ -143,20 +163,12 @@ def _language_run_options(
     host: Annotated[str, typer.Option(
         help="The address the inspector listens on (only this machine by default).")
     ] = "127.0.0.1",
-    max_inferences: Annotated[int, typer.Option(
-        help="Inferences one rule of an agent may make before it is not applicable.")
-    ] = Limits.max_inferences,
-    max_query_seconds: Annotated[float, typer.Option(
-        help="Seconds Prolog may run for an agent without returning (then the rule is not "
-             "applicable).")] = Limits.max_query_seconds,
-    max_beliefs: Annotated[int, typer.Option(
-        help="Beliefs and goals an agent may hold before it is stopped.")] = Limits.max_beliefs,
-    sandbox: Annotated[bool, typer.Option(
-        help="Agents' Prolog may call only safe built-ins (no files, OS, flags, ...).")
-    ] = False,
-    max_module_depth: Annotated[int, typer.Option(
-        help="How deep module calls may nest before the agent is stopped (default: as deep "
-             "as the C stack safely allows).")] = default_module_depth(),
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    max_memory: MaxMemory = Limits.max_memory,
+    sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -207,12 +219,9 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                          f"{err.strerror or err}") from None
     if values["max_cycles"] is not None and values["max_cycles"] < 0:
         raise user_error("--max-cycles must be 0 or more")
-    try:
-        limits = Limits(values["max_inferences"], values["max_query_seconds"],
-                        values["max_beliefs"], values["sandbox"],
-                        max_module_depth=values["max_module_depth"])
-    except ValueError as err:
-        raise user_error(f"--{str(err).replace('_', '-')}") from None
+    limits = _limits(values["max_inferences"], values["max_query_seconds"],
+                     values["max_beliefs"], values["sandbox"], values["max_module_depth"],
+                     values["max_memory"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
                    warn=lambda message: err_console.print(message, markup=False), limits=limits)
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
@@ -251,7 +260,18 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise typer.Exit(code=code or 1)
 
 
-def _check_env_options(path: Path, env: str | None, params: dict[str, Term]) -> None:
+def _limits(max_inferences: int, max_query_seconds: float, max_beliefs: int,
+            sandbox: bool, max_module_depth: int, max_memory: int) -> Limits:
+    """The agents' limits from the options (exit 2 naming the option that is out of range)."""
+    try:
+        return Limits(max_inferences, max_query_seconds, max_beliefs, sandbox,
+                      max_module_depth=max_module_depth, max_memory=max_memory)
+    except ValueError as err:
+        raise user_error(f"--{str(err).replace('_', '-')}") from None
+
+
+def _check_env_options(path: Path, env: str | None,
+                       params: dict[str, ParameterText]) -> None:
     """``--env`` names an environment and ``--env-param`` keys it takes, with the closest
     name when not (said of the option, not of a place in the agent file)."""
     name = env
@@ -294,7 +314,7 @@ def _belief_saver(values: dict[str, Any], predicates: Sequence[SavedPredicate],
                        offered=[p for p in predicates if p.indicator in offered])
 
 
-def _build_system(path: Path, env: str | None, params: dict[str, Term],
+def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
     if path.suffix != ".mas2g" or env is None:
@@ -372,14 +392,24 @@ def test(
     max_cycles: Annotated[int, typer.Option(help="Stop each test after this many rounds "
                                             "(besides the file's timeout).")] = 1000,
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
+    max_inferences: MaxInferences = Limits.max_inferences,
+    max_query_seconds: MaxQuerySeconds = Limits.max_query_seconds,
+    max_beliefs: MaxBeliefs = Limits.max_beliefs,
+    max_memory: MaxMemory = Limits.max_memory,
+    sandbox: Sandbox = False,
+    max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
-    conditions; a report per test on stdout (what the agents print goes to stderr), exit
-    code 1 when one failed."""
+    conditions, under the limits and confinement of run (a condition that runs past a limit
+    or is refused fails its item); a report per test on stdout (what the agents print goes
+    to stderr), exit code 1 when one failed."""
+    limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth,
+                     max_memory)
     failed = False
     for path in paths:
         try:
-            report = run_test_file(path, max_cycles=max_cycles, seed=seed, output=sys.stderr,
+            report = run_test_file(path, max_cycles=max_cycles, seed=seed, limits=limits,
+                                   output=sys.stderr,
                                    warn=lambda message: err_console.print(message, markup=False))
         except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
             raise user_error(str(err)) from None

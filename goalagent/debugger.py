@@ -35,6 +35,8 @@ if TYPE_CHECKING:
 _QUERY = re.compile(r"\s*(bel|goal|a-goal|goal-a|percept)\s*\((.*)\)\s*\Z", re.DOTALL)
 _RULE = re.compile(r"\s*(.+):(\d+)\s*\Z")
 MAX_BREAKPOINTS = 100  # each condition breakpoint is a query per agent and cycle
+MAX_ANSWERS = 100  # answers of a query shown at most (the rest is counted as "more")
+MAX_ANSWER_CHARS = 10_000  # characters of one answer shown at most
 
 
 class DebuggerError(ValueError):
@@ -51,9 +53,12 @@ def split_query(text: str) -> tuple[str, str]:
 
 
 def answer_text(answers: list[dict[str, Term]]) -> list[str]:
-    """Query answers as lines (``X=a, Y=b``; ``true`` for an answer without variables)."""
-    return [", ".join(f"{name}={show_term(value)}" for name, value in answer.items())
-            or "true" for answer in answers]
+    """Query answers as lines (``X=a, Y=b``; ``true`` for an answer without variables),
+    each cut at ``MAX_ANSWER_CHARS``."""
+    lines = [", ".join(f"{name}={show_term(value)}" for name, value in answer.items())
+             or "true" for answer in answers]
+    return [line if len(line) <= MAX_ANSWER_CHARS else
+            f"{line[:MAX_ANSWER_CHARS]} ... ({len(line):,} characters)" for line in lines]
 
 
 @dataclass(frozen=True)
@@ -175,12 +180,15 @@ class Debugger(RunHook):
         self.breakpoints = [b for b in self.breakpoints if b.text != text.strip()]
 
     def query(self, agent: Agent, text: str) -> list[str]:
-        """The answers of a query on ``agent`` as lines (``DebuggerError`` when malformed)."""
+        """The first ``MAX_ANSWERS`` answers of a query on ``agent`` as lines, confined as
+        the agent's own code (``DebuggerError`` when malformed or refused)."""
         op, query = split_query(text)
         try:
-            return answer_text(agent.query(op, query, confined=True))
+            answers = agent.query(op, query, confined=True, limit=MAX_ANSWERS + 1)
         except KBError as err:
             raise DebuggerError(str(err)) from None
+        more = ["... (more answers)"] if len(answers) > MAX_ANSWERS else []
+        return answer_text(answers[:MAX_ANSWERS]) + more
 
     def agent(self, name: str) -> Agent:
         """The agent called ``name``."""
@@ -230,14 +238,14 @@ class Debugger(RunHook):
     @staticmethod
     def _holds(agent: Agent, breakpoint: Breakpoint) -> bool:
         try:
-            return bool(agent.query(breakpoint.op, breakpoint.query, confined=True))
+            return bool(agent.query(breakpoint.op, breakpoint.query, confined=True, limit=1))
         except KBError:
             return False
 
     def _check_query(self, op: str, query: str) -> None:
         if self.system is not None and self.system.agents:
             try:
-                self.system.agents[0].query(op, query, confined=True)
+                self.system.agents[0].query(op, query, confined=True, limit=1)
             except KBError as err:
                 raise DebuggerError(str(err)) from None
 

@@ -49,3 +49,4 @@ class ProblemKind(_Named):
     RECEIVER_UNBOUND = "receiver"  # a message whose receiver is a variable
     DELIVERY_FAILED = "delivery"  # a message that could not be delivered
     LIMIT_EXCEEDED = "limit"  # a rule passed an inference or time limit
+    GOAL_UNCHECKED = "goal_check"  # checking a goal passed a limit or raised: it is kept

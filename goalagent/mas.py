@@ -103,6 +103,34 @@ def parse_parameter(text: str) -> Term:
     return Atom(text.strip()) if isinstance(term, Var) else term
 
 
+@dataclass(frozen=True)
+class ParameterText:
+    """An environment parameter's value as the user typed it (``--env-param k=v``), read once
+    the environment is known: a parameter it declares as a path takes a file name as written
+    (see ``read_parameter``)."""
+
+    text: str
+
+
+def looks_like_file_name(text: str) -> bool:
+    """Unquoted text with a ``.`` or a ``/`` in it: ``db.json``, ``out/db``, ``../x.yaml``
+    (as Prolog, ``db.json`` would be the term '.'(db, json))."""
+    stripped = text.strip()
+    return bool(stripped) and stripped[0] not in "'\"" and any(c in stripped for c in "./")
+
+
+def read_parameter(value: Term | ParameterText, *, path: bool) -> Term:
+    """The term of an init parameter's value: typed text is taken as written when the
+    parameter is a path and the text looks like a file name, else read as Prolog
+    (``parse_parameter``); a term is kept as it is (a ``.mas2g`` file's init values are terms
+    already, so a file name there is quoted: ``objects = 'db.json'``)."""
+    if not isinstance(value, ParameterText):
+        return value
+    if path and looks_like_file_name(value.text):
+        return value.text.strip()
+    return parse_parameter(value.text)
+
+
 class MultiAgentSystem:
     """Agents, their environment and the message routing between them.
 
@@ -165,7 +193,7 @@ class MultiAgentSystem:
         cls,
         path: str | Path,
         *,
-        env_params: Mapping[str, Term] | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
         seed: int = 0,
         output: TextIO | None = None,
         tracer: Tracer | None = None,
@@ -179,7 +207,9 @@ class MultiAgentSystem:
         Args:
             path: the system file.
             env_params: init parameters that replace or add to the file's
-                (``--env-param``), as terms (``parse_parameter("[0,0,0]")``).
+                (``--env-param``), as terms (``parse_parameter("[0,0,0]")``) or as typed
+                text (``ParameterText("db.json")``: a file name where the environment
+                declares a path).
             seed: agent number i gets seed ``seed + i``.
             output: where the agents' ``print/1`` writes (default: stdout).
             tracer: called with (agent, kind, text) for every event of every agent.
@@ -198,7 +228,8 @@ class MultiAgentSystem:
         mas = parse_mas_file(path)
         programs = load_agents(mas)
         numbers = {agentfile.name: agentfile.number for agentfile in mas.agentfiles}
-        params = {key: get_engine().parse_term(value.text) for key, value in mas.env_init}
+        params: dict[str, Term | ParameterText] = {
+            key: get_engine().parse_term(value.text) for key, value in mas.env_init}
         params.update(env_params or {})
         environment = (_make_environment(mas.environment, mas.env_pos or mas.pos)
                        if mas.environment else None)
@@ -234,7 +265,7 @@ class MultiAgentSystem:
         path: str | Path,
         *,
         environment: str | None = None,
-        env_params: Mapping[str, Term] | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
         seed: int = 0,
         output: TextIO | None = None,
         tracer: Tracer | None = None,
@@ -249,7 +280,8 @@ class MultiAgentSystem:
             path: the agent file.
             environment: a registered environment name (``blocksworld``) or
                 ``package.module:Class``; None: no environment.
-            env_params: the environment's init parameters, as terms.
+            env_params: the environment's init parameters, as terms or typed text
+                (``ParameterText``).
             seed: agent number i gets seed ``seed + i``.
             output: where the agents' ``print/1`` writes (default: stdout).
             tracer: called with (agent, kind, text) for every event of every agent.
@@ -272,7 +304,7 @@ class MultiAgentSystem:
         *,
         file: str = "<string>",
         environment: str | None = None,
-        env_params: Mapping[str, Term] | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
         seed: int = 0,
         output: TextIO | None = None,
         tracer: Tracer | None = None,
@@ -288,7 +320,8 @@ class MultiAgentSystem:
             text: the agent program (the single-file ``.goal`` format).
             file: the name its errors and positions give.
             environment: a registered environment name or ``package.module:Class``.
-            env_params: the environment's init parameters, as terms.
+            env_params: the environment's init parameters, as terms or typed text
+                (``ParameterText``).
             seed: agent number i gets seed ``seed + i``.
             output: where the agents' ``print/1`` writes (default: stdout).
             tracer: called with (agent, kind, text) for every event of every agent.
@@ -306,7 +339,7 @@ class MultiAgentSystem:
 
     @classmethod
     def _of_one(cls, program: ast.AgentProgram, pos: ast.Pos, home: Path | None,
-                environment: str | None, env_params: Mapping[str, Term] | None,
+                environment: str | None, env_params: Mapping[str, Term | ParameterText] | None,
                 options: dict[str, Any]) -> MultiAgentSystem:
         """The system of one program on ``environment`` (files it names looked for in
         ``home``)."""
@@ -353,11 +386,14 @@ class MultiAgentSystem:
             return name
         return next(f"{name}{n}" for n in range(2, len(taken) + 3) if f"{name}{n}" not in taken)
 
-    def _start_environment(self, params: dict[str, Term]) -> None:
+    def _start_environment(self, params: dict[str, Term | ParameterText]) -> None:
         if self.environment is None:
             return
         self.environment.attach_environment_listener(self)
-        converted: dict[str, Parameter] = {key: from_term(value) for key, value in params.items()}
+        environment = self.environment
+        converted: dict[str, Parameter] = {
+            key: from_term(read_parameter(value, path=environment.is_path_parameter(key)))
+            for key, value in params.items()}
         self.environment.init(converted)
         self.environment.start()
         for entity in self.environment.free_entities():

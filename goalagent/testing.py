@@ -10,6 +10,11 @@ each in turn as ``goalagent run`` does, until every agent the test names has tak
 steps (or stopped), the file's ``timeout`` (seconds) passed or ``max_cycles`` ran. Written
 here rather than taken from a library because the judging is GOAL's own semantics over
 goalagent's mental states.
+
+The agents run with the limits and confinement ``goalagent run`` gives them (``limits``, and
+a ``.mas2g``'s own per agent); the test's conditions are judged as the agent's own code,
+under its limits: a condition that raises, runs away or is refused fails its item, with the
+item's position, and the rest of the file goes on.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ from pathlib import Path
 from goalagent import ast
 from goalagent.agent import Agent, Event, EventKind
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
+from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Term, format_term
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import GoalSyntaxError, parse_test_file
@@ -82,11 +88,13 @@ class TestReport:
 
 
 def run_test_file(path: str | Path, *, max_cycles: int = 1000, seed: int = 0,
-                  output=None, warn=None) -> TestReport:
+                  output=None, warn=None, limits: Limits | None = None) -> TestReport:
     """Run a `.test2g` file (GoalSyntaxError for a malformed one or one naming what its
-    system lacks; the system's own loading errors as ``goalagent run`` raises them)."""
+    system lacks; the system's own loading errors as ``goalagent run`` raises them), its
+    agents under ``limits`` as ``goalagent run`` would."""
     test = parse_test_file(path)
-    system = MultiAgentSystem.from_mas_file(test.mas, seed=seed, output=output, warn=warn)
+    system = MultiAgentSystem.from_mas_file(test.mas, seed=seed, output=output, warn=warn,
+                                            limits=limits)
     try:
         return _TestRun(test, system, max_cycles).run()
     finally:
@@ -144,6 +152,15 @@ class _Judge:
 
     def holds(self, condition: ast.Condition, bindings: Bindings | None = None) -> bool:
         return bool(self.answers(condition, bindings, limit=1))
+
+    def judge(self, condition: ast.Condition, when: str = "") -> tuple[bool, str]:
+        """Whether ``condition`` holds, and why it could not be judged: a Prolog error, a
+        limit passed, a refused call (then it does not hold); ``when``: where the error is
+        said to be (default: at the agent's cycle)."""
+        try:
+            return self.holds(condition), ""
+        except KBError as err:
+            return False, f"a Prolog error {when or f'at cycle {self.agent.cycle}'}: {err}"
 
 
 class _Monitor:
@@ -212,11 +229,9 @@ class _Monitor:
             return Verdict(text, pos, self.at is None,
                            f"{broken} at cycle {self.at}" if self.at is not None else states)
         if kind == "atend":
-            try:
-                at_end = self.judge.holds(self.condition.condition)
-            except KBError as err:
-                return Verdict(text, pos, False, f"a Prolog error at the end: {err}")
-            return Verdict(text, pos, at_end, "" if at_end else "did not hold at the end")
+            at_end, error = self.judge.judge(self.condition.condition, "at the end")
+            return Verdict(text, pos, at_end,
+                           error or ("" if at_end else "did not hold at the end"))
         if self.pending:
             cycle, answer = next(iter(self.pending.values()))
             shown = ", ".join(f"{n}={format_term(v)}" for n, v in answer.items())
@@ -244,23 +259,23 @@ class _ModuleWatch:
         self.judge = judge
         self.monitors = [_Monitor(condition, judge) for condition in test.conditions]
         self.section = Section(f"test {test.module} (agent {agent.name})")
-        self.pre_result: bool | None = None
+        self.pre_result: tuple[bool, str] = (False, "")
         self.pre_checked = False
         self.ran = False
 
     def before_cycle(self) -> None:
         """Judge pre on the state the module is about to start from (kept until it runs)."""
         if self.test.pre is not None and not self.pre_checked:
-            self.pre_result = self.judge.holds(self.test.pre)
+            self.pre_result = self.judge.judge(self.test.pre)
 
     def after_cycle(self, cycle: int, ran: bool) -> None:
         if not ran:
             return
         if not self.pre_checked and self.test.pre is not None:
             self.pre_checked = True
-            self.section.verdicts.append(Verdict("pre", self.test.pos, bool(self.pre_result),
-                                                 "" if self.pre_result else
-                                                 f"did not hold when {self.test.module} began"))
+            held, error = self.pre_result
+            self.section.verdicts.append(Verdict("pre", self.test.pos, held, error or (
+                "" if held else f"did not hold when {self.test.module} began")))
         self.ran = True
         for monitor in self.monitors:
             monitor.observe(cycle)
@@ -272,9 +287,9 @@ class _ModuleWatch:
             return self.section
         self.section.verdicts.extend(monitor.verdict() for monitor in self.monitors)
         if self.test.post is not None:
-            held = self.judge.holds(self.test.post)
-            self.section.verdicts.append(Verdict("post", self.test.pos, held, "" if held else
-                                                 "did not hold when the test ended"))
+            held, error = self.judge.judge(self.test.post)
+            self.section.verdicts.append(Verdict("post", self.test.pos, held, error or (
+                "" if held else "did not hold when the test ended")))
         return self.section
 
 
@@ -295,10 +310,10 @@ class _Script:
         for step in self.test.steps:
             if step.kind == "assert":
                 assert step.condition is not None
-                held = self.judge.holds(step.condition)
+                held, error = self.judge.judge(step.condition)
                 self.section.verdicts.append(Verdict(
                     f"assert{': ' + step.message if step.message else ''}", step.pos, held,
-                    "" if held else "did not hold"))
+                    error or ("" if held else "did not hold")))
                 continue
             if self._is_init(step):
                 self.run.initialize(self.agent)
@@ -326,7 +341,11 @@ class _Script:
         what = f"do {step.target}" + (" until ..." if step.until else "")
         start = self.agent.cycle
         while True:
-            if step.until is not None and self.judge.holds(step.until):
+            held, error = self.judge.judge(step.until) if step.until is not None else (False, "")
+            if error:  # its condition cannot be judged: the step fails there
+                self.section.verdicts.append(Verdict(what, step.pos, False, error))
+                return
+            if held:
                 self.section.verdicts.append(Verdict(what, step.pos, True, f"reached after "
                                                      f"{self.agent.cycle - start} cycle(s)"))
                 return

@@ -3,7 +3,7 @@
 # (when swipl is missing), EGL/Mesa, a virtualenv in .venv and the package in it.
 #   bash scripts/setup.sh          for the tests (`make test`): also Chromium and its driver
 #                                  (the inspector's browser test), and the dev (with docs),
-#                                  bench and cluster (Ray) extras
+#                                  bench, cluster (Ray) and gym (Gymnasium) extras
 #   bash scripts/setup.sh --demo   for `make demo`: the package with its robot extra only
 # Without root, see "Install" in docs/getting-started.md: pip in a virtualenv against the
 # SWI-Prolog your system (or Homebrew, or conda) has.
@@ -36,7 +36,7 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install -q --upgrade pip
 if [ "$FOR_TESTS" -eq 1 ]; then
-    .venv/bin/python -m pip install -q -e ".[dev,bench,cluster]"
+    .venv/bin/python -m pip install -q -e ".[dev,bench,cluster,gym]"
 else
     .venv/bin/python -m pip install -q -e ".[robot]"
 fi

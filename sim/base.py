@@ -12,6 +12,7 @@ import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import ClassVar
 
 import mujoco
 import numpy as np
@@ -54,16 +55,27 @@ class CameraModel:
 class RenderedWorld:
     """A MuJoCo model and its data, stepped, settled and rendered headless."""
 
+    default_camera: ClassVar[str | None] = None
+    """The camera ``render`` and ``camera_intrinsics`` use when none is named (None: name one)."""
+    settle_steps: ClassVar[int] = 1500
+    """How many steps ``settle`` waits at most for the world to come to rest, by default."""
+
     def __init__(self, mjcf: str, width: int = 320, height: int = 240):
         """Compile ``mjcf``; frames are ``width`` x ``height`` pixels."""
         if not (0 < width <= MAX_IMAGE[0] and 0 < height <= MAX_IMAGE[1]):
             raise ValueError(f"image size {width}x{height} must lie within 1x1.."
                              f"{MAX_IMAGE[0]}x{MAX_IMAGE[1]}")
         self.width, self.height = width, height
+        self._renderer: mujoco.Renderer | None = None
+        self.load(mjcf)
+        self.steps = 0
+
+    def load(self, mjcf: str) -> None:
+        """Compile ``mjcf`` into a new model and data, replacing the current ones (a renderer
+        made for the old model is freed; the next frame makes one for the new)."""
         self.model = mujoco.MjModel.from_xml_string(mjcf)
         self.data = mujoco.MjData(self.model)
-        self._renderer: mujoco.Renderer | None = None
-        self.steps = 0
+        self.close()
 
     # ---------------------------------------------------------------- physics
     def step(self, n: int = 1) -> None:
@@ -71,19 +83,21 @@ class RenderedWorld:
         mujoco.mj_step(self.model, self.data, nstep=n)
         self.steps += n
 
-    def settle(self, max_steps: int = 1500, calm_speed: float = 2e-3) -> None:
-        """Step until every joint is (nearly) at rest for 20 steps, or ``max_steps`` passed."""
+    def settle(self, max_steps: int | None = None, calm_speed: float = 2e-3) -> None:
+        """Step until every joint is (nearly) at rest for 20 steps, or ``max_steps`` passed
+        (default ``settle_steps``)."""
         calm = 0
-        for _ in range(max_steps):
+        for _ in range(self.settle_steps if max_steps is None else max_steps):
             self.step()
             calm = calm + 1 if float(np.max(np.abs(self.data.qvel))) < calm_speed else 0
             if calm >= 20:
                 return
 
     # ----------------------------------------------------------------- camera
-    def render(self, camera: str) -> np.ndarray:
-        """RGB frame (H, W, 3) uint8 of ``camera`` as the world is now."""
-        self._check_camera(camera)
+    def render(self, camera: str | None = None) -> np.ndarray:
+        """RGB frame (H, W, 3) uint8 of ``camera`` (default ``default_camera``) as the world
+        is now."""
+        camera = self._camera(camera)
         if self._renderer is None:
             try:
                 self._renderer = mujoco.Renderer(self.model, self.height, self.width)
@@ -95,20 +109,26 @@ class RenderedWorld:
         self._renderer.update_scene(self.data, camera)
         return self._renderer.render().copy()
 
-    def camera_intrinsics(self, camera: str) -> CameraModel:
-        """Pinhole intrinsics and world pose of ``camera`` for the current image size."""
-        self._check_camera(camera)
+    def camera_intrinsics(self, camera: str | None = None) -> CameraModel:
+        """Pinhole intrinsics and world pose of ``camera`` (default ``default_camera``) for the
+        current image size."""
+        camera = self._camera(camera)
         fovy = float(self.model.camera(camera).fovy[0])
         f = (self.height / 2) / math.tan(math.radians(fovy) / 2)
         dc = self.data.camera(camera)
         return CameraModel(self.width, self.height, fovy, f, f, self.width / 2,
                            self.height / 2, dc.xpos.copy(), dc.xmat.reshape(3, 3).copy())
 
-    def _check_camera(self, camera: str) -> None:
-        """Refuse unknown camera names with the list of known ones."""
+    def _camera(self, camera: str | None) -> str:
+        """The camera named (or the default one); unknown names are refused with the list of
+        known ones."""
         names = [self.model.camera(i).name for i in range(self.model.ncam)]
-        if camera not in names:
-            raise ValueError(f"unknown camera {camera!r}; this scene has {', '.join(names)}")
+        chosen = self.default_camera if camera is None else camera
+        if chosen is None:
+            raise ValueError(f"name a camera; this scene has {', '.join(names)}")
+        if chosen not in names:
+            raise ValueError(f"unknown camera {chosen!r}; this scene has {', '.join(names)}")
+        return chosen
 
     def close(self) -> None:
         """Free the renderer's GL context."""

@@ -247,6 +247,9 @@ def parse_can(text: str, source: str = "<can>") -> CanSpec:
     if "handle" in data and drop > 0.8 * dims["height"] - 0.04:
         doc.fail(f"handle.drop {drop} puts the handle over the body marker (at most "
                  f"{0.8 * dims['height'] - 0.04:.3f} for this height)", ["handle", "drop"])
+    give = data.get("give", {})
+    if "handle" in give and "handle" not in data and PARTS_BY_MECHANISM.get(kind) != "handle":
+        doc.fail(f"a {kind} can has no handle to give play to", ["give"], "handle")
     colours = data.get("colours", {})
     for part, rgb in colours.items():
         low, high = min(rgb), max(rgb)
@@ -259,6 +262,11 @@ def parse_can(text: str, source: str = "<can>") -> CanSpec:
         optional["slide"] = mechanism["direction"]
     if "height" in data.get("pedal", {}):
         optional["pedal_z"] = data["pedal"]["height"]
+    if "handle" in give:
+        optional["handle_play"] = tuple(give["handle"]["axes"])
+        optional["play_travel"] = float(give["handle"]["travel"])
+    if "can" in give:
+        optional["can_slide"] = float(give["can"]["slide"])
     for part in ("body", "lid"):
         if part in colours:
             optional[f"{part}_colour"] = tuple(float(x) for x in colours[part])

@@ -47,6 +47,16 @@ class CanSpec:
     """Which way a sliding lid opens (``left`` or ``right``; slide_lid only)."""
     pedal_z: float = 0.035
     """Height of the pedal bar's centre above the table (pedal only)."""
+    handle_play: tuple[str, ...] = ()
+    """Axes (``x``, ``y``, ``z``) along which the handle has play: pushed that way it moves
+    up to ``play_travel`` either way without opening anything (thesis Table 5.3: o2's handle
+    pushed or pulled, o5's swept or lifted)."""
+    play_travel: float = 0.0
+    """How far (m) the handle's play lets it move each way."""
+    can_slide: float = 0.0
+    """How far (m) the whole can slides back on the table under a firm push (0: it stands
+    fast); its parts move with it, the opening does not change (Table 5.3: o3's body, o5's
+    lid)."""
     body_colour: tuple[float, float, float] = (0.80, 0.80, 0.82)
     lid_colour: tuple[float, float, float] = (0.93, 0.93, 0.90)
     source: str = ""
@@ -69,6 +79,12 @@ class CanSpec:
         if self.mechanism == "slide_lid":
             return "lid", f"sweep_{self.slide}"
         return MECHANISMS[self.mechanism]
+
+    @property
+    def give_joints(self) -> tuple[str, ...]:
+        """The joints that let non-functional parts move (put back by ``set_opening``)."""
+        slide = ("can_slide",) if self.can_slide > 0 else ()
+        return slide + tuple(f"handle_play_{axis}" for axis in self.handle_play)
 
     @property
     def rim(self) -> float:

@@ -41,7 +41,9 @@ LANES = (-0.225, -0.075, 0.075, 0.225)
 START_X = 0.10
 """x (m) of the robot's centre at the start of every trial."""
 START_LANE = LANES[0]
-"""The robot starts in the right-most lane, facing the box on the right (§3.5.8)."""
+"""The robot's default start: the right-most lane, facing the box on the right (§3.5.8's
+comparison starts there after the exchange); ``reset(lane=...)`` starts it in any lane
+(§3.5.7: "anywhere on one side of the area")."""
 DESTINATION_AHEAD = 0.40
 """The destination lies this far ahead of the start (§3.5.7)."""
 DESTINATION_X = START_X + DESTINATION_AHEAD
@@ -167,14 +169,17 @@ class NavigationWorld(RenderedWorld):
         self.exchanged = exchanged
         self.reset(exchanged)
 
-    def reset(self, exchanged: bool | None = None) -> None:
-        """Put the robot at the start and the boxes in place (``exchanged`` swaps them)."""
+    def reset(self, exchanged: bool | None = None, lane: float = START_LANE) -> None:
+        """Put the robot at the start in ``lane`` (one of ``LANES``) and the boxes in place
+        (``exchanged`` swaps them)."""
+        if lane not in LANES:
+            raise ValueError(f"lane {lane!r} is not one of {LANES}")
         if exchanged is not None:
             self.exchanged = bool(exchanged)
         mujoco.mj_resetData(self.model, self.data)
         d = self.data
-        d.qpos[self._walk[1]] = START_LANE
-        d.ctrl[:] = [0.0, START_LANE]
+        d.qpos[self._walk[1]] = lane
+        d.ctrl[:] = [0.0, lane]
         fixed_side = -1.0 if self.exchanged else 1.0  # left (+y) during the first trials
         for name, side in (("fixed", fixed_side), ("movable", -fixed_side)):
             joint = d.joint(f"box_{name}_free")

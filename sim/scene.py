@@ -21,8 +21,11 @@ Mechanisms (all contacts inside a can are excluded; parts move only through thei
 - pedal (``pedal``, thesis Fig. 4.1(d)): a foot plate low on the front, pressed down on a slide
   geared to the lid hinge.
 Lids of handle and pedal cans are hinged at their back-top edge, so pushing their face presses them
-shut against the joint limit. Hinge and slide friction (``frictionloss``) plus damping keep
-every part where the robot left it. For chapter 4's continuous actions the hand can also keep
+shut against the joint limit. Parts that move though they open nothing (thesis Table 5.3) are
+data too: a handle's play along some axes, and a can that slides back on the table under a
+firm push, its parts riding on its body (``CanSpec.handle_play``, ``CanSpec.can_slide``).
+Hinge and slide friction (``frictionloss``) plus damping keep every part where the robot left
+it. For chapter 4's continuous actions the hand can also keep
 hold of the lid or the handle at the point it touches (an inactive ``connect`` equality per
 part, switched on by ``GarbageWorld.hold``), so moving the hand back closes what it opened.
 
@@ -111,6 +114,15 @@ TAB_GAP = 0.005
 TAB_HALF_HEIGHT = 0.03
 """Half the tab's height: well above and below the hand's radius, so the hand cannot ride
 over it."""
+PLAY_AXES = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
+"""Directions of a handle's play (``CanSpec.handle_play``)."""
+PLAY_FRICTION = 4.0
+"""Friction (N) of a handle's play: above the handle's weight, so it stays where it was left,
+far below the arm's force, so a push moves it."""
+CAN_SLIDE_FRICTION = 25.0
+"""Friction (N) of a sliding can (``CanSpec.can_slide``): a push that opens a lid is far
+weaker; one against a part that cannot move (the body, a closed lid pressed shut) reaches the
+arm's ``ARM_FORCE`` and slides the can."""
 PEDAL_DEPTH = 0.05
 """Depth (x) of the pedal's foot plate."""
 PEDAL_CLEARANCE = 0.005
@@ -234,9 +246,13 @@ def _handle_xml(c: CanSpec) -> list[str]:
     post_y = bw / 2 - 0.005
     rows = [f'<body name="handle" pos="{fmt(bx, 0, c.rim - c.handle_drop)}">',
             f'<joint name="handle_slide" type="slide" axis="{axis}" range="0 {travel:.5g}" '
-            f'limited="true" damping="2" frictionloss="6" armature="0.05" {HOLD}/>',
-            box("marker_handle", (0, 0, 0), (HANDLE_DEPTH / 2, bw / 2, bh / 2), RGBA["green"],
-                 extra=' mass="0.05"')]
+            f'limited="true" damping="2" frictionloss="6" armature="0.05" {HOLD}/>']
+    for name in c.handle_play:  # play: the handle gives a little, geared to nothing
+        rows.append(f'<joint name="handle_play_{name}" type="slide" axis="{PLAY_AXES[name]}" '
+                    f'range="{fmt(-c.play_travel, c.play_travel)}" limited="true" damping="2" '
+                    f'frictionloss="{PLAY_FRICTION:g}" armature="0.05" {HOLD}/>')
+    rows.append(box("marker_handle", (0, 0, 0), (HANDLE_DEPTH / 2, bw / 2, bh / 2),
+                    RGBA["green"], extra=' mass="0.05"'))
     for name, sign in (("handle_post_l", 1), ("handle_post_r", -1)):
         rows.append(box(name, (HANDLE_DEPTH / 2 + HANDLE_GAP / 2, sign * post_y, 0),
                          (HANDLE_GAP / 2, 0.005, bh / 2), RGBA["post"], extra=' mass="0.01"'))
@@ -269,12 +285,19 @@ def build_mjcf(can: str | CanSpec) -> str:
              f'xyaxes="{look_at(HEAD_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>',
              f'<camera name="close" pos="{fmt(*CLOSE_CAMERA_POS)}" fovy="{HEAD_CAMERA_FOVY}" '
              f'xyaxes="{look_at(CLOSE_CAMERA_POS, HEAD_CAMERA_TARGET)}"/>']
-    parts += _body_xml(c)
-    parts += _lid_xml(c)
+    body = _body_xml(c)
+    moving = _lid_xml(c)
     if "handle" in c.parts:
-        parts += _handle_xml(c)
+        moving += _handle_xml(c)
     if "pedal" in c.parts:
-        parts += _pedal_xml(c)
+        moving += _pedal_xml(c)
+    if c.can_slide > 0:  # the parts ride on the sliding body (same coordinates: it is at 0)
+        parts += [body[0], f'<joint name="can_slide" type="slide" axis="1 0 0" '
+                  f'range="0 {c.can_slide:.5g}" limited="true" damping="20" '
+                  f'frictionloss="{CAN_SLIDE_FRICTION:g}" armature="0.1" {HOLD}/>',
+                  *body[1:-1], *moving, body[-1]]
+    else:
+        parts += body + moving
     parts += [f'<body name="hand" pos="{fmt(hx, hy, hz)}" gravcomp="1">',
               f'<joint name="arm_x" type="slide" axis="1 0 0" range="{fmt(x0 - hx, x1 - hx)}" '
               'damping="60"/>',
@@ -296,6 +319,8 @@ def build_mjcf(can: str | CanSpec) -> str:
               "<contact>",
               '<exclude body1="hand" body2="ball"/>',
               '<exclude body1="can_body" body2="lid"/>']
+    if c.can_slide > 0:  # the sliding can stands on the table without rubbing on it
+        parts.append('<exclude body1="world" body2="can_body"/>')
     for extra in ("handle", "pedal", "lid_tab"):
         if extra in c.parts or (extra == "lid_tab" and c.mechanism == "slide_lid"):
             parts += [f'<exclude body1="can_body" body2="{extra}"/>',

@@ -1,9 +1,11 @@
 """The garbage-can world: one MuJoCo scene of sim/scene.py plus the calls a robot body offers.
 
-``GarbageWorld`` owns the physics (model, data), moves the Cartesian arm (position-controlled,
-force-limited slide actuators; every move is a straight-line ramp of the set-point followed by
-settling), grasps and drops the ball (a weld equality switched on and off), reports ground
-truth (``state()``), renders the head camera headless (EGL) and records mp4 videos.
+``GarbageWorld`` is a ``RenderedWorld`` (sim/base.py: the model and data, settling, headless
+rendering, the camera model) whose model is rebuilt when the can changes. It moves the
+Cartesian arm (position-controlled, force-limited slide actuators; every move is a
+straight-line ramp of the set-point followed by settling), grasps and drops the ball (a weld
+equality switched on and off), reports ground truth (``state()``) and records mp4 videos of
+the head camera.
 
 The opening is the straight-line gap (m) between the rim's front edge and the lid's front edge,
 i.e. the width of the dark gap the thesis measures in the image (eq. 5.14). Seen from the head
@@ -16,7 +18,6 @@ width is not foreshortened by the camera's pitch and lies at the rim's depth).
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -26,7 +27,7 @@ import mujoco
 import numpy as np
 
 from ondisk import atomic_path
-from sim.base import CameraModel
+from sim.base import CameraModel, RenderedWorld
 from sim.scene import (
     ARM_KP,
     ARM_RANGE,
@@ -82,41 +83,31 @@ class WorldState:
     effector_pos: tuple[float, float, float]
 
 
-class GarbageWorld:
+class GarbageWorld(RenderedWorld):
     """One can on a table, a Cartesian arm with a grasping hand, a ball and a head camera."""
+
+    default_camera = "head"
+    settle_steps = 2000
 
     def __init__(self, can: str | CanSpec = "o1", seed: int = 0, width: int = 320,
                  height: int = 240):
         """Build the scene of ``can`` (a thesis can's name or any CanSpec), reset under seed."""
-        if width <= 0 or height <= 0 or width > 640 or height > 480:
-            raise ValueError(f"image size {width}x{height} must lie within 1x1..640x480")
-        self._width, self._height = width, height
-        self._spec: CanSpec | None = None
+        spec = _spec_of(can)
+        super().__init__(build_mjcf(spec), width, height)
+        self._spec = spec
         self._seed = seed
-        self._renderer: mujoco.Renderer | None = None
         self._recorder: _Recorder | None = None
-        self.model: mujoco.MjModel
-        self.data: mujoco.MjData
-        self.reset(can, seed)
+        self.reset(seed=seed)
 
     # ----------------------------------------------------------------- set-up
     def reset(self, can: str | CanSpec | None = None, seed: int | None = None) -> None:
         """Restore the initial scene (closed lid, ball on the table, hand home)."""
         if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)):
             raise ValueError(f"seed must be an integer, got {seed!r}")
-        if isinstance(can, str):
-            if can not in CANS:
-                raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
-            can = CANS[can]
-        spec = self._spec if can is None else can
-        assert spec is not None
+        spec = self._spec if can is None else _spec_of(can)
         if spec != self._spec:
-            self.model = mujoco.MjModel.from_xml_string(build_mjcf(spec))
-            self.data = mujoco.MjData(self.model)
+            self.load(build_mjcf(spec))
             self._spec = spec
-            if self._renderer is not None:
-                self._renderer.close()
-                self._renderer = None
         if seed is not None:
             self._seed = seed
         m, d = self.model, self.data
@@ -165,7 +156,8 @@ class GarbageWorld:
 
     # ---------------------------------------------------------------- physics
     def step(self, n: int = 1) -> None:
-        """Advance the physics ``n`` steps (and feed the recorder, if one is running)."""
+        """Advance the physics ``n`` steps, one at a time: a sliding hold's anchor follows the
+        hand and the recorder (if one is running) is fed between steps."""
         for _ in range(n):
             if self._sliding is not None:
                 _slide_anchor(self.model, self.data, self._sliding, self.effector_pos)
@@ -173,15 +165,6 @@ class GarbageWorld:
             self.steps += 1
             if self._recorder is not None:
                 self._recorder.maybe_capture(self)
-
-    def settle(self, max_steps: int = 2000) -> None:
-        """Step until every joint is (nearly) at rest, or ``max_steps`` have passed."""
-        calm = 0
-        for _ in range(max_steps):
-            self.step()
-            calm = calm + 1 if float(np.max(np.abs(self.data.qvel))) < 2e-3 else 0
-            if calm >= 20:
-                return
 
     # -------------------------------------------------------------------- arm
     @property
@@ -330,9 +313,10 @@ class GarbageWorld:
         self.model.geom_conaffinity[geom] = int(on)
 
     def ball_touches_can(self) -> bool:
-        """True if the ball currently touches the can's body, lid or handle."""
+        """True if the ball currently touches the can: its body, lid (or a sliding lid's tab),
+        handle or pedal."""
         m, d = self.model, self.data
-        can_bodies = {m.body(n).id for n in ("can_body", "lid", "handle", "pedal")
+        can_bodies = {m.body(n).id for n in ("can_body", "lid", "lid_tab", "handle", "pedal")
                       if _has_body(m, n)}
         for c in d.contact[: d.ncon]:
             b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
@@ -347,8 +331,20 @@ class GarbageWorld:
         gap = self.data.site("lid_front").xpos - self.data.site("rim_front").xpos
         return float(np.linalg.norm(gap))
 
+    def free_rim_y(self) -> float:
+        """Where across the can (world y, m) the rim's front edge is most open: the middle of
+        the stretch a sideways-moved lid has uncovered, else the middle of the can (a hinged
+        lid lifts off the whole edge)."""
+        shift = float(self.data.site("lid_front").xpos[1] - self.data.site("rim_front").xpos[1])
+        inner = self.spec.width / 2 - WALL
+        uncovered = abs(shift) - WALL  # the lid's edge moved this far past the inner wall
+        if uncovered <= 0.0:
+            return 0.0
+        return -math.copysign(inner - uncovered / 2, shift)
+
     def set_opening(self, width: float) -> None:
-        """Put the lid (and a geared handle) where the opening is ``width`` m, at rest."""
+        """Put the lid (and a geared handle) where the opening is ``width`` m, at rest, and
+        every part that gave a little (a handle's play, a sliding can) back in place."""
         m, d = self.model, self.data
         hinge = d.joint(self.spec.lid_joint)
         geared = self.spec.geared_joint
@@ -378,6 +374,10 @@ class GarbageWorld:
         hinge.qvel[:] = 0.0
         if slide is not None:
             slide.qvel[:] = 0.0
+        for name in self.spec.give_joints:  # parts that gave a little go back in place
+            joint = d.joint(name)
+            joint.qpos[:] = 0.0
+            joint.qvel[:] = 0.0
         mujoco.mj_forward(m, d)
 
     def gap_corners(self) -> np.ndarray:
@@ -421,47 +421,12 @@ class GarbageWorld:
                     and TABLE_TOP < p[2] < c.rim - BALL_RADIUS / 2)
 
     # ----------------------------------------------------------------- camera
-    def _renderer_for(self) -> mujoco.Renderer:
-        """The (lazily created) offscreen renderer of this world."""
-        if self._renderer is None:
-            try:
-                self._renderer = mujoco.Renderer(self.model, self._height, self._width)
-            except mujoco.FatalError as exc:
-                raise RuntimeError(
-                    "cannot create an OpenGL context for rendering; run headless with "
-                    "MUJOCO_GL=egl set before mujoco is first imported (MUJOCO_GL is "
-                    f"{os.environ.get('MUJOCO_GL')!r}): {exc}") from exc
-        return self._renderer
-
-    def render(self, camera: str = "head") -> np.ndarray:
-        """RGB frame (H, W, 3) uint8 of ``camera`` as the world is now."""
-        self._check_camera(camera)
-        r = self._renderer_for()
-        r.update_scene(self.data, camera)
-        return r.render().copy()
-
-    def camera_intrinsics(self, camera: str = "head") -> CameraModel:
-        """Pinhole intrinsics and world pose of ``camera`` for the current image size."""
-        self._check_camera(camera)
-        cam = self.model.camera(camera)
-        fovy = float(cam.fovy[0])
-        f = (self._height / 2) / math.tan(math.radians(fovy) / 2)
-        dc = self.data.camera(camera)
-        return CameraModel(self._width, self._height, fovy, f, f, self._width / 2,
-                           self._height / 2, dc.xpos.copy(), dc.xmat.reshape(3, 3).copy())
-
-    def _check_camera(self, camera: str) -> None:
-        """Refuse unknown camera names with the list of known ones."""
-        names = [self.model.camera(i).name for i in range(self.model.ncam)]
-        if camera not in names:
-            raise ValueError(f"unknown camera {camera!r}; this scene has {', '.join(names)}")
-
     @contextmanager
     def record(self, path: str | Path, camera: str = "head") -> Iterator[Path]:
         """Record an mp4 of the ``camera`` view of everything simulated inside the block."""
         import imageio.v2 as imageio
 
-        self._check_camera(camera)
+        self._camera(camera)
         out = Path(path)
         with atomic_path(out) as partial:  # the video is put in place whole when it ends
             writer = imageio.get_writer(str(partial), fps=FRAME_RATE, macro_block_size=1)
@@ -472,12 +437,6 @@ class GarbageWorld:
             finally:
                 self._recorder = None
                 writer.close()
-
-    def close(self) -> None:
-        """Free the renderer's GL context."""
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
 
 
 class _Recorder:
@@ -498,6 +457,15 @@ class _Recorder:
         """Append a frame if one is due at the world's current time."""
         if world.data.time >= self.next_time:
             self.capture(world)
+
+
+def _spec_of(can: str | CanSpec) -> CanSpec:
+    """The CanSpec of a thesis can's name, or ``can`` itself."""
+    if isinstance(can, CanSpec):
+        return can
+    if can not in CANS:
+        raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
+    return CANS[can]
 
 
 def _slide_anchor(model: mujoco.MjModel, data: mujoco.MjData,

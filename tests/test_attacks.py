@@ -16,7 +16,8 @@ from attack_agent import RUNTIME_MODULES, load_agent
 from goalagent.agent import Agent, AgentError
 from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.limits import Limits
-from goalagent.kb.terms import Atom, Struct
+from goalagent.kb.terms import Atom, Struct, Var
+from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 from goalagent.parser.errors import GoalSyntaxError
 
@@ -229,41 +230,121 @@ def test_format_counts_too_large_to_interrupt_are_refused(sandbox: bool):
     assert len(warnings) == 1 and "repeats or pads 1,000,000,000" in warnings[0], warnings
 
 
-# Issue 24: goalagent check ran agent code (the undefined-call check loaded the agent
-# unconfined; adopting the initial goals ran knowledge rules), even under check --sandbox.
-CHECKED = """
-init module {
-    knowledge {
-        :- dynamic(seen/1).
-        :- shell('touch PWNED1').
-        :- initialization(shell('touch PWNED2')).
-        foo :- shell('touch PWNED3').
-        :- use_module(library(lists)).
-    }
-    beliefs { :- shell('touch PWNED4'). }
-    goals { foo. }
-}
-main module { program {
-    if bel(foo, sum_list([1], _), seen(_)) then print(x).
-    if bel(undefined_here(1)) then print(y).
-} }
-"""
+# Issue 24: grammar bodies ran unchecked -- phrase({shell(..)}, []) passed check --sandbox and
+# ran under run --sandbox; phrase({halt}, []) ended the run; phrase({ga_kb:assertz(..)}, [])
+# wrote into the runtime. Now a body is checked as the goal SWI-Prolog translates it to (those
+# built while the agent runs are in tests/test_confinement.py's DYNAMIC).
+GRAMMAR_WRITTEN = [
+    f"if bel(phrase({{{HIDDEN}}}, [])) then print(x).",
+    f"if bel(phrase(([a], {{{HIDDEN}}}), [a])) then print(x).",
+    f"if bel(call_dcg({{{HIDDEN}}}, [], _)) then print(x).",
+    f"if bel(phrase(({{true}} ; {{{HIDDEN}}}), [], _)) then print(x).",
+    "if bel(phrase({halt}, [])) then print(x).",
+    "if bel(phrase({set_prolog_flag(unknown, fail)}, [])) then print(x).",
+]
 
 
 @pytest.mark.parametrize("sandbox", [False, True])
-def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool):
-    (tmp_path / "evil.goal").write_text(CHECKED)
-    result = subprocess.run([sys.executable, "-m", "goalagent", "check", "evil.goal"]
-                            + ["--sandbox"] * sandbox, capture_output=True, text=True,
-                            timeout=120, cwd=tmp_path, stdin=subprocess.DEVNULL)
-    assert not list(tmp_path.glob("PWNED*")), result.stderr
-    assert "Traceback" not in result.stderr
-    if sandbox:  # refused, located; and still not run
-        assert result.returncode == 2
-        assert result.stderr.startswith("evil.goal:5:9: knowledge clause `:- shell(")
-        assert "not allowed in the sandbox" in result.stderr
-    else:  # declarations and library loads took effect: only the real undefined call
-        assert result.returncode == 0, result.stderr
-        assert result.stderr.splitlines() == [
-            "evil.goal:15:12: warning: undefined_here/1 is called but defined nowhere (not "
-            "built in, not in knowledge or beliefs, never inserted)", "evil.goal: ok"]
+@pytest.mark.parametrize("rules", GRAMMAR_WRITTEN)
+def test_grammar_bodies_are_checked_when_loading(rules: str, sandbox: bool):
+    with pytest.raises(AgentError, match=r"attack\.goal:3:\d+: .*refused: "):
+        load_agent("", rules, sandbox=sandbox).close()
+    _untouched()
+
+
+def test_grammars_still_parse(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.chdir(tmp_path)
+    knowledge = ("greeting --> [hello], name. name --> [world]. name --> [prolog]. "
+                 "digits([D|T]) --> [D], { code_type(D, digit) }, !, digits(T). digits([]) --> [].")
+    rules = ("if bel(phrase(greeting, [hello, prolog]), phrase(digits(Ds), `12a`, Rest), "
+             "atom_codes(A, Ds), atom_codes(R, Rest), B = ([x], {true}), phrase(B, [x]), "
+             "phrase({shell('touch made')}, [])) then print(A-R).")
+    output = io.StringIO()
+    agent = Agent(parse_agent(f"init module {{ knowledge {{ {knowledge} }} }}\n"
+                              f"main module [exit=always] {{ program {{ {rules} }} }}", "g.goal"),
+                  output=output, warn=lambda message: None)
+    try:
+        agent.step()
+    finally:
+        agent.close()
+    assert output.getvalue() == "'12'-a\n"
+    assert (tmp_path / "made").exists()  # without the sandbox an agent may use the shell
+
+
+# Issue 24: process-wide built-ins that were open without the sandbox.
+@pytest.mark.parametrize("sandbox", [False, True])
+@pytest.mark.parametrize("rules, says", [
+    ("if bel(working_directory(_, '/tmp')) then print(x).", "whole process"),
+    ("if bel(unload_file(library(lists))) then print(x).", "whole process"),
+    ("if bel(prolog_alert_signal(_, 0)) then print(x).", "whole process"),
+    ("if bel(sig_atomic(sleep(40))) then print(x).", "whole process"),
+    ("if bel(sig_block(_)) then print(x).", "whole process"),
+    ("if bel(dynamic([foo/1, user:owned/0])) then print(x).", "qualified with a module"),
+    ("if bel(dynamic((foo/1, ga_kb:owned/0))) then print(x).", "qualified with a module"),
+    ("if bel(dynamic(['$ga_limits'/2])) then print(x).", "reserved"),
+    ("if bel(op(700, xfx, [user:(===)])) then print(x).", "qualified with a module"),
+    ("if bel(set_output(user_error)) then print(x).", "whole process"),
+    ("if bel(setenv('MUJOCO_GL', glx)) then print(x).", "whole process"),
+    ("if bel(set_random(seed(1))) then print(x).", "whole process"),
+    ("if bel(engine_create(x, true, _)) then print(x).", "whole process"),
+    ("if bel(thread_send_message(main, x)) then print(x).", "whole process"),
+    ("if bel(import_module(M, _)) then print(M).", "would reveal"),
+    ("if bel(abolish_all_tables) then print(x).", "whole process"),
+    ("if bel(require([append/3])) then print(x).", "whole process"),
+    ("if bel(trace) then print(x).", "whole process"),
+])
+def test_process_wide_built_ins_are_refused(rules: str, says: str, sandbox: bool):
+    with pytest.raises(AgentError) as caught:
+        load_agent("", rules, sandbox=sandbox).close()
+    assert says in str(caught.value) or (sandbox and "not allowed in the sandbox"
+                                         in str(caught.value)), str(caught.value)
+    _untouched()
+
+
+def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(tmp_path: Path):
+    result = _run_with_counter(tmp_path, "", "if bel(call_cleanup(spin(0), _, spin(0))) "
+                                             "then print(never).")
+    assert "atk.goal:3:1:" in result.stderr and "the rule is not applicable" in result.stderr
+    assert "counter: terminated after 5 cycles" in result.stderr
+
+
+def test_global_variables_flags_and_records_are_each_agent_s_own():
+    # agents read each other's global variables and flags (nb_getval, flag/3): a channel
+    writer = ("main module [exit=always] { program { if bel(nb_setval(k, secret), "
+              "flag(f, _, 42), recordz(r(1), secret), set_flag(g, 7)) then print(x). } }")
+    reader = """main module [exit=always] { program [order=linearall] {
+        if bel(catch(nb_getval(k, V), _, V = none)) then insert(k(V)).
+        if bel(flag(f, F, F), get_flag(g, G)) then insert(f(F, G)).
+        if bel(findall(R, recorded(r(2), R), Rs)) then insert(r(Rs)).
+        if bel(nb_setval(k, mine), nb_getval(k, M)) then insert(own(M)).
+    } }"""
+    mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        mas.launch("writer", parse_agent(writer, "w.goal"))
+        reading = mas.launch("reader", parse_agent(reader, "r.goal"))
+        mas.run(max_cycles=1)
+        assert reading.query("bel", "k(V), f(F, G), r(R), own(M)") == [
+            {"V": Atom("none"), "F": 0, "G": 0, "R": [], "M": Atom("mine")}]
+    finally:
+        mas.close()
+    engine = get_engine()  # and freed with their agents
+    assert engine.call("nb_current", Atom("k"), None, module="system") is None
+    keys = engine.call("findall", Struct("-", (Var("K"), Var("V"))),
+                       Struct(",", (Struct("nb_current", (Var("K"), Var("V"))),
+                                    Struct("sub_atom", (Var("K"), 0, Var("_"), Var("_"),
+                                                        Atom("ga_b_"))))),
+                       None, module="system")
+    assert keys is not None and [str(k) for k in keys[2] if ":k" in str(k)] == []
+
+
+def test_an_answer_with_many_variables_converts_in_linear_time():
+    # an answer of 10,000 fresh variables took 178 s to convert for Python (each compared
+    # with every one seen before): an inspector query or a test condition held the whole
+    # run; a child process so that a regression cannot hang the suite
+    code = ("import sys; sys.path.insert(0, 'tests')\n"
+            "from attack_agent import load_agent\n"
+            "agent = load_agent()\n"
+            "print(len(agent.query('bel', 'length(L, 40000)')[0]['L']))\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            timeout=120, cwd=Path(__file__).resolve().parents[1])
+    assert result.stdout.strip() == "40000", result.stderr

@@ -99,6 +99,13 @@ DYNAMIC = [
     "X = ga_kb:run(_, _, _), abolish(X)",
     "G = apply(assertz, [ga_kb:foo]), call(G)",
     "G = halt, call(G)",
+    # issue 24: grammar bodies, and goals bound by a goal before them in what is checked
+    "B = {ga_kb:assertz(owned)}, phrase(B, [])",
+    "phrase(({X = ga_kb:owned}, {assertz(X)}), [])",
+    "G = assertz(ga_kb:owned), phrase({G}, [])",
+    "B = ({G = halt}, {G}), phrase(B, [])",
+    "G = (X = ga_kb:owned, assertz(X)), call(G)",
+    "findall(y, (X = ga_kb:owned, assertz(X)), _)",
 ]
 
 

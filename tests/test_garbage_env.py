@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import mujoco
 import pytest
 
 from behaviours.learning import AffordanceEvidence
@@ -138,3 +139,78 @@ def test_afford_percepts_keep_the_numbers_the_behaviours_report():
     verified = afford_percept(AffordanceEvidence("lid", "extend_arm", "opened", 1, 1, 1))
     assert format_term(learned) == "afford(lid,extend_arm,opened,0,0,0.3)"
     assert format_term(verified) == "afford(lid,extend_arm,opened,1,1,1)"
+
+
+def test_a_learn_asked_again_with_nothing_new_is_answered_as_repeated(tmp_path: Path):
+    """The livelock guard: the same request, with only learning since, is not run again."""
+    env = environment(tmp_path, can="o1", n_max=4)
+    act(env, "learn", "lid", "sweep_left", "opened", "random")
+    assert any(p.startswith("exploration(lid,sweep_left,random,") for p in percepts(env))
+    steps = env.world.steps
+    act(env, "learn", "lid", "sweep_left", "opened", "random")
+    seen = percepts(env)
+    assert "learn_repeated(lid,sweep_left,opened,random)" in seen
+    assert not any(p.startswith(("exploration(", "afford(")) for p in seen)
+    assert env.world.steps == steps  # nothing was done
+    act(env, "learn", "lid", "sweep_right", "opened", "random")  # another question: learned
+    assert any(p.startswith("exploration(lid,sweep_right,") for p in percepts(env))
+    act(env, "extend_arm", "lid", 0.02)  # the world changed: asking again is fair
+    act(env, "learn", "lid", "sweep_left", "opened", "random")
+    assert any(p.startswith("exploration(lid,sweep_left,") for p in percepts(env))
+    env.kill()
+
+
+def test_a_missed_drop_says_why_and_the_ball_can_be_picked_up_again(tmp_path: Path):
+    env = environment(tmp_path, can="o2")
+    act(env, "grasp", "ball")
+    act(env, "drop", "ball")  # the lid is closed
+    seen = percepts(env)
+    assert "ball_missed(blocked)" in seen
+    assert "holding(ball)" not in seen and "in_can(ball)" not in seen
+    act(env, "grasp", "ball")
+    assert "holding(ball)" in percepts(env)
+    act(env, "lift_up", "handle", 0.1)
+    act(env, "drop", "ball")
+    seen = percepts(env)
+    assert "in_can(ball)" in seen and not any(p.startswith("ball_missed") for p in seen)
+    env.kill()
+
+
+def test_a_ball_out_of_reach_is_refused_each_time_it_is_asked_for(tmp_path: Path):
+    env = environment(tmp_path, can="o1")
+    ball = env.world.data.joint("ball_free").qpos
+    ball[:3] = (-0.6, 0.0, 0.025)  # on the floor, behind the robot's reach
+    mujoco.mj_forward(env.world.model, env.world.data)
+    before = env.world.state()
+    for _ in range(2):
+        with pytest.raises(ActionRefused, match=r"grasp\(ball\): the ball at .* out of the arm"):
+            act(env, "grasp", "ball")
+    assert env.world.state() == before
+    env.kill()
+
+
+def test_a_lid_that_does_not_close_is_reported(tmp_path: Path):
+    env = environment(tmp_path, can="o1")
+    act(env, "extend_arm", "lid", 0.1)
+    env.world.arm_stiffness = 1.0  # an arm too weak to press the lid down
+    act(env, "close_lid")
+    (stuck,) = [p for p in percepts(env) if p.startswith("lid_stuck(")]
+    assert float(stuck[len("lid_stuck("):-1]) > 0.1
+    assert "disposed(0)" in percepts(env)
+    env.kill()
+
+
+def test_a_lid_sliding_the_other_way_is_closed_too(tmp_path: Path):
+    """A closing skill that opens the can further (sweeping a right-sliding lid right) is not
+    tried again; the other way closes it."""
+    can = tmp_path / "right_slide.yaml"
+    can.write_text("name: right_slide\nmechanism: {type: slide_lid, direction: right, gear: 1.5}\n"
+                   "dimensions: {width: 0.26, depth: 0.30, height: 0.28}\nlid: {height: 0.02}\n")
+    env = environment(tmp_path, can=str(can))
+    act(env, "sweep_right", "lid", 0.1)
+    assert "opened" in percepts(env)
+    act(env, "close_lid")
+    seen = percepts(env)
+    assert "opened" not in seen and not any(p.startswith("lid_stuck") for p in seen)
+    assert env.world.opening() < 0.01
+    env.kill()

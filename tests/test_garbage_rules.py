@@ -21,16 +21,19 @@ TAU, R1 = 0.6, 0.3
 
 
 class HoldingTheBall:
-    """Percepts of a robot holding the ball in front of a closed can; records its actions."""
+    """Percepts of a robot holding the ball in front of a closed can; records its actions.
+    ``next`` holds percepts for the next cycle only (what an action reported)."""
 
     def __init__(self, parts: tuple[str, ...] = ("body", "lid")) -> None:
         self.sent: list[str] = []
         self._percepts: list[Term] = [Struct("trials", (1,)), Struct("disposed", (0,)),
                                       Struct("holding", (Atom("ball"),))]
         self._percepts += [Struct("obs", (Atom(part),)) for part in parts]
+        self.next: list[Term] = []
 
     def percepts(self) -> list[Term]:
-        return list(self._percepts)
+        once, self.next = self.next, []
+        return list(self._percepts) + once
 
     def act(self, action: Struct | Atom) -> None:
         self.sent.append(format_term(action))
@@ -103,3 +106,120 @@ def test_when_learning_on_the_lid_is_exhausted_the_agent_turns_to_the_handle():
     agent.step()  # the event module creates the handle's affordances (6.5), learning starts
     assert len(agent.query("bel", "afford(handle, A, opened, 0, 0, 0.1)")) == len(ACTIONS)
     assert io_.sent[0].startswith("learn(handle,")
+
+
+def afford(obj: str, act: str, tot: int, suc: int, rel: float) -> Struct:
+    return Struct("afford", (Atom(obj), Atom(act), Atom("opened"), tot, suc, rel))
+
+
+def beliefs(agent: Agent, query: str) -> list[dict]:
+    return agent.query("bel", query)
+
+
+def test_a_percept_about_a_part_not_in_focus_merges_into_its_initial_affordance():
+    """Transfer reports on parts the agent is not working on: eq. 6.3 from r0 = 0.1."""
+    agent, io_ = robot({}, parts=("body", "lid", "handle"))
+    io_.next = [afford("handle", "lift_up", 0, 0, 0.05), afford("handle", "extend_arm", 0, 0, 0.3)]
+    agent.step()
+    assert beliefs(agent, "afford(handle, A, opened, T, S, R)") == [
+        {"A": "lift_up", "T": 0, "S": 0, "R": pytest.approx(0.05)},
+        {"A": "extend_arm", "T": 0, "S": 0, "R": pytest.approx(0.3)}]
+    assert beliefs(agent, "focus(P)") == [{"P": "lid"}]  # nothing reliable there
+
+
+def test_a_reliable_affordance_on_another_part_moves_the_focus_and_rule_6_2_uses_it():
+    agent, io_ = robot({}, parts=("body", "lid", "handle"))
+    io_.next = [afford("lid", "extend_arm", 0, 0, 0.05), afford("handle", "lift_up", 0, 0, 0.05),
+                afford("handle", "contract_arm", 1, 1, 1)]
+    agent.step()
+    assert beliefs(agent, "focus(P)") == [{"P": "handle"}]
+    assert beliefs(agent, "afford(handle, contract_arm, opened, T, S, R)") == [
+        {"T": 1, "S": 1, "R": 1.0}]
+    assert io_.sent == ["apply(handle,contract_arm)"]  # in the same cycle
+
+
+def test_a_part_out_of_view_does_not_take_the_focus():
+    agent, io_ = robot({}, parts=("body", "lid"))
+    io_.next = [afford("handle", "lift_up", 1, 1, 1)]
+    agent.step()
+    assert beliefs(agent, "focus(P)") == [{"P": "lid"}]
+    assert io_.sent[0].startswith("learn(lid,")
+
+
+def test_learning_never_asks_the_same_question_twice_in_an_episode():
+    """No answer comes back (as when transfer answers about other pairs): each learn is
+    about another action, and after six the lid is exhausted and the body is next."""
+    agent, io_ = robot({}, "learning_mode(transfer)")
+    agent.ms.delete("learning_mode(random)")
+    for _ in range(6):
+        agent.step()
+    asked = [text for text in io_.sent if text.startswith("learn(lid,")]
+    assert len(asked) == len(set(asked)) == len(ACTIONS)
+    assert all(text.endswith(",opened,transfer)") for text in asked)
+    agent.step()
+    agent.step()
+    assert beliefs(agent, "focus(P)") == [{"P": "body"}]
+    assert io_.sent[-1].startswith("learn(body,")
+
+
+def test_the_environment_s_repeat_answer_marks_the_question_asked():
+    agent, io_ = robot({})
+    io_.next = [Struct("learn_repeated", tuple(Atom(a) for a in
+                                               ("lid", "extend_arm", "opened", "random")))]
+    agent.step()
+    assert beliefs(agent, "asked(pair(lid, extend_arm, opened, random))") == [{}]
+    assert "learn_repeated(lid,extend_arm,opened,random)" in agent.output.getvalue()
+    assert io_.sent[0] != "learn(lid,extend_arm,opened,random)"
+
+
+def test_a_transfer_that_found_nothing_starts_a_new_learning_episode():
+    explored = [f"explored(lid, {act})" for act in ACTIONS]
+    agent, io_ = robot({act: 0.05 for act in ACTIONS}, *explored,
+                       "asked(pair(lid, lift_up, opened, transfer))")
+    io_.next = [Struct("transferred", (Atom("opened"), Atom("o1")))]
+    agent.step()
+    assert beliefs(agent, "explored(_, _)") == []
+    assert beliefs(agent, "asked(pair(lid, lift_up, opened, transfer))") == []
+    (learn,) = io_.sent  # learning starts over on the lid (one pair asked so far)
+    assert learn.startswith("learn(lid,")
+    assert len(beliefs(agent, "asked(_)")) == 1
+
+
+def test_the_pedal_comes_after_the_lid_and_before_the_body():
+    explored = [f"explored(lid, {act})" for act in ACTIONS]
+    agent, io_ = robot({act: 0.05 for act in ACTIONS}, *explored,
+                       parts=("body", "lid", "pedal"))
+    agent.step()
+    assert beliefs(agent, "focus(P)") == [{"P": "pedal"}]
+
+
+def test_with_learning_exhausted_on_every_part_the_agent_says_so_and_stops():
+    explored = [f"explored({part}, {act})" for act in ACTIONS for part in ("lid", "body")]
+    agent, io_ = robot({act: 0.05 for act in ACTIONS}, *explored)
+    agent.step()
+    assert io_.sent == [] and agent.terminated
+    assert agent.output.getvalue() == "cannot_open(lid)\n"
+    assert beliefs(agent, "disposed(0)") == [{}]  # nothing disposed of: it gave up
+
+
+def test_the_count_of_balls_disposed_of_is_the_environment_s():
+    agent, io_ = robot({})
+    io_.next = [Struct("disposed", (1,))]
+    agent.step()
+    assert beliefs(agent, "disposed(K)") == [{"K": 1}]
+    assert agent.terminated  # trials(1): finished
+
+
+def test_a_lid_that_will_not_close_is_tried_three_times_then_the_task_ends():
+    agent, io_ = robot({})
+    io_._percepts = [p for p in io_._percepts if p != Struct("holding", (Atom("ball"),))]
+    io_._percepts.append(Struct("in_can", (Atom("ball"),)))
+    agent.step()  # the ball is in: close the can
+    for _ in range(2):
+        io_.next = [Struct("lid_stuck", (0.05,))]  # what the last close_lid reported
+        agent.step()
+    assert io_.sent == ["close_lid"] * 3
+    io_.next = [Struct("lid_stuck", (0.05,))]
+    agent.step()
+    assert agent.terminated and io_.sent == ["close_lid"] * 3
+    assert agent.output.getvalue().split() == ["lid_stuck(0.05)"] * 3 + ["cannot_close"]

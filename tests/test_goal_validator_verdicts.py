@@ -181,7 +181,7 @@ launchpolicy { when entity@env do launch a. }
 """, ("error", "1:44")),
     ("AGENTFILE_OTHER_EXTENSION", """agentfiles { "empty.txt". }
 launchpolicy { launch empty. }
-""", ("error", "empty.txt:1:1")),
+""", ("error", "1:14")),
     ("AGENTFILE_COULDNOT_FIND", """agentfiles { "absent.goal". }
 launchpolicy { launch absent. }
 """, ("error", "1:14")),

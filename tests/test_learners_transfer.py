@@ -189,6 +189,25 @@ def test_novel_parts_fall_back_to_algorithm_4():
     assert learner.n_actions_ < baseline.n_actions_
 
 
+def test_the_fallback_explores_every_novel_pair_first_without_stop_at_goal():
+    """Algorithm 6's line 31 is Algorithm 4: as printed it explores every pair of the novel
+    part (6 action types, the working one n = 5 times, the others until dead at 3) and then
+    acts with 5.11/5.12; stop_at_goal ends it at the first action that opens the can."""
+    pedal_can = SyntheticCan("pedal", {"lid": LID, "body": BODY, "pedal": PEDAL},
+                             {("lid", "body"), ("lid", "pedal"), ("body", "pedal")},
+                             {("pedal", "sweep_down"): Working(0.5, 3.0)})
+    runs = {stop: TransferLearner(database=learned(["o1"]), stop_at_goal=stop,
+                                  random_state=0).fit(pedal_can)
+            for stop in (True, False)}
+    assert runs[True].branch_ == runs[False].branch_ == "fallback"
+    on_pedal = {stop: [t for t in run.trials_ if t.part == "pedal"]
+                for stop, run in runs.items()}
+    assert on_pedal[True][-1].reached and len(on_pedal[True]) < len(on_pedal[False])
+    explored = {t.action for t in on_pedal[False] if t.purpose == "explore"}
+    assert explored == set(pedal_can.actions) and on_pedal[False][-1].purpose == "exploit"
+    assert runs[False].functional_.part == "pedal"
+
+
 def test_without_a_source_transfer_is_algorithm_4():
     can = thesis_cans()["o1"]
     learner = TransferLearner(database=learned(["o2"]), random_state=5).fit(can)

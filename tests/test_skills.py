@@ -7,7 +7,17 @@ import dataclasses
 import numpy as np
 import pytest
 
-from behaviours.skills import ACTION_TYPES, SkillError, drop_ball, grasp_ball, perform_skill
+from behaviours.skills import (
+    ACTION_TYPES,
+    DropResult,
+    SkillError,
+    ball_within_reach,
+    drop_ball,
+    grasp_ball,
+    perform_skill,
+)
+from sim.canfile import find_can
+from sim.scene import WALL
 from sim.world import CANS, GarbageWorld
 
 GOAL = 0.1
@@ -127,29 +137,48 @@ def test_refused_requests_leave_the_world_unchanged(world: GarbageWorld, args, m
     assert np.array_equal(world.data.qpos, qpos)
 
 
-@pytest.mark.parametrize("can", ["o1", "o5"])
+@pytest.mark.parametrize("can", ["o1", "o5", "slide", "pedal"])
 def test_ball_goes_in_only_when_the_can_is_open(world: GarbageWorld, can: str) -> None:
-    """Dropped at a closed lid the ball stays outside; after opening the can it falls in."""
-    world.reset(can, seed=0)
+    """Dropped at a closed lid the ball is stopped at the can and stays outside; after opening
+    the can it falls in, whether the lid lifts (o1, o5, pedal) or slides aside (slide)."""
+    spec = find_can(can)
+    world.reset(spec, seed=0)
     assert grasp_ball(world) and world.state().holding_ball
-    assert not drop_ball(world)
+    assert drop_ball(world) == DropResult(landed=False, blocked=True)
     s = world.state()
     assert not s.holding_ball and not s.ball_in_can
+    assert ball_within_reach(world)  # it can be picked up again
 
-    world.reset(can, seed=0)
+    world.reset(spec, seed=0)
     assert grasp_ball(world)
-    part, action = CANS[can].functional
+    part, action = spec.functional
     assert perform_skill(world, action, part, 0.1).opening_after > GOAL
-    assert drop_ball(world)
+    assert drop_ball(world) == DropResult(landed=True, blocked=False)
     s = world.state()
     assert s.ball_in_can and not s.holding_ball
+    assert not ball_within_reach(world)
+
+
+def test_a_sliding_lid_uncovers_one_side_of_the_rim(world: GarbageWorld) -> None:
+    """The ball is carried in over the uncovered side: the middle of the free stretch."""
+    world.reset(find_can("slide"), seed=0)
+    assert world.free_rim_y() == 0.0
+    world.set_opening(0.1)
+    inner = world.spec.width / 2 - WALL
+    # the lid slid 0.1 m to the left: the free stretch runs from the right wall to 0.1 m
+    # past it, less the wall the lid's edge had to clear first
+    assert world.free_rim_y() == pytest.approx(-(inner - (0.1 - WALL) / 2), abs=1e-3)
+    world.reset("o1", seed=0)
+    world.set_opening(0.1)
+    assert world.free_rim_y() == 0.0  # a lid that lifts leaves the middle open
 
 
 def test_drop_without_ball_does_nothing(world: GarbageWorld) -> None:
-    """No ball in hand: drop_ball answers False and the arm does not move."""
+    """No ball in hand: drop_ball reports neither a landing nor a block and the arm does not
+    move."""
     world.reset("o2", seed=0)
     steps = world.steps
-    assert not drop_ball(world)
+    assert drop_ball(world) == DropResult(landed=False, blocked=False)
     assert world.steps == steps
 
 

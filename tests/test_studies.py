@@ -16,9 +16,9 @@ from robot.reproduce.studies import ch4_agent, ch4_exploration, ch4_skills
 from robot.reproduce.studies.common.ch4 import CONFIGURATIONS, METHODS, Exploration
 from robot.reproduce.studies.common.tasks import experienced_rules, majority_movability
 
-NAMES = ("appA-params", "appA-search", "ch3-navigation", "ch3-stacking", "ch4-agent",
-         "ch4-exploration", "ch4-exploration-camera", "ch4-skills", "ch5-baseline",
-         "ch5-transfer", "xcs-maze4", "xcs-mux", "xcs-woods2")
+NAMES = ("appA-params", "appA-search", "ch3-baselines", "ch3-navigation", "ch3-stacking",
+         "ch4-agent", "ch4-exploration", "ch4-exploration-camera", "ch4-skills", "ch5-agent",
+         "ch5-baseline", "ch5-transfer", "xcs-maze4", "xcs-mux", "xcs-woods2")
 
 
 def quick(name: str, out: Path, seeds: int = 2):
@@ -235,15 +235,17 @@ def test_ch4_agent_statistics_on_hand_made_seeds():
     assert fewer.mean_difference == 111.0 and fewer.verdict == "not supported"  # 2 seeds
 
 
-def test_ch5_transfer_learns_o3_from_o1_in_one_action(tmp_path):
+def test_ch5_transfer_learns_o3_from_o1_at_once(tmp_path):
+    """With the thesis's aim (eq. 5.10: the goal itself) o1's θ* leaves o3 just short of the
+    goal, and one step along o1's gradient (Algorithm 6, line 13) opens it."""
     document, (seed,), page, metrics = quick("ch5-transfer", tmp_path, seeds=1)
-    assert document.config["cans"] == ["o1", "o3"]
+    assert document.config["cans"] == ["o1", "o3"] and document.config["aim"] == "goal"
     o1, o3 = seed.perceptions["truth"]["o1"], seed.perceptions["truth"]["o3"]
     assert (o1.source, o1.n_with, o1.n_without) == (None, 39, 39)
-    assert (o3.source, o3.part, o3.action) == ("o1", "lid", "extend_arm")
-    assert o3.n_with == 1 < o3.n_without == 39 and o3.theta > 0 and o3.opening >= 0.1
+    assert (o3.source, o3.part, o3.action, o3.branch) == ("o1", "lid", "extend_arm", "gradient")
+    assert o3.n_with == 2 < o3.n_without == 41 and o3.theta > 0 and o3.opening >= 0.1
     assert metrics["truth.o3.found"].mean == 1.0
-    assert "| o3 | 39.0 | 1.0 | o1 | extend_arm(lid) (1/1) | direct | True | 53, 1, o1 |" in page
+    assert "| o3 | 41.0 | 2.0 | o1 | extend_arm(lid) (1/1) | gradient | True | 53, 1, o1 |" in page
 
 
 def test_ch5_baseline_lists_every_pair_model(tmp_path):

@@ -111,7 +111,7 @@ def test_bad_init_parameters_are_clear_errors(name, params, message):
     ("table", json.dumps({"format": "goalagent-learner", "version": 1,
                           "kind": "affordance_table", "params": {"undesired_effects": [0]},
                           "state": {"triples": [["1100", "push", 0]]}}),
-     "corrupt: an action must be"),
+     r"state\.triples\[0\]\.action: must match pattern"),
     ("rules", "[]", "is not a goalagent learner file"),
 ])
 def test_corrupt_learner_files_are_clear_errors(tmp_path: Path, param, content, message):

@@ -89,7 +89,11 @@ def test_shards_run_elsewhere_merge_and_replot(tmp_path, cache):
 def test_list_and_params_describe_the_studies():
     listed = goalagent("reproduce", "--list").stderr.splitlines()
     assert any(line.startswith("xcs-mux ") and "multiplexer" in line for line in listed)
-    assert len(listed) == 13
+    modules = [path for path in (ROOT / "robot" / "reproduce" / "studies").glob("*.py")
+               if path.name != "__init__.py"]
+    assert len(listed) == len(modules)  # one line per study module, each named as its file
+    assert sorted(line.split()[0].replace("-", "_") for line in listed) == sorted(
+        path.stem for path in modules)
     params = goalagent("reproduce", "ch4-exploration", "--params").stderr
     assert "tolerance" in params and "0.0001" in params and "(eq. 4.10)" in params
 

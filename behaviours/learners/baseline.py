@@ -20,9 +20,10 @@ from typing import ClassVar
 import numpy as np
 from sklearn.base import BaseEstimator
 from sklearn.utils import check_random_state
-from sklearn.utils._param_validation import Interval
+from sklearn.utils._param_validation import Interval, StrOptions
 
 from behaviours.learners.part_models import (
+    AIMS,
     Bounds,
     DataTuple,
     FunctionalPair,
@@ -55,7 +56,7 @@ class SessionParams:
         est._validate_params()  # type: ignore[attr-defined]
         p = est.get_params()
         return cls(int(p["n"]), int(p["n_min"]), float(p["settle_tol"]),
-                   float(p["min_displacement"]), OpeningGoal(p["goal"], p["delta1"]),
+                   float(p["min_displacement"]), OpeningGoal(p["goal"], p["delta1"], p["aim"]),
                    float(p["delta2"]), int(p["max_checks"]))
 
 
@@ -176,7 +177,8 @@ class PartBasedLearner(BaseEstimator):
     settling test 5.19 (two points always fit a line, so three are the first test: the thesis
     needed three sweeps to call a pair ineffective); ``settle_tol`` δ3 (m²);
     ``min_displacement`` (m) below which a part counts as not moved; ``goal`` s_o^g and
-    ``delta1`` (5.9, 5.10); ``delta2`` (5.12); ``max_checks`` goal-directed actions at most.
+    ``delta1`` (5.9, 5.10) and ``aim`` (what 5.10 aims at, see ``OpeningGoal``); ``delta2``
+    (5.12); ``max_checks`` goal-directed actions at most.
 
     After ``fit(obj)``: ``models_`` {(part, action): PartActionModel}, ``trials_`` every action
     taken, ``n_actions_`` their number (N of Table 5.4, the goal-directed actions included),
@@ -191,13 +193,14 @@ class PartBasedLearner(BaseEstimator):
         "n": [POSITIVE_INT], "n_min": [Interval(Integral, 2, None, closed="left")],
         "settle_tol": [POSITIVE], "min_displacement": [POSITIVE],
         "goal": [Interval(Real, None, None, closed="neither")],
-        "delta1": [Interval(Real, 0.0, None, closed="left")], "delta2": [POSITIVE],
+        "delta1": [Interval(Real, 0.0, None, closed="left")], "aim": [StrOptions(set(AIMS))],
+        "delta2": [POSITIVE],
         "max_checks": [POSITIVE_INT], "random_state": ["random_state"],
     }
 
     def __init__(self, n: int = 5, n_min: int = 3, settle_tol: float = 1e-4,
                  min_displacement: float = 0.01, goal: float = 0.1, delta1: float = 0.03,
-                 delta2: float = 0.002, max_checks: int = 3,
+                 delta2: float = 0.002, max_checks: int = 3, aim: str = "goal_plus_delta1",
                  random_state: int | np.random.RandomState | None = None) -> None:
         self.n = n
         self.n_min = n_min
@@ -205,6 +208,7 @@ class PartBasedLearner(BaseEstimator):
         self.min_displacement = min_displacement
         self.goal = goal
         self.delta1 = delta1
+        self.aim = aim
         self.delta2 = delta2
         self.max_checks = max_checks
         self.random_state = random_state

@@ -142,33 +142,47 @@ class PartActionModel(BaseEstimator):
         return max(abs(low), abs(high)) >= min_displacement
 
 
+AIMS = ("goal", "goal_plus_delta1")
+"""What selection (5.10, 5.11) aims at: s_o^g as printed, or s_o^g + δ1."""
+
+
 @dataclass(frozen=True)
 class OpeningGoal:
     """The goal s_o^g of the lid task and the test 5.9 (thesis §5.6.1: s_o^g = 0.1 m).
 
     Reached when s_o >= s_o^g: §5.6.2 counts 0.14 m as achieving 0.1 m, like eq. 6.9 ("opened
-    wide enough"). Selection (5.10, 5.11) aims at s_o^g + δ1 and accepts predictions within δ1
-    of that, so a model's small error does not leave the object just short of the goal: with
-    δ1 = 0.02, o1's saturating lid (0.11 m from θ = 0.05 on) made one seed in eight transfer a
-    θ* that opened o3 to 0.098 m; with 0.03 all eight opened it with one action.
+    wide enough"). Selection (5.10, 5.11) accepts predictions within δ1 of what it aims at:
+    ``aim="goal"`` is eq. 5.10 as printed, ĥ(e_ψ) against s_o^g − s_o^i; ``"goal_plus_delta1"``
+    aims δ1 higher, so a model's small error does not leave the object just short of a goal
+    tested one-sidedly: with δ1 = 0.02, o1's saturating lid (0.11 m from θ = 0.05 on) made one
+    seed in eight transfer a θ* that opened o3 to 0.098 m; with 0.03 all eight opened it with
+    one action.
     """
 
     goal: float = 0.1
     delta1: float = 0.03
+    aim: str = "goal_plus_delta1"
 
     def __post_init__(self) -> None:
         if not (isinstance(self.goal, (int, float)) and math.isfinite(self.goal)):
             raise ValueError(f"goal must be a finite number, got {self.goal!r}")
         if not (isinstance(self.delta1, (int, float)) and 0 <= self.delta1 < math.inf):
             raise ValueError(f"delta1 must be a finite number >= 0, got {self.delta1!r}")
+        if self.aim not in AIMS:
+            raise ValueError(f"aim must be one of {', '.join(AIMS)}, got {self.aim!r}")
 
     def reached(self, state: float) -> bool:
         """Eq. 5.9 (one-sided, see the class docstring)."""
         return state >= self.goal
 
+    @property
+    def target(self) -> float:
+        """The state selection aims at: s_o^g, or s_o^g + δ1."""
+        return self.goal + (self.delta1 if self.aim == "goal_plus_delta1" else 0.0)
+
     def desired_effect(self, initial_state: float) -> float:
-        """The change of state 5.10 aims at: s_o^g + δ1 - s_o^i."""
-        return self.goal + self.delta1 - initial_state
+        """The change of state 5.10 aims at: the target less s_o^i."""
+        return self.target - initial_state
 
 
 @dataclass(frozen=True)

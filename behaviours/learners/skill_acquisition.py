@@ -43,12 +43,16 @@ class SkillSequence:
     terminated: bool
 
 
-@validate_params({"bounds": [ActionBounds], "n_grid": [POSITIVE_INT]},
+@validate_params({"bounds": [ActionBounds], "n_grid": [POSITIVE_INT], "endpoint": ["boolean"]},
                  prefer_skip_nested_validation=True)
-def candidate_actions(bounds: ActionBounds, n_grid: int = 11) -> np.ndarray:
-    """A_M: an even grid of ``n_grid`` values per dimension over the bounds (M = n_grid^d)."""
+def candidate_actions(bounds: ActionBounds, n_grid: int = 11,
+                      endpoint: bool = True) -> np.ndarray:
+    """A_M: an even grid of ``n_grid`` values per dimension over the bounds (M = n_grid^d),
+    from the lower bound to the upper one, or (``endpoint=False``) stopping one step short of
+    it (10 points over [-0.01, 0.01] m give -0.010, -0.008, ..., 0.008)."""
     n = int(n_grid)
-    axes = [np.linspace(lo, hi, n) for lo, hi in zip(bounds.low, bounds.high, strict=True)]
+    axes = [np.linspace(lo, hi, n, endpoint=bool(endpoint))
+            for lo, hi in zip(bounds.low, bounds.high, strict=True)]
     return np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1)
 
 
@@ -64,7 +68,7 @@ def goal_action(
 
 
 @validate_params({"model": [ForwardModel], "world": "no_validation", "n_grid": [POSITIVE_INT],
-                  "tau": [POSITIVE], "max_steps": [POSITIVE_INT]},
+                  "tau": [POSITIVE], "max_steps": [POSITIVE_INT], "endpoint": ["boolean"]},
                  prefer_skip_nested_validation=True)
 def acquire_skills(
     model: ForwardModel,
@@ -73,11 +77,13 @@ def acquire_skills(
     n_grid: int = 11,
     tau: float = 0.01,
     max_steps: int = 30,
+    endpoint: bool = True,
 ) -> tuple[SkillSequence, SkillSequence]:
-    """Run both phases on ``world`` from its current state: (SK*, SK_*)."""
+    """Run both phases on ``world`` from its current state: (SK*, SK_*), choosing among
+    ``candidate_actions(bounds, n_grid, endpoint)``."""
     bounds = ActionBounds(world.action_bounds)
     tau, limit = float(tau), int(max_steps)
-    candidates = candidate_actions(bounds, n_grid)
+    candidates = candidate_actions(bounds, n_grid, endpoint)
     sequences = []
     for phase in PHASES:
         steps: list[SkillStep] = []

@@ -12,9 +12,11 @@
    parts (lines 24-30);
 4. runs Algorithm 4 on the parts left, which look novel (line 31).
 The run ends as soon as any action achieves the goal (5.9): transfer aims at the goal, not at
-every model (§5.5.1). With no relevant source it is Algorithm 4 exactly. ``branch_`` says
-which of these found the goal: direct, gradient, other_action, other_part, fallback,
-no_source, or failed.
+every model (§5.5.1: "The purpose is not to learn every prediction model ... but is to achieve
+the goal condition (5.9) as fast as possible"). Line 31's Algorithm 4 stops at the goal too
+unless ``stop_at_goal`` is False: Algorithm 4 as printed explores every pair before it
+selects. With no relevant source it is Algorithm 4 exactly. ``branch_`` says which of these
+found the goal: direct, gradient, other_action, other_part, fallback, no_source, or failed.
 
 Choices the thesis leaves open, made here: λ_k of line 13 is the step after which the source's
 models predict the goal's opening (a Newton step on ĥ∘ĝ of the source, clipped to Θ); the loop
@@ -59,7 +61,7 @@ def gradient_step(theta: float, source: PartActionModel, state_after: float,
     slope = source.g_slope_
     if slope == 0.0:
         return None
-    missing = goal.goal + goal.delta1 - state_after
+    missing = goal.target - state_after
     if source.h_slope_ > 0.0 and missing > 0.0:
         step = missing / source.h_slope_ / slope  # = λ·c with λ = Δe_ψ / c²
     else:
@@ -73,7 +75,8 @@ class TransferLearner(PartBasedLearner):
 
     Parameters beyond ``PartBasedLearner``'s: ``database``; ``consistency_tol`` (m), how far
     an observed displacement may lie from the source's prediction and still be consistent;
-    ``n_neighbors``, ``max_distance``, ``weights`` of the part similarity (Algorithm 5).
+    ``n_neighbors``, ``max_distance``, ``weights`` of the part similarity (Algorithm 5);
+    ``stop_at_goal``, whether line 31's Algorithm 4 stops once an action reached the goal.
 
     After ``fit(obj)``, besides PartBasedLearner's attributes: ``candidates_`` (Algorithm 5's
     ranking), ``source_`` (the source's name or None), ``similar_parts_`` (Ψ_sim) and
@@ -83,7 +86,7 @@ class TransferLearner(PartBasedLearner):
     _parameter_constraints: ClassVar[dict[str, list]] = {
         **PartBasedLearner._parameter_constraints,
         "database": "no_validation",  # any iterable of KnownObject: checked in fit
-        "consistency_tol": [POSITIVE], "n_neighbors": [POSITIVE_INT],
+        "consistency_tol": [POSITIVE], "n_neighbors": [POSITIVE_INT], "stop_at_goal": ["boolean"],
         "max_distance": [POSITIVE, None], "weights": ["array-like", None],
     }
 
@@ -92,10 +95,13 @@ class TransferLearner(PartBasedLearner):
                  delta1: float = 0.03, delta2: float = 0.002, max_checks: int = 3,
                  consistency_tol: float = 0.01, n_neighbors: int = 3,
                  max_distance: float = 1.0, weights: Sequence[float] = DEFAULT_WEIGHTS,
+                 aim: str = "goal_plus_delta1", stop_at_goal: bool = True,
                  random_state: int | np.random.RandomState | None = None) -> None:
         super().__init__(n=n, n_min=n_min, settle_tol=settle_tol,
                          min_displacement=min_displacement, goal=goal, delta1=delta1,
-                         delta2=delta2, max_checks=max_checks, random_state=random_state)
+                         delta2=delta2, max_checks=max_checks, aim=aim,
+                         random_state=random_state)
+        self.stop_at_goal = stop_at_goal
         self.database = database
         self.consistency_tol = consistency_tol
         self.n_neighbors = n_neighbors
@@ -157,11 +163,11 @@ class TransferLearner(PartBasedLearner):
             if left in self.similar_parts_:
                 continue
             for other in session.bounds:
-                session.explore_pair(left, other, stop_at_goal=True)
-                if session.reached:
+                session.explore_pair(left, other, stop_at_goal=self.stop_at_goal)
+                if session.reached and self.stop_at_goal:
                     return "fallback"
-        found = session.exploit(checks=session.params.max_checks)
-        return "fallback" if found else "failed"
+        found = session.exploit(checks=session.params.max_checks)  # Algorithm 4, lines 11-12
+        return "fallback" if found or session.reached else "failed"
 
     def _exploit_source(self, session: Session, known: KnownObject, rehearsal: Selection,
                         part: str) -> bool:

@@ -5,11 +5,16 @@ the prediction array (eq. 3.8) and the action set [A]; in explore mode it then r
 previous step's action set [A]-1 with P = r-1 + gamma * max PA (eq. 7.2) and runs the niche GA
 there. `reward(r, done)` closes the step: on the last step of a trial [A] itself is reinforced
 with P = r (single-step problems are one-step trials). Exploit steps choose greedily and learn
-nothing; explore steps choose at random among the advocated actions, or, with
-``consistent_actions``, keep the previous action as App. A describes.
+nothing (App. A, "Performance Component"), unless ``learn_in_exploit``: then they update
+[A]-1 and [A] as explore steps do (Algorithm 2 credits every step) but run no GA and leave the
+GA's clock alone (rule discovery belongs to exploration). Explore steps choose at random among
+the advocated actions, or, with ``consistent_actions``, keep the previous action as App. A
+describes.
 
-`allowed` is Algorithm 2's action filter (eq. 3.10): both the choice and max PA in eq. 7.2 range
-over the allowed actions only, and covering makes sure every allowed action is advocated.
+`allowed` is Algorithm 2's action filter (eq. 3.10): the choice ranges over the allowed actions
+only. `considered` (a superset) is what max PA in eq. 7.2 and covering range over: Algorithm 2
+filters the choice only, so it passes every applicable action; left out, it is `allowed` (the
+filter then shapes the values too).
 
 The learner's parameters are checked by scikit-learn (``_parameter_constraints``), once; the
 arguments of each step (the state, ``explore``, ``allowed``, ``r``, ``done``) are checked by
@@ -65,6 +70,8 @@ class _Step:
     explore: bool
     kills: int
     """`Population.kills` when the set was formed: while it is unchanged, all rows live."""
+    learns: bool = True
+    """Whether the step is credited: every explore step, exploit steps with learn_in_exploit."""
     reward: float = 0.0
 
 
@@ -96,7 +103,8 @@ class XCS(BaseEstimator):
                  theta_sub: int = 20, p_hash: float = 0.33, prediction_init: float = 10.0,
                  error_init: float = 0.0, fitness_init: float = 0.01,
                  ga_subsumption: bool = True, action_set_subsumption: bool = False,
-                 consistent_actions: bool = False, random_state: object = None) -> None:
+                 consistent_actions: bool = False, learn_in_exploit: bool = False,
+                 random_state: object = None) -> None:
         self.n_actions = n_actions
         self.N, self.beta, self.beta_p, self.beta_e, self.beta_f = N, beta, beta_p, beta_e, beta_f
         self.gamma, self.alpha, self.epsilon_0, self.nu = gamma, alpha, epsilon_0, nu
@@ -107,6 +115,7 @@ class XCS(BaseEstimator):
         self.ga_subsumption = ga_subsumption
         self.action_set_subsumption = action_set_subsumption
         self.consistent_actions = consistent_actions
+        self.learn_in_exploit = learn_in_exploit
         self.random_state = random_state
 
     def __sklearn_tags__(self) -> Tags:
@@ -149,49 +158,64 @@ class XCS(BaseEstimator):
     # -- the agent-facing interface ------------------------------------------------------------
 
     def act(self, state: object, explore: bool = True,
-            allowed: Iterable[int] | None = None) -> int:
+            allowed: Iterable[int] | None = None, *,
+            considered: Iterable[int] | None = None) -> int:
         """Choose an action for ``state`` (a "0101" string or a 0/1 sequence).
 
         Explore: a random advocated action (or, with ``consistent_actions``, the previous one
         while [A]-1 still matches); exploit: the best by eq. 3.9. ``allowed`` (action indices)
-        restricts the choice, eq. 7.2's max and covering to those actions.
+        restricts the choice; ``considered`` (a superset of ``allowed``; default ``allowed``)
+        is what eq. 7.2's max and covering range over.
         """
         if self._settings is None:  # (written out: a call costs ~1% of a trial)
             self._start()
         if explore is not True and explore is not False and not isinstance(explore, np.bool_):
             raise ValueError(f"explore must be True or False, got {explore!r}")
+        n_actions = self._all_actions.size
         permitted = (self._all_actions if allowed is None
-                     else permitted_actions(allowed, self._all_actions.size))
+                     else permitted_actions(allowed, n_actions))
+        covered = permitted
+        if considered is not None:
+            covered = permitted_actions(considered, n_actions)
+            if covered.size == n_actions:
+                covered = self._all_actions
+            if np.setdiff1d(permitted, covered).size:
+                raise ValueError(f"allowed {permitted.tolist()} must be among the considered "
+                                 f"actions {covered.tolist()}")
         words, number = self._encode(state)
-        if self._pending is not None and self._pending.explore:
-            raise ValueError("act: the previous explore action has not been rewarded; "
+        if self._pending is not None and self._pending.learns:
+            raise ValueError("act: the previous action has not been rewarded; "
                              "call reward(r, done) first")
         self._pending = None
+        learns = bool(explore) or self._settings.learn_in_exploit
         previous, self._previous = self._previous, None
-        previous = self._compact_keeping(previous if explore else None)
+        previous = self._compact_keeping(previous if learns else None)
         if explore:
             self.time_ += 1
-        match, actions = match_set(self.population_, words, number, permitted,
-                                   permitted is self._all_actions, self._settings, self._rng,
+        match, actions = match_set(self.population_, words, number, covered,
+                                   covered is self._all_actions, self._settings, self._rng,
                                    self.time_)
         kills = self.population_.kills  # before [A]-1's GA can delete from [A]
         values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
+        best_value = 0.0  # max PA of eq. 7.2 over the considered actions
         if not explore or previous is not None:  # (a single explore step needs none)
             prediction = self._prediction_array(match, actions)
             values = (prediction if allowed is None else prediction[permitted]).tolist()
+            best_value = max(values if covered is permitted
+                             else prediction[covered].tolist())
         if explore:
             kept = previous if self._settings.consistent_actions else None
             action = explore_action(permitted, self._rng, self.population_, words,
                                     None if kept is None else kept.rows,
                                     -1 if kept is None else kept.action)
-            action_set = match[actions == self._action_values[action]]
         else:
             action = best_action(values, permitted, self._rng)
-            action_set = match[:0]  # exploit steps learn nothing
+        action_set = (match[actions == self._action_values[action]] if learns
+                      else match[:0])  # steps that are not credited learn nothing
         if previous is not None:
             self._reinforce(previous, previous.reward
-                            + self._settings.gamma * max(values))  # eq. 7.2
-        self._pending = _Step(action_set, action, number, bool(explore), kills)
+                            + self._settings.gamma * best_value)  # eq. 7.2
+        self._pending = _Step(action_set, action, number, bool(explore), kills, learns)
         return action
 
     def reward(self, r: float, done: bool) -> None:
@@ -202,7 +226,7 @@ class XCS(BaseEstimator):
         step, self._pending = self._pending, None
         if step is None:
             raise ValueError("reward: no action to reward; call act(state) first")
-        if not step.explore:
+        if not step.learns:
             return
         if done:
             self._reinforce(step, float(r))
@@ -316,8 +340,8 @@ class XCS(BaseEstimator):
     # -- reinforcement component ---------------------------------------------------------------
 
     def _reinforce(self, step: _Step, payoff: float) -> None:
-        """UPDATE SET on the step's live action set with payoff P, then the GA there when
-        eq. 7.3 says the set's classifiers have waited long enough."""
+        """UPDATE SET on the step's live action set with payoff P, then (explore steps only)
+        the GA there when eq. 7.3 says the set's classifiers have waited long enough."""
         population, settings = self.population_, self._settings
         rows = step.rows
         stats = population.stats.take(rows, axis=1)
@@ -334,6 +358,8 @@ class XCS(BaseEstimator):
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
             stats = population.stats.take(rows, axis=1)
+        if not step.explore:
+            return
         waited = self.time_ - float(stats[TIME_STAMP] @ stats[NUMEROSITY]) / set_size
         if waited > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_

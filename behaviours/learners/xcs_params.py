@@ -34,13 +34,13 @@ CONSTRAINTS: dict[str, list] = {
     "error_init": [_NON_NEGATIVE],
     "prediction_init": [Interval(Real, None, None, closed="neither")],  # any finite number
     "ga_subsumption": ["boolean"], "action_set_subsumption": ["boolean"],
-    "consistent_actions": ["boolean"],
+    "consistent_actions": ["boolean"], "learn_in_exploit": ["boolean"],
     "random_state": RANDOM_STATE,
 }
 """`XCS._parameter_constraints` (thesis Table 7.1's ranges: rates in (0, 1], probabilities in
 [0, 1], thresholds >= 0)."""
 
-_FLAGS = ("ga_subsumption", "action_set_subsumption", "consistent_actions")
+_FLAGS = ("ga_subsumption", "action_set_subsumption", "consistent_actions", "learn_in_exploit")
 _OPTIONAL_RATES = ("beta_p", "beta_e", "beta_f")
 
 
@@ -81,6 +81,7 @@ class Settings:
     ga_subsumption: bool
     action_set_subsumption: bool
     consistent_actions: bool
+    learn_in_exploit: bool
 
     @classmethod
     def resolve(cls, owner: str, values: Mapping[str, object]) -> Settings:

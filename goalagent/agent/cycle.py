@@ -32,7 +32,7 @@ from goalagent.agent.events import (
 )
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
-from goalagent.agent.problems import cause_traceback, warning_text
+from goalagent.agent.problems import cause_traceback, goal_text, warning_text
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.agent.timers import Timer, due_percepts
@@ -41,7 +41,7 @@ from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
-from goalagent.kb.terms import Term, format_term
+from goalagent.kb.terms import Struct, Term, format_term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
@@ -126,6 +126,10 @@ class Agent:
             if self.ms.limits.runs_code:  # (adopting asks whether a goal is believed: code)
                 for goal in program.goals:
                     self.ms.adopt(goal)
+                    for _, why in self.ms.take_unchecked():
+                        self.warn(f"module {self._module_of(goal)}, goal at {goal.pos}: "
+                                  f"checking whether {goal.text.strip()} is believed {why}; "
+                                  "the goal is adopted")
             else:
                 self.ms.declare_updates(program.goals)
             self._rules = RuleApplication(self)
@@ -312,14 +316,17 @@ class Agent:
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str, *, confined: bool = False) -> list[Bindings]:
+    def query(self, op: str, text: str, *, confined: bool = False,
+              limit: int | None = None) -> list[Bindings]:
         """The answers of a mental-state query, as Python values.
 
         Args:
             op: ``bel``, ``goal``, ``a-goal``, ``goal-a`` or ``percept``.
             text: the query in Prolog (``count(X)``, ``on(X, Y), X \\= a``).
             confined: check it as the agent's own code is, in its sandbox if it has one (a
-                query a user typed); False: the query is trusted.
+                query a user typed in the debugger or the inspector); False: the query is
+                trusted.
+            limit: at most this many answers (the first ones); None: all of them.
 
         Returns:
             One mapping per answer, from each variable of ``text`` to its value (``Atom``
@@ -329,7 +336,7 @@ class Agent:
         Raises:
             KBError: the query is not valid Prolog or raised an error.
         """
-        return self.ms.query(op, text, trusted=not confined)
+        return self.ms.query(op, text, trusted=not confined, limit=limit)
 
     def beliefs(self) -> list[Term]:
         """The agent's beliefs (its belief base's facts), in order."""
@@ -434,3 +441,29 @@ class Agent:
         for goal in self.ms.blind_commitment():
             if self.listeners:
                 self.tell(goal_event(self.name, EventKind.GOAL_ACHIEVED, goal))
+        for facts, why in self.ms.take_unchecked():
+            self.warn(f"{self._goal_origin(facts)}: checking whether goal {goal_text(facts)} "
+                      f"is achieved {why}; the goal is kept")
+
+    def _module_of(self, goal: ast.PrologText) -> str:
+        """The module whose goals section holds ``goal``."""
+        return next((module.name for module in self.program.modules
+                     if any(written is goal for written in module.goals)), "init")
+
+    def _goal_origin(self, facts: list[Term]) -> str:
+        """Where a goal was written, if it is one of the program's goals sections' (else
+        the program's file and the module running)."""
+        written = facts[0] if len(facts) == 1 else _conjunction(facts)
+        for goal in self.program.goals:
+            if self.ms.unify(goal, written) is not None:
+                return f"module {self._module_of(goal)}, goal at {goal.pos}"
+        module = self.focus[-1].module.name if self.focus else "main"
+        return f"module {module}, {self.program.file}"
+
+
+def _conjunction(facts: list[Term]) -> Term:
+    """``(f1, f2, ...)`` of a goal's facts."""
+    term = facts[-1]
+    for fact in reversed(facts[:-1]):
+        term = Struct(",", (fact, term))
+    return term

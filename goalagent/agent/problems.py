@@ -10,7 +10,7 @@ import traceback
 from goalagent import ast
 from goalagent.events import ProblemKind
 from goalagent.kb.interpreter_requests import Problem
-from goalagent.kb.terms import format_term
+from goalagent.kb.terms import Term, format_term
 
 
 def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
@@ -28,6 +28,10 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
         assert problem.rule is not None
         return (f"module {problem.rule.shown}, rule at {problem.rule.rule.pos}: ran "
                 f"{detail}; the rule is not applicable")
+    if kind is ProblemKind.GOAL_UNCHECKED:
+        assert problem.rule is not None
+        return (f"module {problem.rule.module}, rule at {problem.rule.rule.pos}: checking "
+                f"whether goal {goal_text(problem.term)} is achieved {detail}; the goal is kept")
     if kind is ProblemKind.PRECONDITION_ERROR:
         assert problem.spec_index is not None
         spec = program.actionspecs[problem.spec_index]
@@ -67,3 +71,7 @@ def cause_traceback(error: BaseException) -> str | None:
     if root is error:
         return None
     return "".join(traceback.format_exception(type(root), root, root.__traceback__)).rstrip()
+def goal_text(facts: Term | None) -> str:
+    """A goal's facts as the program would write them (``on(a, b), clear(c)``)."""
+    items = facts if isinstance(facts, list) else [facts]
+    return ", ".join(format_term(fact) for fact in items)

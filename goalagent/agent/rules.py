@@ -107,7 +107,9 @@ class RuleApplication:
             report.entries.append(record)
             report.performed.append(record)
         report.action_count += outcome.actions
-        agent.total_actions += outcome.actions - record.module_calls  # calls: no actions
+        # Module calls are no actions; a firing a limit ended after a module call is not
+        # counted, its call is (hence the bound).
+        agent.total_actions += max(outcome.actions - record.module_calls, 0)
         return outcome
 
     def split_at(self, entries: int, position: int) -> None:

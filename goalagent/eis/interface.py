@@ -141,6 +141,11 @@ class Environment(EntityRelations):
         """The percepts of ``entity`` describing the current state."""
         return []
 
+    def is_path_parameter(self, key: str) -> bool:
+        """Whether init parameter ``key`` names a file, so that a value typed as a file name
+        (``--env-param key=db.json``) is taken as written rather than read as a term."""
+        return False
+
     def perform_entity_action(self, entity: str, action: Action) -> Percept | None:
         """Carry out ``action`` for ``entity``; raise ActException when it cannot be done."""
         raise ActException(

@@ -10,9 +10,10 @@ class Printer(PythonEnvironment):
 ```
 
 Action parameters are converted to Python by the type hints of the method: ``str`` (an atom or
-a string), ``int``, ``float`` (accepts integers too), ``bool`` (``true``/``false``), ``list`` or
-``list[X]``, ``Struct`` (a compound term), an EIS parameter class (raw), ``object`` or no hint
-(``to_python``), or a union of these, tried left to right (``bool | str``). Wrong arity or type
+a string), ``int``, ``float`` (accepts integers too), ``bool`` (``true``/``false``), ``Path``
+(``pathlib``: an atom or a string naming a file), ``list`` or ``list[X]``, ``Struct`` (a
+compound term), an EIS parameter class (raw), ``object`` or no hint (``to_python``), or a union
+of these, tried left to right (``bool | Path``). Wrong arity or type
 is an ``ActException`` naming the action and what it expects; ``ActionRefused("why")`` refuses
 (the method must then leave the world unchanged); any other exception becomes an
 ``ActException`` of kind failure wrapping it.
@@ -20,7 +21,9 @@ is an ``ActException`` naming the action and what it expects; ``ActionRefused("w
 Percepts may be ``Percept`` objects, tuples ``("on", "a", "b")`` (shorthand values, see
 ``terms.to_parameter``), atoms/strings ``"ready"`` or kb terms (``Struct``). Init parameters go
 through the same conversion when the class declares ``parameters = {"seed": int, ...}``
-(unknown names are then an error), else they arrive as ``to_python`` values.
+(unknown names are then an error), else they arrive as ``to_python`` values. An init parameter
+declared ``Path`` (or a union with it) is a path: ``--env-param objects=db.json`` gives it the
+file name as typed (``goalagent.mas.read_parameter``), where Prolog would read a term.
 By default an environment has one entity (``entity_names`` of ``default_entity_type``, or
 override ``initial_entities``); agents are associated with entities on request by the platform.
 """
@@ -32,6 +35,7 @@ import types
 import typing
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, ClassVar, TypeVar
 
 from goalagent.eis.exceptions import (
@@ -100,6 +104,8 @@ def describe_hint(hint: object) -> str:
         return "a number"
     if hint is bool:
         return "true or false"
+    if hint is Path:
+        return "a file path"
     if hint is Struct:
         return "a compound term"
     if hint is list or typing.get_origin(hint) is list:
@@ -112,7 +118,7 @@ def describe_hint(hint: object) -> str:
 
 def _check_hint(hint: object, where: str) -> None:
     """Raise TypeError at class creation for a type hint the converter cannot honour."""
-    if hint in (str, int, float, bool, list, object, Any, Struct, Parameter):
+    if hint in (str, int, float, bool, Path, list, object, Any, Struct, Parameter):
         return
     if isinstance(hint, type) and issubclass(hint, _PARAMETER_CLASSES):
         return
@@ -154,6 +160,9 @@ def _convert(param: Parameter, hint: object) -> object:
     elif hint is float:
         if isinstance(param, Numeral):
             return float(param.value)
+    elif hint is Path:
+        if isinstance(param, Identifier) and param.value:
+            return Path(param.value)
     elif hint is bool:
         if isinstance(param, TruthValue):
             return param.value
@@ -302,6 +311,11 @@ class PythonEnvironment(Environment):
     def action_names(cls) -> list[str]:
         """The actions this environment supports."""
         return sorted(cls._actions)
+
+    def is_path_parameter(self, key: str) -> bool:
+        """True when ``parameters`` declares ``key`` as ``Path`` (or a union with it)."""
+        hint = (type(self).parameters or {}).get(key)
+        return hint is Path or Path in _alternatives(hint)
 
     def _python_params(self, params: dict[str, Parameter]) -> dict[str, object]:
         """Init parameters as Python values, checked against ``parameters`` when declared."""

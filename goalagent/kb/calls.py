@@ -56,6 +56,7 @@ from goalagent.kb.terms import Atom, Term, Var, format_term
 __all__ = ["PrologCalls", "define_foreign"]
 
 _PYTHON_ERROR = "$ga_python"  # the Prolog exception that carries a Python one out of Prolog
+_INFERENCES_SPENT = "inference_limit_exceeded"  # call_with_inference_limit/3's exception
 
 # A foreign predicate of arity 2 as SWI calls it: foreign_t f(term_t a1, term_t a2).
 _FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, term_t, term_t)
@@ -79,6 +80,7 @@ class PrologCalls(TermConversion):
         self.stretch_since: float | None = None
         self.abort_reason: str | None = None  # why the watchdog aborted the running query
         self.depth = 0  # queries open (a callback into Python can open more)
+        self.query = 0  # the number of the outermost query (the watchdog's memory watch)
         # A stop a signal asked for while queries were open: raised when they are all closed
         # (raising inside a callback would leave Prolog in between; see kb.watchdog).
         self.pending_stop: BaseException | None = None
@@ -184,7 +186,7 @@ class PrologCalls(TermConversion):
                         if exception:
                             record = PL_record(exception)
                         break
-                    seen: list[tuple[int, Var]] = []
+                    seen: dict[str, Var] = {}
                     if keep is None:
                         answers.append([get(base + i, seen, marks) for i in outputs])
                     else:
@@ -218,6 +220,8 @@ class PrologCalls(TermConversion):
         """A query opens: a new stretch in Prolog (see goalagent.kb.watchdog); returns the
         enclosing one's start, for :meth:`_leave`."""
         outer_since = self.stretch_since
+        if not self.depth:
+            self.query += 1
         self.depth += 1
         self.stretch += 1
         self.stretch_since = monotonic()
@@ -270,7 +274,7 @@ class PrologCalls(TermConversion):
         try:
             t = PL_new_term_ref()
             PL_recorded(record, t)
-            return self._get_term(t, [], False)
+            return self._get_term(t, {}, False)
         finally:
             PL_discard_foreign_frame(fid)
 
@@ -281,7 +285,7 @@ class PrologCalls(TermConversion):
             t = PL_new_term_ref()
             PL_recorded(record, t)
             PL_erase(record)
-            term = self._get_term(t, [], False)
+            term = self._get_term(t, {}, False)
             pred = self.predicate("error_message", 2, "ga_kb")
             base = PL_new_term_refs(2)
             PL_put_term(base, t)
@@ -319,16 +323,21 @@ def define_foreign(engine: PrologCalls, module: str, name: str,
         try:
             if not PL_is_acyclic(request):  # a cyclic list would be read for ever
                 raise KBError(_TOO_DEEP_FOR_PYTHON)
-            answer = respond(engine._get_term(request, [], False))
+            answer = respond(engine._get_term(request, {}, False))
             if answer is None:
                 return 1
             t = PL_new_term_ref()
             engine._put_term(t, answer, {})
             return 1 if PL_unify(reply, t) else 0
         except BaseException as error:  # noqa: BLE001 - carried out of Prolog, re-raised
+            t = PL_new_term_ref()
+            if isinstance(error, PrologRuntimeError) and error.term == _INFERENCES_SPENT:
+                # A nested query (a module call) used up the enclosing query's inference
+                # limit: it is that query's limit, met where it called Python.
+                PL_put_atom(t, engine._atom_handle(_INFERENCES_SPENT))
+                return PL_raise_exception(t)
             engine._python_errors.append(KBError(_TOO_DEEP_FOR_PYTHON) if _too_deep(error)
                                          else error)
-            t = PL_new_term_ref()
             PL_put_atom(t, engine._atom_handle(_PYTHON_ERROR))
             return PL_raise_exception(t)
         finally:

@@ -24,6 +24,7 @@ the process after SWI's crash report) and SIGUSR2 (its thread alert, as with
 from __future__ import annotations
 
 import ctypes
+import ctypes.util
 import importlib
 import importlib.util
 import signal
@@ -151,7 +152,6 @@ PL_get_name_arity = _declare("PL_get_name_arity_sz", c_int, term_t, POINTER(atom
                              POINTER(c_size_t))
 PL_get_arg = _declare("_PL_get_arg_sz", c_int, c_size_t, term_t, term_t)
 PL_get_list = _declare("PL_get_list", c_int, term_t, term_t, term_t)
-PL_compare = _declare("PL_compare", c_int, term_t, term_t)
 PL_is_acyclic = _declare("PL_is_acyclic", c_int, term_t)
 PL_put_variable = _declare("PL_put_variable", c_int, term_t)
 PL_put_atom = _declare("PL_put_atom", c_int, term_t, atom_t)
@@ -179,6 +179,29 @@ PL_chars_to_term = _declare("PL_chars_to_term", c_int, c_char_p, term_t)
 PL_call = _declare("PL_call", c_int, term_t, c_void_p)
 
 
+class _Mpz(ctypes.Structure):
+    """GMP's mpz_t, read for its size only."""
+
+    _fields_ = [("alloc", c_int), ("size", c_int), ("limbs", c_void_p)]
+
+
+PL_get_mpz = _declare("PL_get_mpz", c_int, term_t, POINTER(_Mpz))
+_mpz_clear = ctypes.CDLL(ctypes.util.find_library("gmp") or "libgmp.so.10").__gmpz_clear
+_mpz_clear.restype, _mpz_clear.argtypes = None, (POINTER(_Mpz),)
+
+
+def integer_bits(t: int) -> int:
+    """About how many bits the integer in term ref ``t`` has (its GMP limbs), without
+    converting it: writing a huge one in decimal takes SWI-Prolog seconds, uninterruptibly."""
+    mpz = _Mpz()
+    if not PL_get_mpz(t, byref(mpz)):
+        return 0
+    try:
+        return abs(mpz.size) * 64
+    finally:
+        _mpz_clear(byref(mpz))
+
+
 def _call_text(goal: bytes) -> bool:
     """Runs a goal given as text, once (used while starting, before the engine exists)."""
     frame = PL_open_foreign_frame()
@@ -199,7 +222,7 @@ PL_TERM, PL_NIL, PL_LIST_PAIR = 7, 8, 10
 Q_CATCH = 0x04 | 0x08  # PL_Q_NODEBUG | PL_Q_CATCH_EXCEPTION
 Q_PASS = 0x04 | 0x10  # PL_Q_NODEBUG | PL_Q_PASS_EXCEPTION: PL_exception(0) has it
 REP_UTF8 = 0x00100000
-CVT_ATOM, CVT_STRING, CVT_INTEGER, CVT_WRITEQ = 0x1, 0x2, 0x8, 0x200
+CVT_ATOM, CVT_STRING, CVT_INTEGER, CVT_VARIABLE, CVT_WRITEQ = 0x1, 0x2, 0x8, 0x40, 0x200
 TEXT_FLAGS = CVT_ATOM | CVT_STRING | REP_UTF8
 PUT_STRING = 6 | REP_UTF8  # PL_STRING type for PL_put_chars
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1

@@ -99,6 +99,7 @@ class Conditions(PrologModules):
         args = tuple(given.get(name, Var(name)) for name in names)
         goal = Struct(":", (self._b, Struct(cond._name, args) if args else Atom(cond._name)))
         self._watchdog.time_limit = self.limits.max_query_seconds
+        self._watchdog.running = self._memory
         result = self._engine.call("solutions", goal, list(args), self.limits.max_inferences,
                                    limit if limit is not None else Atom("all"), None,
                                    module="ga_guard")

@@ -8,8 +8,9 @@
     Always (sandbox or not) -- minds are private and the runtime is not the agents' to
     change: no module qualification (M:G, @/2, assertz(M:C), dynamic(M:P), ...), no
     predicate whose name starts with '$' (SWI's internals and the runtime's), nothing that
-    enumerates modules or atoms (module names could be read from them), no global
-    variable, flag or recorded key that is unbound or reserved ('$...', ga_...).
+    enumerates modules or atoms (module names could be read from them), nothing that
+    changes what every agent shares (confine_builtins.pl); global variables, flags and
+    recorded keys are each agent's own (confine_keys.pl), never unbound or reserved.
 
     With the sandbox, in addition, every built-in or library predicate called must be
     safe as SWI-Prolog's library(sandbox) defines it (safe_goal/1: no files, OS, network,
@@ -28,6 +29,7 @@
 :- set_prolog_flag(generate_debug_info, false).
 
 :- include(confine_builtins).
+:- include(confine_keys).
 
 %   Placeholders for goal arguments when asking library(sandbox) about a meta-predicate
 %   (the arguments themselves are checked here, one by one).
@@ -65,21 +67,27 @@ sandbox:safe_primitive(ga_confine:free(_, _, _, _, _, _, _, _)).
 prepare(G, Ctx, Checked) :-
     var(G), !,
     checked(Ctx, G, Checked).
-prepare((A0, B0), Ctx, (A, B)) :- !,
+prepare((A0, B0), Ctx0, (A, B)) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A),
     prepare(B0, Ctx, B).
-prepare((A0 ; B0), Ctx, (A ; B)) :- !,
+prepare((A0 ; B0), Ctx0, (A ; B)) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A),
     prepare(B0, Ctx, B).
-prepare((A0 -> B0), Ctx, (A -> B)) :- !,
+prepare((A0 -> B0), Ctx0, (A -> B)) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A),
     prepare(B0, Ctx, B).
-prepare((A0 *-> B0), Ctx, (A *-> B)) :- !,
+prepare((A0 *-> B0), Ctx0, (A *-> B)) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A),
     prepare(B0, Ctx, B).
-prepare(\+ A0, Ctx, \+ A) :- !,
+prepare(\+ A0, Ctx0, \+ A) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A).
-prepare(not(A0), Ctx, not(A)) :- !,
+prepare(not(A0), Ctx0, not(A)) :- !,
+    inner(Ctx0, Ctx),
     prepare(A0, Ctx, A).
 prepare(M:G, _, _) :- !,
     refuse("~q is qualified with a module: an agent calls in its own mind only", [M:G]).
@@ -110,6 +118,8 @@ prepare(G, Ctx, Prepared) :-
     functor(G, Name, Arity),
     (   sub_atom(Name, 0, _, _, $)
     ->  refuse("~q/~w is reserved for SWI-Prolog and the runtime", [Name, Arity])
+    ;   own(G, Ctx)                           % the agent's own told/0, append/1, ...
+    ->  Prepared = G
     ;   private(Name/Arity)
     ->  refuse("~q/~w would reveal other agents' or the runtime's modules", [Name, Arity])
     ;   process_wide(Name/Arity)
@@ -120,11 +130,17 @@ prepare(G, Ctx, Prepared) :-
     ->  refuse("~q/~w: this lambda form (library(yall)) cannot be checked; write Params>>Body or a helper predicate", [Name, Arity])
     ;   \+ library_goal(G, Ctx)
     ->  library_refused(G, Ctx)
-    ;   own(G, Ctx)
-    ->  Prepared = G
-    ;   keys_allowed(G),
-        prepare_call(G, Ctx, Prepared)
+    ;   agent_key(G, Ctx, G1),
+        prepare_call(G1, Ctx, Prepared)
     ).
+
+%   inner(+Ctx0, -Ctx): the context of a goal inside Ctx0's goal (a conjunct, a meta
+%   argument, a clause body). When call_checked/3 prepares the goal it is about to call,
+%   what is unbound now stays so for that goal only: a goal inside it may be called after
+%   another one bound its variables ((X = M:G, assertz(X))), so it is prepared as when
+%   loading, with what is not known yet checked when it is called.
+inner(c(M, Sb, runtime), c(M, Sb, [])) :- !.
+inner(Ctx, Ctx).
 
 %   A predicate the agent defines itself: its clauses are prepared where they are loaded.
 %   (also one SWI-Prolog has that the agent made its own, see make_own/2: implementation_module/1
@@ -150,6 +166,9 @@ prepare_call(G, Ctx, Prepared) :-
     ->  checked(Ctx, G, Prepared)           % its text checked when it is printed
     ;   format_sized(G, Ctx)
     ->  checked(Ctx, G, Prepared)           % its counts checked when it runs
+    ;   ga_sizes:sized(G, Ctx, Sized)       % what it makes bounded before it starts
+    ->  sandbox_allows(G, Ctx),
+        Prepared = Sized
     ;   meta_specs(G, Specs)
     ->  G =.. [Name|Args0],
         (   catch(maplist(prepare_arg(Ctx), Specs, Args0, Args), ga_later, fail)
@@ -273,9 +292,11 @@ goal_spec(:).
 
 %   One argument of a meta-predicate call: a goal (spec N: with N more arguments), a
 %   clause or predicate (spec :), or data. ga_later: not known before run time.
-prepare_arg(Ctx, 0, A0, A) :- !,
+prepare_arg(Ctx0, 0, A0, A) :- !,
+    inner(Ctx0, Ctx),
     (   var(A0) -> checked_later(A0, Ctx, A) ; prepare(A0, Ctx, A) ).
-prepare_arg(Ctx, ^, A0, A) :- !,
+prepare_arg(Ctx0, ^, A0, A) :- !,
+    inner(Ctx0, Ctx),
     (   var(A0) -> checked_later(A0, Ctx, A) ; strip_carets(A0, Ctx, A) ).
 prepare_arg(Ctx, N, A0, A) :-
     integer(N), !,
@@ -295,11 +316,39 @@ prepare_arg(Ctx, N, A0, A) :-
         )
     ;   refuse("~q is not a goal", [A0])
     ).
-prepare_arg(Ctx, //, A0, A0) :- !,
-    prepare_arg(Ctx, 2, A0, _).
+prepare_arg(Ctx, //, A0, A) :- !,
+    prepare_grammar(A0, Ctx, A).
 prepare_arg(Ctx, :, A0, A) :- !,
     prepare_module_arg(A0, Ctx, A).
 prepare_arg(_, _, A, A).
+
+%   prepare_grammar(+Body0, +Ctx, -Body): a grammar body (the argument of phrase/2,3,
+%   call_dcg/3, library(dcg/high_order), ...) checked as the goal SWI-Prolog translates it
+%   to: its {}/1 goals, its non-terminals with their two list arguments, call//N. A body
+%   not known yet, or whose translation holds goals only known later, is translated and
+%   checked again each time it is called (grammar_checked/5).
+prepare_grammar(A0, c(M, Sb, Own), A) :-
+    (   var(A0)
+    ->  A = ga_confine:grammar_checked(Sb, M, A0)
+    ;   A0 = _:_
+    ->  refuse("~q is qualified with a module: an agent calls in its own mind only", [A0])
+    ;   grammar_goal(A0, _, _, Goal),
+        inner(c(M, Sb, Own), Ctx),
+        prepare(Goal, Ctx, Prepared),
+        (   Prepared == Goal
+        ->  A = A0
+        ;   A = ga_confine:grammar_checked(Sb, M, A0)
+        )
+    ).
+
+%   grammar_goal(+Body, ?S0, ?S, -Goal): Goal runs Body from list S0 to S, as SWI-Prolog
+%   translates grammar rules (dcg_translate_rule/2).
+grammar_goal(Body, S0, S, Goal) :-
+    (   catch(dcg_translate_rule(('$ga_grammar' --> Body), Clause), _, fail),
+        Clause = ('$ga_grammar'(T0, T) :- Goal0)
+    ->  T0 = S0, T = S, Goal = Goal0
+    ;   refuse("~q is not a grammar body", [Body])
+    ).
 
 strip_carets(V^G0, Ctx, V^G) :- !,
     (   var(G0) -> checked_later(G0, Ctx, G) ; strip_carets(G0, Ctx, G) ).
@@ -338,12 +387,38 @@ prepare_module_arg(A, Ctx, A) :-
     later(Ctx).
 prepare_module_arg(M:X, _, _) :- !,
     refuse("~q is qualified with a module: an agent changes its own mind only", [M:X]).
-prepare_module_arg((H :- B0), Ctx, (H :- B)) :- !,
+prepare_module_arg((H :- B0), Ctx0, (H :- B)) :- !,
     clause_head_allowed(H),
+    inner(Ctx0, Ctx),
     (   var(B0) -> checked_later(B0, Ctx, B) ; prepare(B0, Ctx, B) ).
-prepare_module_arg(A, _, A) :-
-    (   callable(A)
+prepare_module_arg(A, Ctx, A) :-
+    (   specs(A)                            % dynamic([p/1, q/2]), op(700, xfx, [a, b]),
+    ->  spec_allowed(A, Ctx)                % dynamic((p/1, q/2)), dynamic(p/1 as incremental)
+    ;   callable(A)
     ->  clause_head_allowed(A)
+    ;   true
+    ).
+
+specs([_|_]).
+specs((_, _)).
+specs(_ as _).
+
+%   Each predicate or operator of a list, conjunction or `as` of them names neither a
+%   module nor a reserved ('$') name.
+spec_allowed(S, Ctx) :-
+    (   var(S)
+    ->  later(Ctx)
+    ;   S == []
+    ->  true
+    ;   ( S = [A|B] ; S = (A, B) )
+    ->  spec_allowed(A, Ctx),
+        spec_allowed(B, Ctx)
+    ;   S = (A as _)
+    ->  spec_allowed(A, Ctx)
+    ;   S = _:_
+    ->  refuse("~q is qualified with a module: an agent changes its own mind only", [S])
+    ;   ( S = N/_ ; S = N//_ ), atom(N), sub_atom(N, 0, _, _, $)
+    ->  refuse("~q is reserved for SWI-Prolog and the runtime", [S])
     ;   true
     ).
 
@@ -361,26 +436,6 @@ assert_family(G) :-
     functor(G, Name, Arity),
     memberchk(Name/Arity, [assert/1, asserta/1, assertz/1, assert/2, asserta/2, assertz/2,
                            retract/1, retractall/1]).
-
-%   Global variables, flags and recorded keys are process-wide: an agent names its own,
-%   never one of the runtime's ('$...', ga_...), and never enumerates them.
-keys_allowed(G) :-
-    (   key_arg(G, Key)
-    ->  (   var(Key)
-        ->  refuse("~q with a key only known at run time", [G])
-        ;   atom(Key), ( sub_atom(Key, 0, _, _, $) ; sub_atom(Key, 0, _, _, ga_) )
-        ->  refuse("the key ~q is reserved for the runtime", [Key])
-        ;   true
-        )
-    ;   true
-    ).
-
-key_arg(G, Key) :-
-    functor(G, Name, Arity),
-    memberchk(Name/Arity, [nb_setval/2, b_setval/2, nb_getval/2, b_getval/2, nb_current/2,
-                           nb_delete/1, flag/3, recorda/2, recorda/3, recordz/2, recordz/3,
-                           recorded/2, recorded/3]),
-    arg(1, G, Key).
 
 lambda(/, Arity) :- Arity >= 2.             % yall's Free/Lambda and \X^Body: copy rules
 lambda(\, Arity) :- Arity >= 1.             % this check does not follow
@@ -480,10 +535,11 @@ prepare_clause(H, _, H) :-
 prepare_directive(D, _, _) :-
     var(D), !,
     refuse("a directive must be known when the program is loaded", []).
-prepare_directive(D, _, D) :-
+prepare_directive(D, c(M, Sb, _), D) :-
     declaration(D), !,
     arg(1, D, Spec),
-    unqualified(Spec).
+    unqualified(Spec),
+    spec_allowed(Spec, c(M, Sb, runtime)).     % run now: what is unbound stays so
 prepare_directive(op(P, T, Names), _, op(P, T, Names)) :- !,
     unqualified(Names).
 prepare_directive(D, Ctx, D) :-
@@ -582,6 +638,19 @@ closure_checked(Sb, M, C, A1, A2, A3, A4, A5, A6) :-
     closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6]).
 closure_checked(Sb, M, C, A1, A2, A3, A4, A5, A6, A7) :-
     closure_goal(Sb, M, C, [A1, A2, A3, A4, A5, A6, A7]).
+
+%!  grammar_checked(+Sandbox, +Module, +Body, ?S0, ?S) is nondet.
+%   A grammar body only known when it runs (see prepare_grammar/3), called as a
+%   non-terminal: translated, checked as call_checked/3 checks a goal, and called.
+grammar_checked(Sb, M, Body, S0, S) :-
+    (   var(Body)
+    ->  throw(error(instantiation_error, _))
+    ;   Body = _:_
+    ->  refuse("~q is qualified with a module: an agent calls in its own mind only", [Body])
+    ;   grammar_goal(Body, S0, S, Goal),
+        prepare(Goal, c(M, Sb, []), Prepared),
+        call(M:Prepared)
+    ).
 
 closure_goal(Sb, M, C, Args) :-
     (   var(C)

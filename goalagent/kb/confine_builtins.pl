@@ -60,6 +60,144 @@ process_wide(install_alarm/2).
 process_wide(uninstall_alarm/1).
 process_wide(set_prolog_IO/3).
 process_wide(expects_dialect/1).       % the process's dialect flag and global operators
+%   Issue 24 (the review of SWI-Prolog's manual, docs/confinement-review.md, gives each its
+%   section): what is shared by every agent and the runtime, or holds up the whole process.
+process_wide(working_directory/2).     % where relative --save-beliefs, --trace-file land
+process_wide(unload_file/1).           % the runtime's own Prolog files
+process_wide(require/1).               % loads any library (the sandbox's list included)
+process_wide(initialize/0).            % runs the initialization goals of loaded files
+process_wide((initialization)/2).      % as a goal (a directive is prepare_directive/3's)
+process_wide(compile_aux_clauses/1).   % into the module being loaded, else user
+process_wide(version/1).               % the process's banner
+process_wide(edit/0).                  % an editor, waited for
+process_wide(edit/1).
+process_wide(prolog_alert_signal/2).   % the signal the watchdog's thread_signal/2 uses
+process_wide(sig_atomic/1).            % its goal runs with signals held back: no limit,
+process_wide(sig_block/1).             % no SIGTERM stops it; blocking or dropping the
+process_wide(sig_unblock/1).           % runtime's signals has the same effect
+process_wide(sig_pending/1).
+process_wide(sig_remove/2).
+process_wide(set_input/1).             % the current input and output of the one thread
+process_wide(set_output/1).            % that runs every agent (Edinburgh I/O included)
+process_wide(see/1).
+process_wide(seen/0).
+process_wide(tell/1).
+process_wide(append/1).
+process_wide(told/0).
+process_wide(set_stream/2).            % aliases (user_output, ...) and the standard streams
+process_wide(set_system_IO/3).
+process_wide(register_iri_scheme/3).   % a hook for every open/3 of the process
+process_wide(with_tty_raw/1).          % the terminal's mode
+process_wide(get_single_char/1).
+process_wide(prompt/2).
+process_wide(set_locale/1).            % how every agent's format/2 writes numbers
+process_wide(locale_destroy/1).
+process_wide(setlocale/3).             % the C library's: how the process writes floats
+process_wide(char_conversion/2).       % the reader's table
+process_wide(set_random/1).            % the random numbers of every agent
+process_wide(setenv/2).                % the process's environment
+process_wide(unsetenv/1).
+process_wide(break/0).                 % an interactive top level on the terminal
+process_wide(prolog/0).
+process_wide(protocol/1).              % a copy of every agent's terminal I/O
+process_wide(protocola/1).
+process_wide(noprotocol/0).
+process_wide(trace/0).                 % the debugger: it prompts on the terminal, and its
+process_wide(trace/1).                 % mode is the thread's, every agent's
+process_wide(trace/2).
+process_wide(notrace/0).
+process_wide(debug/0).
+process_wide(nodebug/0).
+process_wide(spy/1).
+process_wide(nospy/1).
+process_wide(nospyall/0).
+process_wide(leash/1).
+process_wide(visible/1).
+process_wide(style_check/1).
+process_wide(prolog_skip_level/2).
+process_wide(prolog_skip_frame/1).
+process_wide(prolog_interrupt/0).
+process_wide(prolog_debug/1).
+process_wide(prolog_nodebug/1).
+process_wide(profile/1).               % the profiler is the process's
+process_wide(profile/2).
+process_wide(profiler/2).
+process_wide(reset_profiler/0).
+process_wide(set_prolog_gc_thread/1).
+process_wide(set_malloc/1).
+process_wide(abolish_all_tables/0).    % every agent's tables
+process_wide(abolish_private_tables/0).
+process_wide(abolish_shared_tables/0).
+process_wide(abolish_nonincremental_tables/0).
+process_wide(abolish_nonincremental_tables/1).
+process_wide(abolish_monotonic_tables/0).
+process_wide(thread_exit/1).           % the thread that runs every agent
+process_wide(thread_join/1).
+process_wide(thread_join/2).
+process_wide(thread_detach/1).
+process_wide(thread_alias/1).
+process_wide(thread_at_exit/1).        % run when the process ends, outside every limit
+process_wide((thread_initialization)/1).
+process_wide(thread_setconcurrency/2).
+process_wide(thread_affinity/3).
+process_wide(thread_wait/2).           % waits for other threads: there are none
+process_wide(thread_update/2).
+process_wide(thread_send_message/2).   % the thread's message queue and named queues are
+process_wide(thread_send_message/3).   % shared by every agent: a channel between them
+process_wide(thread_get_message/1).
+process_wide(thread_get_message/2).
+process_wide(thread_get_message/3).
+process_wide(thread_peek_message/1).
+process_wide(thread_peek_message/2).
+process_wide(message_queue_create/1).
+process_wide(message_queue_create/2).
+process_wide(message_queue_destroy/1).
+process_wide(message_queue_property/2).
+process_wide(message_queue_set/2).
+process_wide(mutex_create/1).          % named mutexes are the process's: with one thread
+process_wide(mutex_create/2).          % they only serve as a channel between agents
+process_wide(mutex_destroy/1).
+process_wide(mutex_lock/1).
+process_wide(mutex_trylock/1).
+process_wide(mutex_unlock/1).
+process_wide(mutex_unlock_all/0).
+process_wide(mutex_property/2).
+process_wide(with_mutex/2).
+process_wide(call_with_time_limit/2).  % library(time): an alarm thread, as alarm/4
+process_wide(interactor/0).            % library(threadutil): threads and consoles
+process_wide(attach_console/0).
+process_wide(tdebug/0).
+process_wide(tdebug/1).
+process_wide(tnodebug/0).
+process_wide(tnodebug/1).
+process_wide(tspy/1).
+process_wide(tspy/2).
+process_wide(tprofile/1).
+process_wide(prolog_server/2).         % library(prolog_server): a top level on a socket
+process_wide(engine_create/3).         % an engine runs its goal outside the agent's
+process_wide(engine_create/4).         % limits (their own stacks; not confined after a
+process_wide(engine_post/2).           % yield)
+process_wide(engine_post/3).
+process_wide(engine_next/2).
+process_wide(engine_next_reified/2).
+process_wide(engine_destroy/1).
+process_wide(engine_yield/1).
+process_wide(engine_fetch/1).
+process_wide(current_engine/1).
+process_wide(close_shared_object/1).   % foreign code
+process_wide(call_shared_object_function/2).
+process_wide(qsave_program/1).         % a saved state holds every agent's mind
+process_wide(qsave_program/2).
+process_wide(autoload_all/0).
+process_wide(autoload_path/1).
+process_wide(make_library_index/1).
+process_wide(make_library_index/2).
+process_wide(reload_library_index/0).
+process_wide(attach_packs/0).
+process_wide(attach_packs/1).
+process_wide(attach_packs/2).
+process_wide(license/1).
+process_wide(license/2).
 
 %   Attribute hooks run in the module an attribute is named after: put_attr(X, freeze, G)
 %   would call any G, unchecked, when X is bound.
@@ -77,6 +215,8 @@ private(current_flag/1).
 private(prolog_current_frame/1).
 private(prolog_frame_attribute/3).
 private(prolog_choice_attribute/3).
+private(prolog_current_choice/1).       % a choice point of the runtime's, to cut to
+private(prolog_cut_to/1).
 private((@)/2).
 private(set_module/1).
 private(module/2).
@@ -84,6 +224,10 @@ private(add_import_module/3).
 private(delete_import_module/2).
 private(context_module/1).
 private(strip_module/3).
+private(module/1).                      % the top level's module
+private(import_module/2).               % with an unbound module: every module
+private(default_module/2).
+private(abolish_module_tables/1).       % names a module
 
 %   Built-ins that print a message or term: a message format(F, Args) or a line F-Args
 %   runs a goal for ~@ in F, and the write option portray_goal(G) calls G.
@@ -129,6 +273,7 @@ stoppable(setup_call_cleanup(S, G, C), c(M, _, _),
 stoppable(setup_call_catcher_cleanup(S, G, K, C), c(M, _, _),
           ga_confine:cleanup_call(M:S, M:G, K, M:C)) :- !.
 stoppable(call_cleanup(G, C), c(M, _, _), ga_confine:cleanup_call(true, M:G, _, M:C)) :- !.
+stoppable(call_cleanup(G, K, C), c(M, _, _), ga_confine:cleanup_call(true, M:G, K, M:C)) :- !.
 stoppable(G, _, G).
 
 %!  recover(+Ball, ?Catcher, :Recovery) is nondet.

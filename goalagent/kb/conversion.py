@@ -16,6 +16,7 @@ from goalagent.kb.clib import (
     ATOM_BUF,
     ATOM_REF,
     CVT_INTEGER,
+    CVT_VARIABLE,
     CVT_WRITEQ,
     FLOAT_BUF,
     FLOAT_REF,
@@ -37,7 +38,6 @@ from goalagent.kb.clib import (
     SIZE_BUF,
     SIZE_REF,
     TEXT_FLAGS,
-    PL_compare,
     PL_cons_functor_v,
     PL_cons_list,
     PL_copy_term_ref,
@@ -63,10 +63,22 @@ from goalagent.kb.clib import (
     PL_recorded,
     PL_register_atom,
     PL_term_type,
+    integer_bits,
     text_of,
 )
 from goalagent.kb.errors import KBError
-from goalagent.kb.terms import Atom, Struct, Term, Var, decimal_int, format_term
+from goalagent.kb.terms import (
+    MAX_INT_DIGITS,
+    Atom,
+    Struct,
+    Term,
+    Var,
+    decimal_int,
+    format_term,
+)
+
+# The bits of the largest integer converted (decimal_int's digits, rounded up to limbs).
+_MAX_INT_BITS = MAX_INT_DIGITS * 3322 // 1000 + 64
 
 
 class Record:
@@ -236,16 +248,16 @@ class TermConversion:
     # keeps unbound variables' identities; with ``marks``, ``'$ga_var'(Name)`` becomes
     # ``Var(Name)`` (see parse/2).
 
-    def _get_term(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_term(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         """The Python term in term ref ``t``."""
         return self._getters.get(PL_term_type(t), self._get_other)(t, seen, marks)
 
-    def _get_atom(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_atom(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         PL_get_atom(t, ATOM_REF)
         handle = ATOM_BUF.value
         return self._atom_names.get(handle) or self._atom_name(handle)
 
-    def _get_compound(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_compound(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         PL_get_name_arity(t, ATOM_REF, SIZE_REF)
         handle = ATOM_BUF.value
         arity = SIZE_BUF.value
@@ -263,15 +275,18 @@ class TermConversion:
             return Var(str(args[0]))
         return Struct(name, tuple(args))
 
-    def _get_integer(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_integer(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         if PL_get_int64(t, INT_REF):
             return INT_BUF.value
+        if integer_bits(t) > _MAX_INT_BITS:  # (not written out first: seconds for one)
+            raise KBError(f"an integer of more than {MAX_INT_DIGITS:,} digits is too "
+                          "large to convert")
         try:
             return decimal_int(text_of(t, CVT_INTEGER))
         except ValueError as error:
             raise KBError(str(error)) from None
 
-    def _get_list(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_list(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         items: list[Term] = []
         rest = PL_copy_term_ref(t)
         head = PL_new_term_ref()
@@ -285,30 +300,31 @@ class TermConversion:
             tail = Struct("[|]", (item, tail))
         return tail
 
-    def _get_nil(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_nil(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         return []
 
-    def _get_string(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_string(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         return text_of(t, TEXT_FLAGS)
 
-    def _get_float(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_float(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         PL_get_float(t, FLOAT_REF)
         return FLOAT_BUF.value
 
-    def _get_variable(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
-        for ref, var in seen:
-            if PL_compare(ref, t) == 0:
-                return var
-        self._counter += 1
-        var = Var("_" if marks else f"_G{self._counter}")
-        seen.append((PL_copy_term_ref(t), var))
+    def _get_variable(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
+        # Known by the name SWI-Prolog writes for it, from its address: one look-up a
+        # variable (comparing each with every one seen before took 178 s for 10,000).
+        name = text_of(t, CVT_VARIABLE | REP_UTF8)
+        var = seen.get(name)
+        if var is None:
+            self._counter += 1
+            var = seen[name] = Var("_" if marks else f"_G{self._counter}")
         return var
 
-    def _get_rational(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_rational(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         numerator, denominator = text_of(t, CVT_WRITEQ | REP_UTF8).split("r")
         return float(Fraction(int(numerator), int(denominator)))
 
-    def _get_other(self, t: int, seen: list[tuple[int, Var]], marks: bool) -> Term:
+    def _get_other(self, t: int, seen: dict[str, Var], marks: bool) -> Term:
         """Blobs (streams, clause refs) and dicts: their quoted text, as an atom."""
         return Atom(text_of(t, CVT_WRITEQ | REP_UTF8))
 

@@ -40,6 +40,8 @@ _PARSE_CACHE_MAX = 20_000
 _SUPPORT = Path(__file__).with_name("mentalstate.pl")
 _GUARD = Path(__file__).with_name("guard.pl")  # depth limits, files of facts, limits
 _CONFINE = Path(__file__).with_name("confine.pl")  # what agents' Prolog may call
+_MEMORY = Path(__file__).with_name("memory.pl")  # what an agent's memory holds
+_SIZES = Path(__file__).with_name("sizes.pl")  # what one built-in call may make
 
 
 class Engine(PrologCalls):
@@ -50,7 +52,7 @@ class Engine(PrologCalls):
         self._parsed: dict[str, Term] = {}
         self.call("set_prolog_flag", Atom("debug_on_error"), Atom("false"), module="system")
         self.call("set_prolog_flag", Atom("report_error"), Atom("false"), module="system")
-        for support in (_CONFINE, _SUPPORT, _GUARD):
+        for support in (_CONFINE, _SUPPORT, _GUARD, _MEMORY, _SIZES):
             loaded = self.call(
                 "load_files",
                 Atom(str(support)),

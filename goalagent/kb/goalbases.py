@@ -5,10 +5,11 @@ drop on the top one, and blind commitment: goals whose facts are all believed ar
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from typing import Any
 
 from goalagent import ast
 from goalagent.kb.prolog_modules import PrologModules
-from goalagent.kb.terms import Term
+from goalagent.kb.terms import Struct, Term
 
 __all__ = ["GoalBases"]
 
@@ -17,12 +18,29 @@ class GoalBases(PrologModules):
     """The stack of goal bases in the agent's goal module; each goal is the list of its
     facts."""
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        # Goals adopted or kept because checking them passed a limit or raised an error
+        # (facts, why), for the agent to warn about (take_unchecked()).
+        self._unchecked: list[tuple[list[Term], str]] = []
+        super().__init__(*args, **kwargs)
+
     def adopt(self, formula: ast.PrologText | str,
               bindings: Mapping[str, Term] | None = None) -> bool:
-        """Adds the conjunction as one goal; False when already believed or already a goal."""
+        """Adds the conjunction as one goal; False when already believed or already a goal.
+        Checking whether it is believed is bounded by --max-inferences; one that passes a
+        limit or raises an error adopts the goal (see :meth:`take_unchecked`)."""
         term = self._term(formula, bindings)
-        result = self._call("adopt", self._b, self._g, term, None)[3]
+        result = self._call("adopt_checked", self._b, self._g, term, None)[3]
+        if isinstance(result, Struct):  # unchecked(Message)
+            self._unchecked.append((_conjuncts(term), str(result.args[0])))
+            return True
         return result == "adopted"
+
+    def take_unchecked(self) -> list[tuple[list[Term], str]]:
+        """The goals adopted or kept since the last call because checking whether they are
+        believed passed a limit or raised an error: (their facts, what the check met)."""
+        unchecked, self._unchecked = self._unchecked, []
+        return unchecked
 
     def drop(self, formula: ast.PrologText | str,
              bindings: Mapping[str, Term] | None = None) -> list[list[Term]]:
@@ -45,7 +63,10 @@ class GoalBases(PrologModules):
             return []
         removed, self._achieved = self._achieved, []
         if self._recheck:
-            removed += self._call("check_goals", self._b, self._g, None)[2]
+            result = self._call("check_goals_bounded", self._b, self._g, None, None)
+            removed += result[2]
+            self._unchecked += [(facts, str(why)) for facts, why in
+                                (pair.args for pair in result[3])]  # type: ignore[union-attr]
             self._recheck = False
         unique: list[list[Term]] = []
         for goal in removed:
@@ -73,3 +94,10 @@ class GoalBases(PrologModules):
         goals = self._call("pop", self._g, None)[1]
         assert isinstance(goals, list)
         return goals
+
+
+def _conjuncts(term: Term) -> list[Term]:
+    """The facts of a conjunction ``(a, b, c)`` (``true`` left out)."""
+    if isinstance(term, Struct) and term.name == "," and len(term.args) == 2:
+        return _conjuncts(term.args[0]) + _conjuncts(term.args[1])
+    return [] if term == "true" else [term]

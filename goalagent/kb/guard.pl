@@ -323,6 +323,10 @@ stretch_action(abort) :-
     abort.
 stretch_action(time(T)) :-
     throw(ga_limit(time(T))).
+stretch_action(call_memory(B, Max, Base, Page)) :-
+    ga_memory:call_growth(B, Max, Base, Page).
+stretch_action(held_memory(B, Max)) :-
+    ga_memory:held_check(B, Max).
 
 %!  aborted_rule(-Id) is det.
 %   The rule the last aborted query was in (noted by rules.pl), or none; read once.
@@ -373,6 +377,14 @@ limit_message(time(T), Message) :- !,
     format(string(Message), "ran longer than ~w s (--max-query-seconds)", [T]).
 limit_message(beliefs(N, Max), Message) :- !,
     format(string(Message), "~D beliefs and goals, more than ~D (--max-beliefs)", [N, Max]).
+limit_message(memory(held(Bytes), Max), Message) :- !,
+    MB is -(-Bytes // 1048576), MaxMB is Max // 1048576,
+    format(string(Message), "holds ~D MB in its clauses and their atoms, more than \c
+                             --max-memory ~D MB", [MB, MaxMB]).
+limit_message(memory(call(Bytes), Max), Message) :- !,
+    MB is -(-Bytes // 1048576), MaxMB is Max // 1048576,
+    format(string(Message), "took ~D MB outside Prolog's stacks in one call, more than \c
+                             --max-memory ~D MB", [MB, MaxMB]).
 limit_message(Limit, Message) :-
     format(string(Message), "limit ~q", [Limit]).
 

@@ -179,6 +179,9 @@ def _problem(term: Struct) -> Problem:
                        action_index=int(args[1]))
     if name == "limit":
         return Problem(ProblemKind.LIMIT_EXCEEDED, limit_text(args[1]), rule=RULES[int(args[0])])
+    if name == "goal_check":
+        rule = RULES[int(args[0])] if isinstance(args[0], int) else None
+        return Problem(ProblemKind.GOAL_UNCHECKED, args[2], rule=rule, term=args[1])
     return Problem(ProblemKind.ACTION_NOT_CLOSED, firing=_firing(args[0]),
                    action_index=int(args[1]), term=args[2])
 

@@ -7,7 +7,8 @@ docs in README "Limits"), the busiest rule makes a few hundred thousand inferenc
 and the slowest stretch of Prolog takes well under a second, so only runaway rules meet
 them. What happens at each bound: a rule passing the inference or time limit is not
 applicable, with a warning naming agent, module and rule (rules.pl, watchdog.py); an agent
-holding more beliefs and goals than ``max_beliefs`` is stopped with a message.
+holding more beliefs and goals than ``max_beliefs``, or more memory than ``max_memory``
+(goalagent/kb/memory.py), is stopped with a message.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from goalagent import ast
 from goalagent.kb.errors import KBError, LimitError, PrologRuntimeError
 from goalagent.kb.terms import Struct, Term, format_term
 
-__all__ = ["Limits", "limit_text", "refused_precondition", "stopping_error"]
+__all__ = ["Limits", "limit_stop", "limit_text", "refused_precondition", "stopping_error"]
 
 
 BYTES_PER_MODULE_LEVEL = 8 * 1024
@@ -53,6 +54,11 @@ class Limits:
     sandbox: bool = False
     runs_code: bool = True
     max_module_depth: int = field(default_factory=default_module_depth)
+    max_memory: int = 512  # megabytes (memory.py)
+
+    @property
+    def max_memory_bytes(self) -> int:
+        return self.max_memory * 2**20
 
     def __post_init__(self) -> None:
         if not 0 < self.max_module_depth <= 100_000:
@@ -63,6 +69,8 @@ class Limits:
             raise ValueError("max_query_seconds must be a positive number of seconds")
         if not 0 < self.max_beliefs <= 2**62:
             raise ValueError("max_beliefs must be a positive whole number")
+        if not 0 < self.max_memory <= 2**62:
+            raise ValueError("max_memory must be a positive whole number of megabytes")
 
 
 def limit_text(limit: Term) -> str:
@@ -75,19 +83,34 @@ def limit_text(limit: Term) -> str:
         return f"longer than {value:g} s (--max-query-seconds)"
     if limit.name == "beliefs":
         return f"{value:,} beliefs, more than {limit.args[1]:,} (--max-beliefs)"
+    if limit.name == "memory" and isinstance(value, Struct):
+        taken = -(-int(value.args[0]) // 2**20)  # type: ignore[arg-type]  # (rounded up)
+        most = int(limit.args[1]) // 2**20  # type: ignore[arg-type]
+        if value.name == "held":
+            return (f"{taken:,} MB in its clauses and their atoms, more than --max-memory "
+                    f"{most:,} MB")
+        return (f"{taken:,} MB outside Prolog's stacks in one call, more than --max-memory "
+                f"{most:,} MB")
     return format_term(limit)
 
 
 def stopping_error(error: PrologRuntimeError) -> KBError:
     """The error that stops an agent for ``ga_limit(Limit)`` escaping an interpreter call
-    (rules.pl: its beliefs over --max-beliefs, or a limit met between rules); any other
-    error as it is."""
+    (rules.pl: its beliefs over --max-beliefs, its memory over --max-memory, or a limit met
+    between rules); any other error as it is."""
     term = error.term
     if not (isinstance(term, Struct) and term.name == "ga_limit"):
         return error
-    limit = term.args[0]
+    return limit_stop(term.args[0])
+
+
+def limit_stop(limit: Term) -> LimitError:
+    """The error that stops an agent for passing ``limit`` (a ga_limit/1 argument)."""
     if isinstance(limit, Struct) and limit.name == "beliefs":
         return LimitError(f"holds {limit_text(limit)}; stopped")
+    if isinstance(limit, Struct) and limit.name == "memory":
+        took = "holds" if limit.args[0].name == "held" else "took"  # type: ignore[union-attr]
+        return LimitError(f"{took} {limit_text(limit)}; stopped")
     return LimitError(f"ran {limit_text(limit)} outside a rule; stopped")
 
 

@@ -21,12 +21,16 @@
 
 %   '$ga_g': the goal a goal/1 query reads (see forwarder/2); '$ga_listen': true while the
 %   running agent has listeners, so the interpreter reports each step (see tell/1 in
-%   rules.pl); '$ga_goal_id': the last goal id given (see add_goal/5). Each agent's belief
+%   rules.pl); '$ga_goal_id': the last goal id given (see add_goal/5); '$ga_max_inferences'
+%   and '$ga_unchecked': the running call's inference limit and the goals whose checks
+%   failed while check_goals_bounded/4 runs (none otherwise). Each agent's belief
 %   module name holds its "recheck" flag (see recheck/1), its goal module name what its
 %   goals watch (see watch/1).
 :- initialization(( nb_setval('$ga_g', none),
                      nb_setval('$ga_listen', false),
-                     nb_setval('$ga_goal_id', 0) )).
+                     nb_setval('$ga_goal_id', 0),
+                     nb_setval('$ga_max_inferences', 0),
+                     nb_setval('$ga_unchecked', none) )).
 
 :- include(mentalstate_load).
 :- include(mentalstate_updates).

@@ -26,6 +26,7 @@ from goalagent.kb.engine import KBError, PrologRuntimeError, Record
 from goalagent.kb.goalbases import GoalBases
 from goalagent.kb.identity import Identity
 from goalagent.kb.limits import refused_precondition, stopping_error
+from goalagent.kb.memory import check_held
 from goalagent.kb.percepts_and_mail import PerceptsAndMail
 from goalagent.kb.prolog_modules import FALSE, TRUE
 from goalagent.kb.terms import Atom, Struct, Term, format_term
@@ -71,10 +72,14 @@ class MentalState(Conditions, BeliefBase, GoalBases, PerceptsAndMail, Identity):
             raise KBError(f"the mental state of {self.agent_name} is closed")
         if self._run_pred is None:
             self._run_pred = self._engine.predicate("run", 3, "ga_kb")
-        self._watchdog.time_limit = self.limits.max_query_seconds
+        watch = self._watchdog
+        watch.time_limit, watch.running = self.limits.max_query_seconds, self._memory
         try:
             outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
         except PrologRuntimeError as error:
             raise stopping_error(error) from None
+        if watch.generation != self._generation:  # a memory alarm since its last account
+            self._generation = watch.generation
+            check_held(self._engine, self._b, self.limits, self._generation)
         self._recheck = bool(outcome & 1)
         return outcome, journal

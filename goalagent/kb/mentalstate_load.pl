@@ -15,7 +15,7 @@ new_agent(B, G) :-
                     dynamic(M:PI))
            )),
     dynamic(B:('$kpred'/1, '$ga_dir'/1, '$ga_pre'/4, '$ga_pre_body'/3, '$ga_wk'/2,
-               '$ga_confine'/1, '$ga_limits'/2)),
+               '$ga_confine'/1, '$ga_limits'/2, '$ga_key'/2)),
     assertz(B:'$ga_gm'(G)),
     recheck(B),
     dynamic(G:('$gf'/3, '$goal'/3, '$top'/1, '$fwd'/1, '$rule_inserted'/0)),
@@ -24,6 +24,7 @@ new_agent(B, G) :-
 
 %!  destroy(+B, +G) is det.
 destroy(B, G) :-
+    ga_confine:forget_keys(B),
     nb_delete(B),
     nb_delete(G),
     '$destroy_module'(B),
@@ -40,7 +41,48 @@ destroy(B, G) :-
 load(B, G, Items, Sandbox, RunsCode, Result) :-
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
-    load_(Items, 0, B, G, c(B, Sandbox, []), RunsCode, Result).
+    program_heads(Items, B, Own),
+    load_(Items, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
+
+%   program_heads(+Items, +B, -Own): the Name/Arity of every clause, grammar rule and
+%   dynamic declaration of the program, read before any is loaded: a clause may call a
+%   predicate of the agent's own that is written further on and named like a built-in
+%   confine.pl refuses (told/0, append/1). A text that only reads once its directives
+%   have run (its operators) is left out; it is read, and reported, when it is loaded.
+program_heads(Items, B, Own) :-
+    findall(Name/Arity,
+            ( member(Item, Items),
+              arg(1, Item, Text),
+              catch(read_text(Text, B, Term, _), _, fail),
+              term_head(Term, Name, Arity) ),
+            Own0),
+    sort(Own0, Own).
+
+term_head(Var, _, _) :- var(Var), !, fail.
+term_head((:- dynamic(Specs)), Name, Arity) :- !,
+    declared(Specs, Name, Arity).
+term_head((:- _), _, _) :- !, fail.
+term_head((Head, _ --> _), Name, Arity) :- !,
+    term_head((Head --> true), Name, Arity).
+term_head((Head --> _), Name, Arity) :- !,
+    callable(Head),
+    functor(Head, Name, Arity0),
+    Arity is Arity0 + 2.
+term_head((Head :- _), Name, Arity) :- !,
+    callable(Head),
+    functor(Head, Name, Arity).
+term_head(Head, Name, Arity) :-
+    callable(Head),
+    functor(Head, Name, Arity).
+
+declared(Specs, Name, Arity) :-
+    nonvar(Specs),
+    (   ( Specs = [_|_] ; Specs = (_, _) )
+    ->  ( Specs = [S|Rest] ; Specs = (S, Rest) ),
+        ( declared(S, Name, Arity) ; declared(Rest, Name, Arity) )
+    ;   Specs = Name/Arity
+    ;   Specs = Name//Arity0, integer(Arity0), Arity is Arity0 + 2
+    ).
 
 load_([], _, _, _, _, _, ok).
 load_([Item|Items], I, B, G, Ctx, RunsCode, Result) :-

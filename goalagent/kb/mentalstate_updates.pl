@@ -249,14 +249,66 @@ adopt(B, G, Formula, Result) :-
     ->  Result = believed
     ;   \+ \+ all_believed(Facts, B)
     ->  Result = believed
-    ;   G:'$top'(Base),
-        msort(Facts, Key),
-        (   G:'$goal'(Base, _, Key)
-        ->  Result = exists
-        ;   add_goal(B, G, Base, Facts, Key),
-            Result = adopted
+    ;   add_unless_there(B, G, Facts, Result)
+    ).
+
+add_unless_there(B, G, Facts, Result) :-
+    G:'$top'(Base),
+    msort(Facts, Key),
+    (   G:'$goal'(Base, _, Key)
+    ->  Result = exists
+    ;   add_goal(B, G, Base, Facts, Key),
+        Result = adopted
+    ).
+
+%!  adopt_checked(+B, +G, +Formula, -Result) is det.
+%   adopt/4 for Python (an agent's goals section, the API): checking whether the goal is
+%   believed is bounded by the agent's --max-inferences, and a check that passes a limit
+%   or raises an error is not a belief -- the goal is adopted all the same (as a rule whose
+%   condition does is not applicable), Result = unchecked(Message) saying why.
+adopt_checked(B, G, Formula, Result) :-
+    conjuncts(Formula, Facts),
+    must_be_facts(Facts, "adopt"),
+    declare_goal(B, G, Facts),
+    B:'$ga_limits'(Max, _),
+    (   Facts == []
+    ->  Result = believed
+    ;   catch(bounded_believed(Facts, B, Max, Believed), E, true),
+        (   var(E)
+        ->  true
+        ;   goal_check_message(E, Max, Message),
+            Believed = unchecked(Message)
+        ),
+        (   Believed == true
+        ->  Result = believed
+        ;   add_unless_there(B, G, Facts, Result0),
+            (   Believed = unchecked(_), Result0 == adopted -> Result = Believed
+            ;   Result = Result0
+            )
         )
     ).
+
+bounded_believed(Facts, B, Max, Believed) :-
+    (   call_with_inference_limit(\+ \+ all_believed(Facts, B), Max, Outcome)
+    ->  (   Outcome == inference_limit_exceeded
+        ->  throw(inference_limit_exceeded)
+        ;   Believed = true
+        )
+    ;   Believed = false
+    ).
+
+%   goal_check_message(+E, +Max, -Message): what checking a goal met (Max: the agent's
+%   --max-inferences); an abort or a Python exception passes on.
+goal_check_message(E, _, _) :-
+    passes_on(E, none), !,
+    throw(E).
+goal_check_message(inference_limit_exceeded, Max, Message) :- !,
+    format(string(Message), "ran more than ~D inferences (--max-inferences)", [Max]).
+goal_check_message(ga_limit(time(T)), _, Message) :- !,
+    format(string(Message), "ran longer than ~w s (--max-query-seconds)", [T]).
+goal_check_message(E, _, Message) :-
+    error_message(E, Message0),
+    format(string(Message), "raised an error: ~w", [Message0]).
 
 must_be_facts([], _).
 must_be_facts([Fact|Facts], Action) :-
@@ -354,11 +406,13 @@ entails(G, Base, Formula, Id) :-
 %!  blind_commitment(+B, +G, -Removed) is det.
 %   Removes every goal (all goal bases) whose facts are all believed.
 
+%   A goal whose check passes a limit or raises an error is kept, and told as a problem
+%   (see achieved_checked/3); each goal is checked once (ids grow in clause order).
 blind_commitment(B, G, Removed) :-
     (   G:'$goal'(_, Id, _),
-        achieved(B, G, Id)
-    ->  findall(Id1, achieved_goal(B, G, Id1), Ids),
-        maplist(remove_goal(G), Ids, Removed),
+        achieved_checked(B, G, Id)
+    ->  findall(Id1, ( G:'$goal'(_, Id1, _), Id1 > Id, achieved_checked(B, G, Id1) ), Ids),
+        maplist(remove_goal(G), [Id|Ids], Removed),
         (   listening
         ->  forall(member(Goal, Removed), tell(goal(achieved, Goal)))
         ;   true
@@ -381,12 +435,42 @@ check_goals(B, G, Removed) :-
     ;   Removed = []
     ).
 
+%!  check_goals_bounded(+B, +G, -Removed, -Unchecked) is det.
+%   check_goals/3 for Python (the end of a cycle), within the agent's --max-inferences;
+%   Unchecked lists Facts-Message for each goal kept because its check passed a limit or
+%   raised an error.
+check_goals_bounded(B, G, Removed, Unchecked) :-
+    B:'$ga_limits'(Max, _),
+    b_setval('$ga_max_inferences', Max),
+    nb_setval('$ga_unchecked', []),
+    call_cleanup(call_with_inference_limit(check_goals(B, G, Removed0), Max, Outcome),
+                 ( nb_getval('$ga_unchecked', Unchecked0),
+                   nb_setval('$ga_unchecked', none) )),
+    (   Outcome == inference_limit_exceeded  % (each goal's check catches its own)
+    ->  Removed = []
+    ;   Removed = Removed0
+    ),
+    reverse(Unchecked0, Unchecked).
+
 achieved(B, G, Id) :-
     \+ ( G:'$gf'(Id, Fact, _), \+ B:Fact ).
 
-achieved_goal(B, G, Id) :-
-    G:'$goal'(_, Id, _),
-    achieved(B, G, Id).
+%   achieved_checked(+B, +G, +Id): goal Id is achieved; a check that passes a limit or
+%   raises an error fails (the goal is kept), told as the running rule's problem and noted
+%   for check_goals_bounded/4 (in a global variable, which backtracking does not undo).
+achieved_checked(B, G, Id) :-
+    catch(achieved(B, G, Id), E, ( unchecked_goal(E, G, Id), fail )).
+
+unchecked_goal(E, G, Id) :-
+    (   nb_current('$ga_max_inferences', Max) -> true ; Max = 0 ),
+    goal_check_message(E, Max, Message),
+    goal_facts(G, Id, Facts),
+    (   nb_current('$ga_rule', Rule), integer(Rule) -> true ; Rule = none ),
+    problem(goal_check(Rule, Facts, Message)),
+    (   nb_getval('$ga_unchecked', Seen), Seen \== none
+    ->  nb_setval('$ga_unchecked', [Facts-Message|Seen])
+    ;   true
+    ).
 
 %!  goals(+G, -Goals) is det.
 goals(G, Goals) :-

@@ -67,6 +67,10 @@ class PrologModules:
         secret = secrets.token_hex(8)
         self._b = Atom(f"ga_b_{secret}")
         self._g = Atom(f"ga_g_{secret}")
+        # What the watchdog's memory watch needs of this agent's calls, and the memory
+        # alarm it last accounted after (goalagent/kb/memory.py).
+        self._memory = (str(self._b), self.limits.max_memory_bytes, agent_name)
+        self._generation = self._watchdog.generation
         self._closed = False
         # What blind commitment (GoalBases) has still to do, which every part changes:
         # goals belief updates removed, not yet reported, and whether goals may have been
@@ -84,6 +88,7 @@ class PrologModules:
         self._engine.call("set_limits", self._b, self.limits.max_inferences,
                           self.limits.max_beliefs, module="ga_guard")
         self._watchdog.time_limit = self.limits.max_query_seconds  # its directives run
+        self._watchdog.running = self._memory
         result = self._call("load", self._b, self._g, items, TRUE if self.limits.sandbox
                             else FALSE, TRUE if self.limits.runs_code else FALSE, None)[5]
         if isinstance(result, Struct) and result.name == "error":

@@ -168,11 +168,14 @@ condition_error(E, Id) :-
 limit_error(E, _) :- var(E), !, fail.
 limit_error(inference_limit_exceeded, inferences(Max)) :-
     b_getval('$ga_max_inferences', Max).
-limit_error(ga_limit(Limit), Limit).
+limit_error(ga_limit(Limit), Limit) :-
+    Limit \= memory(_, _).                   % (stops the agent: see passes_on/2)
 
-%   passes_on(+E, +Id): E ends more than the rule Id (noting Id for an abort's message).
+%   passes_on(+E, +Id): E ends more than the rule Id (noting Id for an abort's message);
+%   an agent over its memory (memory.pl) is stopped.
 passes_on(E, _) :- var(E), !, fail.
 passes_on('$ga_python', _).
+passes_on(ga_limit(memory(_, _)), _).
 passes_on('$aborted', Id) :-
     (   nb_current('$ga_aborted_rule', none) -> nb_setval('$ga_aborted_rule', Id) ; true ).
 
@@ -485,8 +488,10 @@ user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     ;   update(B, G, insert, Post, _, _, _)
     ).
 
-%   print/1 and log/1: atoms and strings as they are, other terms as writeq shows them.
+%   print/1 and log/1: atoms and strings as they are, other terms as writeq shows them
+%   (within ga_sizes:printable/1's bounds).
 output(Kind, T) :-
+    ga_sizes:printable(T),
     (   ( atom(T) ; string(T) )
     ->  atom_string(T, Text)
     ;   write_text(T, true, Text)
@@ -583,8 +588,9 @@ tell(Event) :-
 problem(condition(Id, E)) :- !,
     error_message(E, Message),
     '$ga_py'(problem(condition(Id, Message)), _).
-problem(action(Firing, K, E)) :- !,
+problem(action(Firing0, K, E)) :- !,
     error_message(E, Message),
+    ga_sizes:reportable(Firing0, Firing),
     '$ga_py'(problem(action(Firing, K, Message)), _).
 problem(precondition(Index, E)) :- !,
     error_message(E, Message),

@@ -1,5 +1,5 @@
-"""A thread that bounds what the main thread's Prolog does: wall-clock time per stretch, and
-Ctrl-C / SIGTERM while a query runs.
+"""A thread that bounds what the main thread's Prolog does: wall-clock time per stretch,
+memory per agent, and Ctrl-C / SIGTERM while a query runs.
 
 Python runs a signal handler only between bytecodes, so while the main thread is inside a
 Prolog query (ctypes releases the GIL) Ctrl-C would wait for the query to end -- for ever,
@@ -12,7 +12,17 @@ to a wakeup pipe, and checks the running stretch every ``TICK`` seconds:
   is in is not applicable, with a warning); if the agent's code catches that and runs on,
   the next time it is aborted (``'$aborted'`` cannot be swallowed) and the agent stopped;
 - a signal aborts the running stretch (the run then stops as Ctrl-C says); a second signal
-  that has not ended the process within a second ends it at once.
+  that has not ended the process within a second ends it at once, and so does the first
+  when the stretch has not ended ``STOP_GRACE`` seconds after its abort (a built-in that
+  does not look at signals: saves are atomic, the last one stays);
+- the process's resident memory, read every tick (a few microseconds, off the main thread):
+  when the running query of an agent has grown it by more than the agent's --max-memory,
+  the query is asked to account for it (memory.pl: it stops the agent if what is not
+  Prolog's stacks passes the budget); when the process has grown past its alarm mark, the
+  running agent accounts for what it holds at once and every agent at its next call
+  (``generation``; goalagent/kb/memory.py); a call that has grown it past four budgets
+  and Prolog's stacks without returning to Prolog is in a built-in nothing can interrupt:
+  the process ends then, before the machine runs out of memory.
 
 Both use ``thread_signal/2`` from the watchdog's engine; the goal it sends checks that the
 same stretch is still running (its number), so nothing strays into a later query. Why a
@@ -46,8 +56,12 @@ from goalagent.kb.engine import Engine, get_engine
 __all__ = ["TICK", "Watchdog", "watchdog"]
 
 TICK = 0.05  # seconds between looks at the running stretch
+ALARM_STEP = 64 * 2**20  # resident growth (bytes) between memory alarms, at least
+STACK_LIMIT = 2**30  # SWI-Prolog's default stack_limit: what a query's stacks may take
+_PAGE = os.sysconf("SC_PAGE_SIZE")
 WAKE = signal.SIGUSR2  # sent to the main thread after a Prolog signal, to end a sleep
 HARD_EXIT_AFTER = 1.0  # a second signal ends the process if this much later it still runs
+STOP_GRACE = 5.0  # a signal's abort not taken after this many seconds ends the process
 
 
 class Watchdog:
@@ -64,8 +78,19 @@ class Watchdog:
         self._struck: int | None = None  # the stretch a time limit was thrown in
         self._struck_at = 0.0  # when (the next strike comes one limit later)
         self._stopping: int | None = None  # a signal asking to stop, not yet done
-        self._aborted: int | None = None  # the stretch last aborted for it
+        self._aborted: int | None = None  # the stretch last aborted for it, and when
+        self._aborted_at = 0.0
         self._exit_code: Callable[[int], int] = lambda signum: 128 + signum
+        # The running agent's belief module, memory budget in bytes and name (set before
+        # each of its calls), and the memory watch (see _check_memory).
+        self.running: tuple[str, int, str] | None = None
+        self.generation = 0  # memory alarms so far: each agent accounts once per alarm
+        self._statm = os.open("/proc/self/statm", os.O_RDONLY)
+        self._last_rss = self._resident()
+        self._mark = self._last_rss + ALARM_STEP
+        self._query = 0  # the outermost query watched, the memory when it began, and how
+        self._query_base = 0  # much growth asks it for an account next
+        self._next_ask = 0
         # Taken to read the signals' pipe and act on them, and by stop_handled(): a signal
         # Python has already turned into the run's stop is never acted on again later.
         self._lock = threading.Lock()
@@ -112,6 +137,7 @@ class Watchdog:
                         self._signal(signum)
                 self._check_stop()
             self._check_time()
+            self._check_memory()
 
     def _pending(self) -> list[int]:
         """The signals written to the pipe and not read yet (without our own wake-ups)."""
@@ -140,11 +166,18 @@ class Watchdog:
         if engine.depth == 0:
             self._stopping = None  # back in Python: its handler stops the run
         elif engine.stretch_since is not None and engine.stretch != self._aborted:
-            self._aborted = engine.stretch
+            self._aborted, self._aborted_at = engine.stretch, time.monotonic()
             self._send("abort", f"signal {signal.Signals(self._stopping).name}")
+        elif (engine.stretch_since is not None and engine.stretch == self._aborted
+              and time.monotonic() - self._aborted_at > STOP_GRACE):
+            # One built-in call SWI-Prolog cannot interrupt (its writer, its reader, big
+            # integers: sizes.pl bounds those it knows): the signal still ends the run.
+            self._hard_exit(self._stopping, f": Prolog did not return within {STOP_GRACE:g} "
+                            "s (a built-in that does not look at signals);")
 
-    def _hard_exit(self, signum: int) -> None:
-        sys.stderr.write(f"{signal.Signals(signum).name} again: ending at once\n")
+    def _hard_exit(self, signum: int, why: str = " again:") -> None:
+        sys.stderr.write(f"{signal.Signals(signum).name}{why} ending at once; the last save "
+                         "is kept\n")
         sys.stderr.flush()
         os._exit(self._exit_code(signum))
 
@@ -167,6 +200,51 @@ class Watchdog:
             self._struck = stretch
             self._send(f"time({limit!r})", None)
         self._struck_at = time.monotonic()  # the next strike after another limit
+
+    def _resident(self) -> int:
+        """The process's resident memory in bytes (/proc/self/statm: no lock, no walk)."""
+        return int(os.pread(self._statm, 64, 0).split()[1]) * _PAGE
+
+    def _check_memory(self) -> None:
+        """The memory watch: growth of the running query past its agent's budget asks it
+        for an account (again each quarter budget more); growth of the process past the
+        alarm mark starts a new generation (every agent accounts at its next call) and asks
+        the running agent at once. The mark follows the memory down (an agent stopped and
+        its atoms collected), so a new hog is seen as soon."""
+        engine, agent = self.engine, self.running
+        rss = self._resident()
+        running = bool(engine.depth) and engine.stretch_since is not None and agent is not None
+        if running:
+            module, limit, name = agent  # type: ignore[misc]
+            if engine.query != self._query:  # first seen: it began after the last look
+                self._query, self._query_base, self._next_ask = engine.query, self._last_rss, limit
+            growth = rss - self._query_base
+            if growth > self._next_ask:
+                self._next_ask = growth + limit // 4
+                base = self._query_base // _PAGE
+                self._send(f"call_memory({module}, {limit}, {base}, {_PAGE})", None)
+            if growth > 4 * limit + STACK_LIMIT:
+                self._out_of_memory(name, growth)
+        next_mark = rss + max(ALARM_STEP, rss // 8)
+        if rss > self._mark:
+            self.generation += 1
+            if running:
+                self._send(f"held_memory({module}, {limit})", None)
+            self._mark = next_mark
+        else:
+            self._mark = min(self._mark, next_mark)
+        self._last_rss = rss
+
+    def _out_of_memory(self, name: str, growth: int) -> None:
+        """One call grew the process past four budgets and Prolog's stacks: it is in a
+        built-in SWI-Prolog cannot interrupt (assertz/1 of a term whose subterms are
+        shared 30 deep writes out 2^30 of them), and only ending the process now keeps
+        the machine from running out of memory."""
+        sys.stderr.write(f"error: agent {name}: one call took {growth >> 20:,} MB without "
+                         "returning to Prolog (a built-in that cannot be interrupted): "
+                         "ending the run at once; the last save is kept\n")
+        sys.stderr.flush()
+        os._exit(1)
 
     def _send(self, action: str, reason: str | None) -> None:
         """Asks the main thread's Prolog to do ``action`` in the running stretch, if any."""

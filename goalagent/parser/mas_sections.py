@@ -16,7 +16,8 @@ from goalagent import ast
 from goalagent.parser.builder_base import BuilderBase
 from goalagent.parser.errors import GoalSyntaxError
 
-LIMIT_OPTIONS = ("sandbox", "max_inferences", "max_query_seconds", "max_beliefs")
+LIMIT_OPTIONS = ("sandbox", "max_inferences", "max_query_seconds", "max_beliefs",
+                 "max_memory")
 """Agent file options that bound an agent (goalagent.kb.limits), overriding the run's."""
 MAX_NUMBER = 100_000
 """The largest ``number`` (agents launched from one file) or ``max`` a .mas2g may ask for."""

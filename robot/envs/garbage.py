@@ -10,26 +10,17 @@ not available) raises ``ActionRefused`` before the world is touched.
 from __future__ import annotations
 
 import contextlib
-import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-import numpy as np
-
 from behaviours.learners.effect_models import ModelStore
 from behaviours.learners.known_objects import DatabaseError, KnownObjectDatabase
-from behaviours.learning import (
-    ACTIVE_N_MAX,
-    LEARNING_MODES,
-    AffordanceBehaviours,
-    AffordanceEvidence,
-    LearningModeUnavailable,
-)
-from behaviours.part_learning import learn_by_transfer
+from behaviours.learning import ACTIVE_N_MAX, LEARNING_MODES, AffordanceBehaviours
 from behaviours.perception import Observation, make_perception
 from behaviours.skills import (
     THETA_BOUNDS,
     SkillError,
+    ball_within_reach,
     check_skill,
     drop_ball,
     grasp_ball,
@@ -37,10 +28,13 @@ from behaviours.skills import (
 )
 from goalagent.eis.exceptions import ActionRefused, ManagementException
 from goalagent.eis.pyenv import PerceptLike, PythonEnvironment, action
-from goalagent.kb.terms import Atom, Struct
+from goalagent.kb.terms import Atom
+from robot.envs.affordance_requests import AffordanceRequests, afford_percept
 from robot.paths import default_model_path, default_objects_path
 from sim.canfile import CanFileError, find_can
 from sim.world import GarbageWorld
+
+__all__ = ["GarbageEnvironment", "afford_percept"]
 
 CLOSED = 0.01
 """An opening (m) below this counts as closed."""
@@ -48,12 +42,8 @@ CLOSING_SKILLS = (("sweep_down", "lid"), ("sweep_down", "handle"), ("extend_arm"
                   ("sweep_right", "lid"), ("sweep_left", "lid"))
 """What the robot tries, in order, to close a can: press the lid down, press a lifted handle
 down, push a pulled handle back in, slide a sliding lid back (until the can is closed)."""
-
-
-def afford_percept(evidence: AffordanceEvidence) -> Struct:
-    """The percept ``afford(Obj, Act, Eff, Tot, Suc, Rel)`` (eq. 6.1) for what a behaviour found."""
-    return Struct("afford", (Atom(evidence.obj), Atom(evidence.act), Atom(evidence.eff),
-                             evidence.tot, evidence.suc, evidence.rel))
+CLOSING_ROUNDS = 3
+"""How many times ``close_lid`` goes through the closing skills at most."""
 
 
 class GarbageEnvironment(PythonEnvironment):
@@ -63,14 +53,14 @@ class GarbageEnvironment(PythonEnvironment):
     entity_names = ("robot",)
     default_entity_type = "robot"
     parameters = {
-        "can": str,
+        "can": str | Path,
         "perception": str,
         "seed": int,
-        "record": bool | str,
+        "record": bool | Path,
         "delta": float,
         "trials": int,
-        "models": str,
-        "objects": str,
+        "models": Path,
+        "objects": Path,
         "learning": str,
         "n_max": int,
         "active_n_max": int,
@@ -106,7 +96,8 @@ class GarbageEnvironment(PythonEnvironment):
                 Path(str(params.get("objects") or default_objects_path())))
         except DatabaseError as error:
             raise ManagementException(f"environment 'garbage': {error}") from None
-        self._transfer_rng = np.random.RandomState(self.seed)
+        self.requests = AffordanceRequests(self.world, self.perception, self.behaviours,
+                                           self.objects, delta=self.delta, seed=self.seed)
         self.learning = str(params.get("learning", "random"))
         if self.learning not in LEARNING_MODES:
             raise ManagementException(f"environment 'garbage': unknown learning mode "
@@ -115,7 +106,6 @@ class GarbageEnvironment(PythonEnvironment):
         self.disposed = 0
         self._events: list[PerceptLike] = []
         self._observation: Observation | None = None
-        self._told: set[str] = set()
 
     def on_kill(self) -> None:
         """Finish the recording and free the renderer."""
@@ -151,36 +141,43 @@ class GarbageEnvironment(PythonEnvironment):
         self._events = []
         return result
 
-    def _changed(self) -> None:
+    def _changed(self, learning: bool = False) -> None:
+        """The world may look different now. Anything but learning (which leaves the can as
+        it found it) is also new information for the livelock guard of ``learn``."""
         self._observation = None
-
-    def _tell_where(self, what: str, path: Path) -> None:
-        """Say once per run where learning keeps what it wrote (stderr), so a user can find,
-        keep or delete it."""
-        if what not in self._told:
-            self._told.add(what)
-            print(f"garbage: {what} are kept in {path}", file=sys.stderr)
+        if not learning:
+            self.requests.world_changed()
 
     # ------------------------------------------------------------------ ball
     @action("grasp")
     def grasp(self, entity: str, obj: str) -> None:
-        """Grasp the ball on the table."""
+        """Grasp the ball wherever it lies within reach (on the table, or where a missed drop
+        left it); ``grasp_failed(ball)`` says when the hand closed without it."""
         self._ball(obj)
         state = self.world.state()
         if state.holding_ball:
             raise ActionRefused("grasp(ball): the robot already holds the ball")
         if state.ball_in_can:
             raise ActionRefused("grasp(ball): the ball is in the can; close the lid first")
-        grasp_ball(self.world)
+        if not ball_within_reach(self.world):
+            where = ", ".join(f"{x:.3f}" for x in state.ball_pos)
+            raise ActionRefused(f"grasp(ball): the ball at ({where}) m is out of the arm's reach")
+        if not grasp_ball(self.world):
+            self._events.append(("grasp_failed", Atom("ball")))
         self._changed()
 
     @action("drop")
     def drop(self, entity: str, obj: str) -> None:
-        """Drop the held ball into the can's opening (it falls outside if that is closed)."""
+        """Drop the held ball into the can's opening; when it does not land inside,
+        ``ball_missed(Why)`` says why: ``blocked`` (the can stopped it at the front edge: not
+        open enough for the ball) or ``outside`` (let go over the opening, it came to rest
+        outside the can)."""
         self._ball(obj)
         if not self.world.state().holding_ball:
             raise ActionRefused("drop(ball): the robot does not hold the ball")
-        drop_ball(self.world)
+        result = drop_ball(self.world)
+        if not result.landed:
+            self._events.append(("ball_missed", Atom("blocked" if result.blocked else "outside")))
         self._changed()
 
     @staticmethod
@@ -191,13 +188,23 @@ class GarbageEnvironment(PythonEnvironment):
     @action("close_lid")
     def close_lid(self, entity: str) -> None:
         """Close the can; with the ball inside, that completes a trial and a new ball is
-        put on the table (the scene is reset for the next trial)."""
-        for skill, part in CLOSING_SKILLS:
-            if self.world.opening() < CLOSED:
-                break
-            if part in self.world.parts:
-                perform_skill(self.world, skill, part, THETA_BOUNDS[skill][1])
-        if self.world.state().ball_in_can and self.world.opening() < CLOSED:
+        put on the table (the scene is reset for the next trial). The closing skills are
+        tried in turn, in rounds while the can is open (a geared lid may come down in two
+        presses); one that opened the can further (a sliding lid swept the wrong way) is not
+        tried again. ``lid_stuck(W)`` says when they left an opening of W m."""
+        wrong_way: set[tuple[str, str]] = set()
+        for _ in range(CLOSING_ROUNDS):
+            for skill, part in CLOSING_SKILLS:
+                before = self.world.opening()
+                if before < CLOSED:
+                    break
+                if part in self.world.parts and (skill, part) not in wrong_way:
+                    perform_skill(self.world, skill, part, THETA_BOUNDS[skill][1])
+                    if self.world.opening() > before + CLOSED:
+                        wrong_way.add((skill, part))
+        if self.world.opening() >= CLOSED:
+            self._events.append(("lid_stuck", round(self.world.opening(), 4)))
+        elif self.world.state().ball_in_can:
             self.disposed += 1
             self.world.reset(seed=self.seed + self.disposed)
         self._changed()
@@ -260,9 +267,12 @@ class GarbageEnvironment(PythonEnvironment):
         ``model(Part, Act, ThetaMax, EMax)`` and ``exploration(Part, Act, Mode, N)`` (how many
         exploratory actions it took). Mode ``transfer`` (either form, also the whole-object
         ``learn(Eff, transfer)``) runs Algorithm 6 against the known objects instead and reports
-        the three for every pair it tried."""
+        the three for every pair it tried (``AffordanceRequests``, which also keeps the
+        livelock guard: a request answered since the world last changed other than by learning
+        is answered ``learn_repeated(...)``)."""
+        asked: tuple[str, ...] = (first, second, effect, mode)
         if not effect and not mode:
-            effect, mode = first, second
+            effect, mode, asked = first, second, (first, second)
             if mode != "transfer":
                 raise ActionRefused(f"learn({effect}, {mode}): the whole-object form needs mode "
                                     "'transfer'; learn(Part, Act, Eff, Mode) learns one pair")
@@ -272,46 +282,16 @@ class GarbageEnvironment(PythonEnvironment):
             self._affordance_request(first, second)
         if effect != "opened":
             raise ActionRefused(f"learn: only the effect 'opened' can be measured, not {effect!r}")
-        if mode == "transfer":
-            self._learn_by_transfer(effect)
-            return
-        try:
-            result = self.behaviours.learn(first, second, effect, mode)
-        except LearningModeUnavailable as error:
-            raise ActionRefused(str(error)) from None
-        self._changed()
-        store = self.behaviours.store
-        if store is not None:
-            self._tell_where("learned effect models", store.path)
-        self._events.append(afford_percept(result.evidence))
-        self._events.append(Struct("model", (Atom(first), Atom(second),
-                                             round(result.theta_max, 4),
-                                             round(result.e_max, 4))))
-        self._events.append(Struct("exploration", (Atom(first), Atom(second), Atom(mode),
-                                                   result.samples)))
-
-    def _learn_by_transfer(self, effect: str) -> None:
-        """Algorithm 6 on this can; afford/model percepts for every pair tried (§5.5.4)."""
-        result = learn_by_transfer(self.world, self.perception, self.objects, delta=self.delta,
-                                   effect_name=effect, random_state=self._transfer_rng)
-        self._changed()
-        self._tell_where("known objects", self.objects.path)
-        for report in result.reports:
-            evidence = report.evidence
-            if evidence.suc:
-                self.behaviours.remember(evidence.obj, evidence.act, report.theta_max)
-            self._events.append(afford_percept(evidence))
-            self._events.append(Struct("model", (Atom(evidence.obj), Atom(evidence.act),
-                                                 round(report.theta_max, 4),
-                                                 round(report.e_max, 4))))
-            self._events.append(Struct("exploration", (Atom(evidence.obj), Atom(evidence.act),
-                                                       Atom("transfer"), report.actions)))
+        if mode not in LEARNING_MODES:
+            raise ActionRefused(f"learn: unknown learning mode {mode!r}; the modes are "
+                                f"{', '.join(LEARNING_MODES)}")
+        self._events.extend(self.requests.learn(asked, effect, mode))
+        self._changed(learning=True)
 
     @action("apply")
     def apply(self, entity: str, part: str, action_type: str) -> None:
         """Use an affordance: act with the best known θ (eq. 6.13) and report the verified
         effect as ``afford(Part, Act, opened, 1, 1, 1)`` or ``afford(..., 1, 0, 0)``."""
         self._affordance_request(part, action_type)
-        result = self.behaviours.apply(part, action_type)
+        self._events.extend(self.requests.apply(part, action_type))
         self._changed()
-        self._events.append(afford_percept(result.evidence))

@@ -6,6 +6,7 @@ finished seed cached for the next run of the same command."""
 from __future__ import annotations
 
 import os
+import signal
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -164,13 +165,17 @@ def _user_errors() -> Iterator[None]:
 
 
 def _interruptible(run):
-    """Run; on Ctrl-C say that the finished seeds are cached, and exit 130."""
+    """Run; on Ctrl-C say that the finished seeds are cached, and exit 130. (Ctrl-C is taken
+    back from goalagent/launcher.py's stop-at-once handler for the run, so it can be said.)"""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         return run()
     except KeyboardInterrupt:
         err_console.print("interrupted: every seed that finished is cached; run the same "
                           "command again to go on from there", markup=False)
         raise typer.Exit(code=130) from None
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _study(name: str):

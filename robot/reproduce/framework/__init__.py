@@ -13,8 +13,10 @@ from robot.reproduce.framework.pages import markdown_table
 from robot.reproduce.framework.plots import Figure, Panel, Reference, Series
 from robot.reproduce.framework.study import (
     Claim,
+    Deviation,
     Metric,
     Progress,
+    Reading,
     ScaledConfig,
     SeedResult,
     Study,
@@ -22,5 +24,6 @@ from robot.reproduce.framework.study import (
     in_turn,
 )
 
-__all__ = ["Claim", "Figure", "Metric", "Panel", "Progress", "Reference", "ScaledConfig",
-           "SeedResult", "Series", "Study", "StudyConfig", "in_turn", "markdown_table"]
+__all__ = ["Claim", "Deviation", "Figure", "Metric", "Panel", "Progress", "Reading",
+           "Reference", "ScaledConfig", "SeedResult", "Series", "Study", "StudyConfig",
+           "in_turn", "markdown_table"]

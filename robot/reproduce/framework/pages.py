@@ -109,6 +109,36 @@ def parameters_text(study: Study, config: dict, grid: Sequence[str] = ()) -> str
                                                           rows), ""])
 
 
+def deviations_text(study: Study, config: dict, grid: Sequence[str] = ()) -> str:
+    """Every open choice the config declares (a field with a ``Reading``): the thesis's text,
+    the value as run and what the code does; then the study's fixed deviations."""
+    defaults = study.default_config().model_dump(mode="json")
+    lines = ["## Deviations and open choices", ""]
+    rows = []
+    for key, value in config.items():
+        reading = study.config.reading(key)
+        if reading is None:
+            continue
+        shown = "swept" if key in grid else format_value(value)
+        if key not in grid and value != defaults[key]:
+            shown = f"**{shown}** (default {format_value(defaults[key])})"
+        rows.append([f"`{key}`", reading.thesis, shown, study.config.describe(key)])
+    if rows:
+        lines += ["Choices the thesis leaves open or that this code once read otherwise, each "
+                  "a parameter (`--set`, `--grid`); the default is the thesis's reading where "
+                  "it gives one.", "",
+                  markdown_table(["parameter", "the thesis", "this run", "what the code does"],
+                                 rows), ""]
+    if study.deviations:
+        lines += ["Fixed differences (no parameter):", ""]
+        lines += [f"- **{item.topic}**. Thesis: {item.thesis} Here: {item.code}"
+                  for item in study.deviations]
+        lines.append("")
+    if not rows and not study.deviations:
+        lines += ["None declared.", ""]
+    return "\n".join(lines)
+
+
 def provenance_text(provenance: Sequence[Provenance], seeds: Sequence[SeedRecord]) -> str:
     """Which versions ran which seeds."""
     lines = ["## Provenance", ""]
@@ -136,6 +166,7 @@ def reproduction_page(study: Study, document: ReproductionDocument,
              "", STATISTICS_NOTE, "", claims_text(document.summary.comparisons)]
     if study.notes:
         lines += ["## Setup and reading", "", study.notes.strip(), ""]
+    lines.append(deviations_text(study, document.config))
     if listings.strip():
         lines += [listings.strip(), ""]
     for name in figure_files:
@@ -147,6 +178,24 @@ def reproduction_page(study: Study, document: ReproductionDocument,
 
 def cell_label(values: dict) -> str:
     return ", ".join(f"{key} = {format_value(value)}" for key, value in values.items())
+
+
+def verdict_summary(document: SweepDocument, index: int) -> str:
+    """Which cells make claim ``index`` hold (supported, or not contradicted for a claim of
+    sameness) and which contradict it, each with p and r."""
+    groups: dict[str, list[str]] = {}
+    for cell in document.cells:
+        comparison = cell.summary.comparisons[index]
+        shown = cell_label(cell.values)
+        if comparison.p_value is not None:
+            shown += f" (p = {p_text(comparison.p_value)}"
+            if comparison.effect_size is not None:
+                shown += f", r = {comparison.effect_size:+.2f}"
+            shown += ")"
+        groups.setdefault(comparison.verdict, []).append(shown)
+    parts = [f"{verdict} in {len(cells)} of {len(document.cells)} cells: {'; '.join(cells)}"
+             for verdict, cells in sorted(groups.items())]
+    return "By cell: " + ". ".join(parts) + "."
 
 
 def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
@@ -182,10 +231,11 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
                           "—" if comparison.effect_size is None
                           else f"{comparison.effect_size:+.2f}"])
         lines += [markdown_table([*keys, "verdict", "mean difference", "95% CI", "p", "r"],
-                                 table), ""]
+                                 table), "", verdict_summary(document, index), ""]
     for name in plot_files:
         lines += [f"![{name}]({name})", ""]
     all_seeds = [record for cell in document.cells for record in cell.seeds]
+    lines.append(deviations_text(study, base_config.model_dump(mode="json"), keys))
     lines += [parameters_text(study, base_config.model_dump(mode="json"), keys),
               provenance_text(document.provenance, all_seeds)]
     return "\n".join(lines)

@@ -24,6 +24,26 @@ RESERVED_NAMES = frozenset({"merge"})
 """Words ``goalagent reproduce`` reads as a sub-command, never as a study."""
 
 
+@dataclass(frozen=True)
+class Reading:
+    """What the thesis says about an open choice that a config field decides, with where
+    (section, equation, table): ``learn_in_exploit: Annotated[bool, Reading("App. A: ...")]``.
+    The page's "Deviations and open choices" lists every such field beside its value as run
+    and the field's docstring (what the code does), so the list cannot drift from the code."""
+
+    thesis: str
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """A fixed difference from the thesis that no parameter decides (a simulated can, a lift
+    beside the table): what the thesis has, with where, and what the code does instead."""
+
+    topic: str
+    thesis: str
+    code: str
+
+
 class StudyConfig(BaseModel):
     """A study's parameters. Subclass it with one field per parameter: the thesis's (or the
     source's) value as the default, and a docstring under the field saying what it is and
@@ -32,6 +52,19 @@ class StudyConfig(BaseModel):
 
     model_config = ConfigDict(frozen=True, extra="forbid", use_attribute_docstrings=True,
                               validate_default=True)
+
+    @classmethod
+    def reading(cls, name: str) -> Reading | None:
+        """The thesis's reading of field ``name`` if it is an open choice (see ``Reading``);
+        a subclass that only changes a default keeps the class's that declared it."""
+        for klass in cls.__mro__:
+            info = getattr(klass, "model_fields", {}).get(name)
+            if info is None:
+                continue
+            found = next((m for m in info.metadata if isinstance(m, Reading)), None)
+            if found is not None:
+                return found
+        return None
 
     @classmethod
     def describe(cls, name: str) -> str:
@@ -148,6 +181,9 @@ class Study(Generic[C, R]):
     default_seeds: int = 10
     headline: tuple[str, ...] = ()
     """Metric keys that ``goalagent sweep`` plots against the swept parameter."""
+    deviations: tuple[Deviation, ...] = ()
+    """Fixed differences from the thesis (or the study's source) that no parameter decides;
+    the page lists them after the config's open choices."""
 
     def __post_init__(self) -> None:
         if not NAME_PATTERN.fullmatch(self.name) or self.name in RESERVED_NAMES:

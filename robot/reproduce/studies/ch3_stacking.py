@@ -10,13 +10,16 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Sequence
+from typing import Annotated
 
 from robot.reproduce.framework import (
     Claim,
+    Deviation,
     Figure,
     Metric,
     Panel,
     Progress,
+    Reading,
     Reference,
     SeedResult,
     Series,
@@ -49,6 +52,15 @@ CHOICES = {"choose_box": "box", "choose_foam": "foam"}
 class Config(TaskConfig):
     """The stacking task with Table 7.1's XCS, affordance-based (Algorithm 2)."""
 
+    push_needs_object: Annotated[bool, Reading(
+        "§3.5.4: \"the NAO confirmed that the requested object was in front before trying "
+        "to push it\"; §3.2.2: \"preconditions of actions are provided as domain "
+        "knowledge\".")] = True
+    """Whether a push applies only while an object is perceived in front (true; with nothing
+    in front only the two choices do); false lets XCS push into empty space, which earns 0,
+    moves nothing and, having no object, never reaches the affordance table (this code's
+    earlier setting)."""
+
 
 class Result(SeedResult):
     trials: int
@@ -62,7 +74,8 @@ def run(config: Config, seed: int, progress: Progress) -> Result:
     with opened_world("stacking") as world:
         for mode in in_turn(MODES, progress):
             runs[mode] = experiment(world, "stacking", mode, "affordance_xcs", seed, trials,
-                                    trials, config, config.n_step)
+                                    trials, config, config.n_step,
+                                    {"push_needs_object": config.push_needs_object})
     return Result(trials=trials, **runs)
 
 
@@ -147,6 +160,17 @@ STUDY = Study(
     config=Config, result=Result, run=run, metrics=metrics, claims=claims, figures=figures,
     listings=listings, quick={"scale": 0.2}, default_seeds=10,
     headline=("truth.chooses_box", "truth.payoff_last", "truth.exploit_payoff_second_half"),
+    deviations=(
+        Deviation("Where the stack grows", "objects pushed off the table edge onto the floor "
+                  "(Fig. 3.4).", "onto a lift beside the table that sinks as the stack grows: "
+                  "objects pushed over a bare edge tipped over or jammed in the physics, which "
+                  "makes no stack."),
+        Deviation("Trials", "no count given for the stacking task (§3.5.7 gives 20 for "
+                  "navigation).", "20 alternating trials, as navigation."),
+        Deviation("Object codes", "the high box \"1000\", the low foam \"0000\" "
+                  "(Table 3.3).", "RGB marker bits: box \"1001\" (blue), foam \"0010\" "
+                  "(green)."),
+    ),
     notes="""\
 **Setup** (`sim/stacking.py`): a table 36 cm high; the robot stands near its edge; a high box
 (36 cm, blue marker, code 1001) and low foams (12 cm, green, code 0010), all 20 x 20 cm.
@@ -155,5 +179,10 @@ the table, over the foam) or squatting (3-9 cm); 110/111 ask the operator for th
 foam. Pushed off the edge, an object slides onto a lift beside the table that sinks until the
 stack's top is level with the table (objects pushed over a bare edge tip over or jam, which
 makes no stack); the goal is a stack as high as the table: the box alone or three foams.
-Reward eq. 3.15; n_step = 10; XCS as Table 7.1; affordance-based XCS (Algorithm 2).""",
+Reward eq. 3.15; n_step = 10; XCS as Table 7.1; affordance-based XCS (Algorithm 2). A push
+applies only while an object is perceived in front (`push_needs_object`, §3.5.4): with the
+earlier setting, which let it push into empty space, the last exploit trial of 3 seeds in 10
+was ten such pushes (payoff 0): they earn 0, move nothing, and with no object they are never
+filtered, while exploit trials do not learn, so the loop repeats (the sweep over
+`push_needs_object` in `ch3-stacking-sweep-push_needs_object.md` measures both).""",
 )

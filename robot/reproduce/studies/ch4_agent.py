@@ -14,6 +14,7 @@ from pydantic import Field
 
 from robot.reproduce.framework import (
     Claim,
+    Deviation,
     Figure,
     Metric,
     Panel,
@@ -168,6 +169,22 @@ STUDY = Study(
     default_seeds=5,
     headline=("experiment1.active.exploratory_actions",
               "experiment1.random.exploratory_actions"),
+    deviations=(
+        Deviation("Experiment 2's arithmetic", "§6.4.2: after three failures of extend_arm "
+                  "the lid affordance is afford(lid, extend arm, opened, 8, 5, 0.57), below "
+                  "τ = 0.6, and learning restarts.", "eq. 6.3 from (5, 5, 1) gives 0.833, "
+                  "0.714 and then (8, 5, 0.625) — still above τ (0.57 is 4/7, not 5/8); a "
+                  "fourth failure gives (9, 5, 0.556) < τ. The agent keeps eq. 6.3, so "
+                  "learning restarts after four failures (tests/test_affordance_library.py, "
+                  "tests/test_affordance_agent.py check 0.833, 0.714, 0.625, 0.556)."),
+        Deviation("Switching learning off", "§6.3.4: learning ends when every Rel < r2 = "
+                  "0.05.", "under eq. 6.3 a verdict r2 merged into an affordance never takes "
+                  "Rel below r2, so the agent stops learning on a part once every action was "
+                  "explored on it in the episode and none is promising (README, \"When "
+                  "learning switches off\")."),
+        Deviation("Cans", "the NAO's garbage cans (Fig. 5.2).", "MuJoCo cans read from "
+                  "sim/cans/: o1 for Experiment 1, o2 (lid and handle) for Experiment 2."),
+    ),
     notes="""\
 The agent is `agents/garbage_disposal.mas2g` unchanged, told its learning mode by the
 environment (`--env-param learning=random|active`, percept `learning_mode(M)`); ground-truth

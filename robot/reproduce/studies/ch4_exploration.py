@@ -20,12 +20,13 @@ from robot.reproduce.framework import (
     in_turn,
 )
 from robot.reproduce.studies.common.ch4 import (
+    CH4_DEVIATIONS,
     CONFIGURATIONS,
     METHODS,
     SETUPS,
     Exploration,
-    ExplorationConfig,
     ExplorationRun,
+    ScaledExplorationConfig,
     explore,
     rounded,
 )
@@ -45,7 +46,7 @@ STABLE = 0.01
 """An effect this small counts as none (τ of eq. 4.15, thesis: 0.01): the state is stable."""
 
 
-def run(config: ExplorationConfig, seed: int, progress: Progress) -> Exploration:
+def run(config: ScaledExplorationConfig, seed: int, progress: Progress) -> Exploration:
     """Every configuration and method for one seed, each run to the whole budget N_s.
 
     Running past the first step at which (4.10) holds changes nothing before it (the run is
@@ -53,20 +54,23 @@ def run(config: ExplorationConfig, seed: int, progress: Progress) -> Exploration
     would have stopped there.
     """
     runs: dict[str, dict[str, ExplorationRun]] = {name: {} for name in CONFIGURATIONS}
+    factor = config.state_scale
     for name, method in in_turn(product(CONFIGURATIONS, METHODS), progress):
         setup = SETUPS[name]
-        explorer, contact = explore(setup, method, seed, config, stop=False)
+        explorer, contact = explore(setup, method, seed, config, stop=False,
+                                    state_scale=factor)
         history = explorer.history_
         surface = None
         if setup.dims == 1:
             actions = np.array(SURFACE_ACTIONS)[:, None]
-            surface = [rounded(explorer.forward_model_.predict_effects([s], actions))
-                       for s in SURFACE_STATES]
+            surface = [rounded(explorer.forward_model_.predict_effects([s * factor], actions)
+                               / factor) for s in SURFACE_STATES]
         contact.world.close()
         runs[name][method] = ExplorationRun(
             converged_at=history.converged_at, steps=history.steps,
             averaged=rounded(history.averaged, 8), td_errors=rounded(history.td_errors, 8),
-            states=rounded(history.states[:, 0]), effects=rounded(history.effects[:, 0]),
+            states=rounded(history.states[:, 0] / factor),
+            effects=rounded(history.effects[:, 0] / factor),
             actions=rounded(history.actions), surface=surface)
     return Exploration(perception=config.perception, configurations=runs)
 
@@ -82,7 +86,7 @@ def stable_share(run: ExplorationRun, n_random: int) -> float:
     return float(np.mean(np.abs(np.array(run.effects[n_random:], dtype=float)) < STABLE))
 
 
-def firing_share(run: ExplorationRun, config: ExplorationConfig) -> float | None:
+def firing_share(run: ExplorationRun, config: ScaledExplorationConfig) -> float | None:
     """Of the steps after the first N, the share at which (4.10) held: its chance per step.
 
     (4.10) is tested from δ̄_(N+1) on; holding at a share p of the steps, it first holds
@@ -93,7 +97,7 @@ def firing_share(run: ExplorationRun, config: ExplorationConfig) -> float | None
     return float(np.mean(changes < config.tolerance)) if len(changes) else None
 
 
-def metrics(config: ExplorationConfig) -> list[Metric[Exploration]]:
+def metrics(config: ScaledExplorationConfig) -> list[Metric[Exploration]]:
     """Per configuration and method: converged or not (thesis: active converged, random did
     not, in one run each), the step of convergence (the thesis gives curves, not numbers), how
     far each method opened the can (§4.6.2), how often δ was positive (when CACLA moves its
@@ -135,7 +139,7 @@ def metrics(config: ExplorationConfig) -> list[Metric[Exploration]]:
     return rows
 
 
-def claims(config: ExplorationConfig) -> list[Claim]:
+def claims(config: ScaledExplorationConfig) -> list[Claim]:
     out = []
     for name in CONFIGURATIONS:
         figure = f"Fig. {FIGURE[name]}"
@@ -159,7 +163,7 @@ def _padded(values: list, length: int) -> list[float]:
     return floats + [np.nan] * (length - len(floats))
 
 
-def figures(config: ExplorationConfig, seeds: Sequence[Exploration]) -> list[Figure]:
+def figures(config: ScaledExplorationConfig, seeds: Sequence[Exploration]) -> list[Figure]:
     """Figs 4.6–4.9 (TD-error curves, active vs random) and 4.4–4.5 (1-D surfaces)."""
     out = []
     n = config.window
@@ -217,9 +221,9 @@ TRUTH = ("here from ground truth (the projected gap, which agrees with the rende
 STUDY = Study(
     name="ch4-exploration",
     description="Active vs random exploration of the held lid and handle (thesis Figs 4.4-4.9)",
-    config=ExplorationConfig, result=Exploration, run=run, metrics=metrics, claims=claims,
+    config=ScaledExplorationConfig, result=Exploration, run=run, metrics=metrics, claims=claims,
     figures=figures, notes=notes(TRUTH), listings=variant_listing,
-    quick={"scale": 0.05}, default_seeds=10,
+    quick={"scale": 0.05}, default_seeds=10, deviations=CH4_DEVIATIONS,
     headline=("lid-1d.active.converged", "lid-1d.random.converged",
               "lid-1d.active.converged_at", "lid-1d.random.converged_at"),
 )

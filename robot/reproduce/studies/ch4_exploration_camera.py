@@ -6,10 +6,10 @@ from __future__ import annotations
 
 from robot.reproduce.framework import Study
 from robot.reproduce.studies import ch4_exploration
-from robot.reproduce.studies.common.ch4 import ExplorationConfig, Perception
+from robot.reproduce.studies.common.ch4 import Perception, ScaledExplorationConfig
 
 
-class CameraConfig(ExplorationConfig):
+class CameraConfig(ScaledExplorationConfig):
     """``ch4-exploration``'s parameters, s_o from the camera."""
 
     perception: Perception = "camera"
@@ -24,5 +24,6 @@ STUDY = Study(
     notes=ch4_exploration.notes("here measured on each rendered 320×240 frame (the dark "
                                 "region's bounding box, OpenCV)"),
     listings=ch4_exploration.variant_listing, quick={"scale": 0.05}, default_seeds=5,
+    deviations=ch4_exploration.STUDY.deviations,
     headline=ch4_exploration.STUDY.headline,
 )

@@ -5,7 +5,7 @@ e_o."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Annotated
+from typing import Annotated, Literal
 
 import numpy as np
 from pydantic import Field
@@ -16,12 +16,14 @@ from robot.reproduce.framework import (
     Metric,
     Panel,
     Progress,
+    Reading,
     SeedResult,
     Series,
     Study,
     in_turn,
 )
 from robot.reproduce.studies.common.ch4 import (
+    CH4_DEVIATIONS,
     CONFIGURATIONS,
     METHODS,
     SETUPS,
@@ -63,9 +65,18 @@ class Config(ExplorationConfig):
     apart as in Table 4.1."""
     max_steps: Annotated[int, Field(ge=1)] = 50
     """A sequence also ends after this many actions (the thesis's ended on (4.15) after 1–6)."""
-    grid_points: Annotated[int, Field(ge=2)] = 11
+    grid_points: Annotated[int, Field(ge=2), Reading(
+        "§4.5: A_M \"is a selected set of M actions, e.g., evenly sampled in A\" (no M "
+        "given); Table 4.1's Δx are 0.008 whenever the arm extends and −0.010 whenever it "
+        "contracts, as a 10-point grid without its upper end gives, while its Δy, Δz reach "
+        "+0.010.")] = 11
     """Points of the even grid A_M per action dimension (M = 11 or 11³ in 3-D; eqs 4.12,
     4.16)."""
+    grid_upper: Annotated[Literal["included", "excluded"], Reading(
+        "§4.5 and Table 4.1 (see `grid_points`): Δx never reaches +0.010 in Table 4.1.")] = (
+        "included")
+    """Whether A_M's grid ends at the upper bound (+0.01 m) or one step short of it
+    (`excluded` with 10 points: −0.010, −0.008, ..., 0.008 m per dimension)."""
 
 
 class SkillRow(SeedResult):
@@ -132,7 +143,8 @@ def _skills(model, setup: Configuration, seed: int, config: Config) -> list[dict
         with PartContact(world, setup.part, dims=setup.dims,
                          perception=make_perception(config.perception, CONTACT_CAMERA)) as held:
             found = acquire_skills(model, held, n_grid=config.grid_points, tau=config.tau,
-                                   max_steps=config.max_steps)
+                                   max_steps=config.max_steps,
+                                   endpoint=config.grid_upper == "included")
     finally:
         world.close()
     rows = []
@@ -237,7 +249,7 @@ STUDY = Study(
     name="ch4-skills",
     description="Goal generation and paired open/close skills from 8 forward models (Table 4.1)",
     config=Config, result=Result, run=run, metrics=metrics, claims=claims, figures=figures,
-    quick={"scale": 0.05}, default_seeds=10,
+    quick={"scale": 0.05}, default_seeds=10, deviations=CH4_DEVIATIONS,
     headline=("algorithm3.sign_share", "full_budget.sign_share"),
     notes="""\
 Each seed learns the 8 forward models of Table 4.1 with Algorithm 3 or the random baseline

@@ -18,7 +18,9 @@ from robot.reproduce.framework import (
     markdown_table,
 )
 from robot.reproduce.studies.common.ch5 import (
+    CH5_DEVIATIONS,
     BaselineRow,
+    PairModel,
     PartLearningConfig,
     baseline_run,
     found_pair,
@@ -31,6 +33,18 @@ THESIS_MODELS = {"o1": ("lid", "extend_arm", 0.574, 1.833),
                  "o4": ("handle", "lift_up", 2.891, 0.590),
                  "o5": ("handle", "contract_arm", 0.240, 1.923)}
 """Table 5.3's functional pairs: (part, action, slope of ĝ, slope of ĥ)."""
+THESIS_MOVING = {"o1": (), "o2": (("handle", "extend_arm"), ("handle", "contract_arm")),
+                 "o3": (("body", "extend_arm"),), "o4": (),
+                 "o5": (("handle", "sweep_left"), ("handle", "lift_up"), ("lid", "extend_arm"))}
+"""Table 5.3's non-functional pairs whose ĝ moves the part by a centimetre or more within Θ:
+o2's handle pushed (0.588θ) and pulled (0.452θ), o3's body pushed (0.659θ), o5's handle swept
+(3.205θ; the thesis does not say which way) and lifted (0.522θ), o5's lid pushed (1.070θ).
+o4's handle pushed (0.069θ: under 7 mm) is not counted."""
+MIN_DISPLACEMENT = 0.01
+"""Algorithm 4's ``min_displacement`` (m): a pair whose ĝ predicts less nowhere in Θ moves
+nothing."""
+THETA_MAX = 0.1
+"""The largest θ (m) of every action type."""
 
 
 class Result(SeedResult):
@@ -40,7 +54,7 @@ class Result(SeedResult):
 
 def run(config: PartLearningConfig, seed: int, progress: Progress) -> Result:
     """Algorithm 4 on every can, in every perception."""
-    return Result(perceptions={perception: baseline_run(seed, config.cans, perception)
+    return Result(perceptions={perception: baseline_run(seed, config, perception)
                                for perception in in_turn(config.perceptions, progress)})
 
 
@@ -50,6 +64,17 @@ def _slope(row: BaselineRow, which: str) -> float | None:
         if (model.part, model.action) == (row.part, row.action):
             return getattr(model, which)[1]
     return None
+
+
+def moving_nonfunctional(row: BaselineRow) -> list[PairModel]:
+    """The pairs other than the one found whose ĝ moves the part by at least
+    ``MIN_DISPLACEMENT`` somewhere in 0 < θ <= ``THETA_MAX`` (what Algorithm 4 counts as
+    moving)."""
+    def moves(model: PairModel) -> bool:
+        intercept, slope = model.g
+        return max(abs(intercept), abs(intercept + slope * THETA_MAX)) >= MIN_DISPLACEMENT
+
+    return [m for m in row.models if (m.part, m.action) != (row.part, row.action) and moves(m)]
 
 
 def metrics(config: PartLearningConfig) -> list[Metric[Result]]:
@@ -64,6 +89,10 @@ def metrics(config: PartLearningConfig) -> list[Metric[Result]]:
                    lambda s, get=get: get(s).n, THESIS_N.get(can), "thesis Table 5.4"),
             Metric(f"{key}.found", f"{where}: seeds that found the functional pair",
                    lambda s, get=get, can=can: found_pair(get(s), can), 1.0, "the can file"),
+            Metric(f"{key}.moving_nonfunctional", f"{where}: non-functional pairs that move "
+                   "the part", lambda s, get=get: float(len(moving_nonfunctional(get(s)))),
+                   None if can not in THESIS_MOVING else float(len(THESIS_MOVING[can])),
+                   "thesis Table 5.3 (the pairs it lists)"),
         ]
         if can in THESIS_MODELS:
             part, action, g, h = THESIS_MODELS[can]
@@ -92,11 +121,22 @@ def listings(config: PartLearningConfig, seeds: Sequence[Result]) -> str:
             bold = "**" if (m.part, m.action) == (entry.part, entry.action) else ""
             rows.append([can, m.part, f"{bold}{m.action}{bold}", m.n,
                          f"{m.g[0]:+.3f} {m.g[1]:+.3f}θ", f"{m.h[0]:+.3f} {m.h[1]:+.3f}e"])
+    moving = []
+    for can, entry in seeds[0].perceptions[perception].items():
+        thesis = ", ".join(f"{a}({p})" for p, a in THESIS_MOVING.get(can, ())) or "—"
+        found = ", ".join(f"{m.action}({m.part})" for m in moving_nonfunctional(entry)) or "—"
+        moving.append([can, found, thesis if can in THESIS_MOVING else "—"])
     return "\n".join([
         f"## Table 5.3 (the first seed, {perception} perception)", "",
         "ĝ(θ) = b + cθ (eq. 5.16) and ĥ(e_ψ) = d + e·e_ψ (eq. 5.17) of every pair tried; the "
         "functional pair in bold.", "",
-        markdown_table(["can", "part", "action", "n", "ĝ", "ĥ"], rows)])
+        markdown_table(["can", "part", "action", "n", "ĝ", "ĥ"], rows), "",
+        f"## Non-functional pairs that move their part (the first seed, {perception})", "",
+        f"Pairs other than the functional one whose ĝ moves the part by {MIN_DISPLACEMENT} m "
+        f"or more for some θ ≤ {THETA_MAX} m: Algorithm 4 samples them n = 5 times instead of "
+        "stopping after 3, and they count in N.", "",
+        markdown_table(["can", "moving non-functional pairs (here)", "thesis Table 5.3"],
+                       moving)])
 
 
 def figures(config: PartLearningConfig, seeds: Sequence[Result]) -> list[Figure]:
@@ -113,7 +153,7 @@ STUDY = Study(
     description="Table 5.3: part models of every part x action and N without transfer "
                 "(Algorithm 4) for o1..o5",
     config=PartLearningConfig, result=Result, run=run, metrics=metrics, claims=claims,
-    figures=figures, listings=listings, default_seeds=5,
+    figures=figures, listings=listings, default_seeds=5, deviations=CH5_DEVIATIONS,
     quick={"cans": ("o1",), "perceptions": ("truth",)},
     headline=("truth.o1.n_without", "truth.o2.n_without", "truth.o5.n_without"),
     notes="""\

@@ -16,7 +16,15 @@ from typing import Annotated
 
 from pydantic import Field
 
-from robot.reproduce.framework import Claim, Figure, Metric, Progress, SeedResult, Study
+from robot.reproduce.framework import (
+    Claim,
+    Deviation,
+    Figure,
+    Metric,
+    Progress,
+    SeedResult,
+    Study,
+)
 from robot.reproduce.studies.common.lcs import (
     WoodsRun,
     explore_problems,
@@ -105,6 +113,10 @@ STUDY = Study(
     quick={"scale": 0.025},
     headline=("generalising.final_steps", "generalising_p033.final_steps",
               "specific.final_steps"),
+    deviations=(
+        Deviation("Specify", "Lanzi's XCS adds the Specify operator in such mazes.",
+                  "not implemented: this is the thesis's XCS (App. A)."),
+    ),
     notes="""\
 **Setup**: Maze4 as in Lanzi (1997) and xcsf's `maze4.txt`: 8 × 8, walls all round, one food
 cell; the animat senses its 8 neighbours clockwise from north, 2 bits each (blank 00,

@@ -13,6 +13,7 @@ from pydantic import Field
 
 from robot.reproduce.framework import (
     Claim,
+    Deviation,
     Figure,
     Metric,
     Progress,
@@ -126,6 +127,11 @@ STUDY = Study(
     quick={"scale": 0.05},
     headline=("mux6.final_accuracy", "mux6.problems_to_99", "mux11.final_accuracy",
               "mux11.problems_to_99"),
+    deviations=(
+        Deviation("Algorithm", "Wilson (1995) describes the first XCS.", "Butz & Wilson's "
+                  "(2001) algorithmic description of it, with the thesis's separate learning "
+                  "rates (App. A, eqs 7.1-7.7), all set to Wilson's β here."),
+    ),
     notes="""\
 **Setup** (Wilson 1995, with Butz & Wilson's 2001 algorithm): explore and exploit problems
 alternate; each problem is a uniformly random input; reward 1000 for the right output, 0

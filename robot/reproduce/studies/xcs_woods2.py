@@ -11,7 +11,15 @@ from typing import Annotated
 
 from pydantic import Field
 
-from robot.reproduce.framework import Claim, Figure, Metric, Progress, Reference, Study
+from robot.reproduce.framework import (
+    Claim,
+    Deviation,
+    Figure,
+    Metric,
+    Progress,
+    Reference,
+    Study,
+)
 from robot.reproduce.studies.common.lcs import (
     WoodsRun,
     explore_problems,
@@ -71,6 +79,12 @@ STUDY = Study(
     config=WoodsConfig, result=WoodsRun, run=run, metrics=metrics, claims=claims,
     figures=figures, quick={"scale": 0.05},
     headline=("woods2.final_steps", "woods2.problems_to_near", "woods2.macro_classifiers"),
+    deviations=(
+        Deviation("Accuracy", "Wilson (1995): κ = exp(ln α (ε − ε0)/ε0).", "the power law "
+                  "κ = α (ε/ε0)^−ν of Butz & Wilson (2001) and the thesis (eq. 7.6)."),
+        Deviation("Map", "Wilson's Woods2.", "the 30 × 15 map distributed with Lanzi's "
+                  "xcslib."),
+    ),
     notes="""\
 **Setup** (Wilson 1995): Woods2 is the 30 × 15 toroidal map distributed with Lanzi's xcslib,
 rocks O and Q, food F and G; the animat senses its 8 neighbours clockwise from north, 3 bits

@@ -18,7 +18,7 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import Field
 
-from robot.reproduce.framework import ScaledConfig, SeedResult
+from robot.reproduce.framework import Deviation, Reading, ScaledConfig, SeedResult
 
 CONFIGURATIONS = ("lid-1d", "lid-3d", "handle-1d", "handle-3d")
 METHODS = ("active", "random")
@@ -81,10 +81,45 @@ class ExplorationConfig(ScaledConfig):
         return max(self.n_random + 2, round(full * self.scale))
 
 
+class ScaledExplorationConfig(ExplorationConfig):
+    """Algorithm 3's parameters and the unit s_o is measured in, which (4.10)'s ε is read
+    against."""
+
+    state_scale: Annotated[float, Field(gt=0.0), Reading(
+        "eq. 4.19: s_o = w×h / (W×H), a share of the image, 0 ≤ s_o ≤ 1; §4.6.1: \"The TD "
+        "errors were averaged over N = 20 actions in equation (4.10) and ε = 1 × 10⁻⁴\", "
+        "without saying in which unit of s_o (and so of e_o, r = |η| and δ) ε was meant; "
+        "Figs 4.4–4.5 plot the state as 0–0.2.")] = 1.0
+    """s_o as Algorithm 3 sees it: eq. 4.19's share times this factor (100: a percentage of
+    the image). Effects, rewards, TD errors and the averages (4.10) compares scale with it;
+    the recorded states and effects are divided back, so their metrics stay in eq. 4.19's
+    share."""
+
+
+class ScaledState:
+    """A ``ContinuousWorld`` whose state is another's times ``factor`` (s_o in another unit)."""
+
+    def __init__(self, world: object, factor: float) -> None:
+        self.world, self.factor = world, float(factor)
+
+    @property
+    def action_bounds(self) -> object:
+        return self.world.action_bounds  # type: ignore[attr-defined]
+
+    def observe(self) -> np.ndarray:
+        """The wrapped world's state, scaled."""
+        return np.asarray(self.world.observe(), dtype=float) * self.factor  # type: ignore
+
+    def step(self, action: np.ndarray) -> np.ndarray:
+        """Act on the wrapped world; its next state, scaled."""
+        return np.asarray(self.world.step(action), dtype=float) * self.factor  # type: ignore
+
+
 def explore(setup: Configuration, method: str, seed: int, config: ExplorationConfig,
-            stop: bool):
-    """One exploration of ``setup`` by ``method`` on a fresh world: the fitted ActiveExplorer
-    and the contact (the caller closes its world)."""
+            stop: bool, state_scale: float = 1.0):
+    """One exploration of ``setup`` by ``method`` on a fresh world, its state seen times
+    ``state_scale``: the fitted ActiveExplorer and the contact (the caller closes its
+    world)."""
     from behaviours.contact import CONTACT_CAMERA, PartContact
     from behaviours.learners.exploration import ActiveExplorer
     from behaviours.perception import make_perception
@@ -98,8 +133,21 @@ def explore(setup: Configuration, method: str, seed: int, config: ExplorationCon
         mode=method, n_max=config.budget(setup), n_random=config.n_random,
         window=config.window, tol=config.tolerance, sigma=config.sigma, gamma=config.gamma,
         alpha=config.alpha, zeta=config.zeta, beta=config.beta, n_hidden=config.n_hidden,
-        random_state=seed, stop=stop).explore(contact)
+        random_state=seed, stop=stop).explore(
+            contact if state_scale == 1.0 else ScaledState(contact, state_scale))
     return explorer, contact
+
+
+CH4_DEVIATIONS = (
+    Deviation("Cans and arm", "the NAO's left arm on two real cans, 10-12 cm away (§4.6.1).",
+              "a MuJoCo hand that holds o1's lid (sliding over its face) or grips o5's handle; "
+              "its reach ends a few centimetres from the hold, so about six steps open or close "
+              "the part fully and then the state stays put."),
+    Deviation("Camera", "NAO's bottom camera, W × H = 320 × 240 (§4.6.1).", "a `close` camera "
+              "on the head camera's line of sight at 0.6 of its distance, where a fully open "
+              "can fills about 0.12-0.13 of the image (thesis: up to 0.114-0.135)."),
+)
+"""What chapter 4's studies run on instead of the NAO (no parameter decides it)."""
 
 
 def rounded(values: np.ndarray, digits: int = 6) -> list:

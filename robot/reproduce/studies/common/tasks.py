@@ -11,11 +11,11 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import Field
 
-from robot.reproduce.framework import SeedResult
+from robot.reproduce.framework import Reading, SeedResult
 from robot.reproduce.studies.common.xcs import Table71, xcs_keywords
 
 MODES = ("truth", "camera")
@@ -27,7 +27,21 @@ Movability = tuple[str, str, int]
 """(object code, action code, effect): Table 3.3's rows."""
 
 
-class TaskConfig(Table71):
+FilterScope = Literal["choice", "choice_and_value"]
+
+
+class TrialConfig(Table71):
+    """Table 7.1's XCS run in trials that alternate exploring and exploiting."""
+
+    learn_in_exploit: Annotated[bool, Reading(
+        "App. A, Performance Component: \"learning happens only in explore mode while "
+        "evaluation happens in exploit mode\"; Algorithm 2 (§3.3.4) credits [M]_aj at every "
+        "step (lines 12-14), making no difference between the two.")] = False
+    """Whether exploit trials update XCS too (eqs 7.1-7.7 on [A]-1 and [A], no GA): false is
+    App. A's explicit statement, true Algorithm 2's loop taken literally."""
+
+
+class TaskConfig(TrialConfig):
     """Table 7.1's XCS in a chapter-3 task."""
 
     trials: Annotated[int, Field(ge=4)] = 20
@@ -35,6 +49,15 @@ class TaskConfig(Table71):
     to an even number, at least 4)."""
     n_step: Annotated[int, Field(ge=1)] = 10
     """Actions per trial at most (§3.5.7's n_step)."""
+    filter_scope: Annotated[FilterScope, Reading(
+        "Algorithm 2 (§3.3.4): form [M] (line 3), compute the prediction of every action "
+        "(3.8, line 4), filter by (3.10) (lines 5-7), select by (3.9) (line 8): the filter "
+        "acts on the choice only; App. A's eq. 7.2 takes max_i P(a_i) over the prediction "
+        "array.")] = "choice"
+    """Where affordance-based XCS's filter (eq. 3.10) applies: `choice` (Algorithm 2: covering
+    and eq. 7.2's max range over every applicable action) or `choice_and_value` (the filtered
+    actions are also left out of covering and of eq. 7.2's max; this code's earlier
+    reading)."""
 
     def scaled_trials(self) -> int:
         return even_trials(self.trials, self.scale, 4)
@@ -50,6 +73,8 @@ class TaskRun(SeedResult):
     first_action: list[str | None]
     movability: list[Movability]
     rules: list[Rule]
+    starts: list[float] | None = None
+    """Navigation: the lane (y, m) each trial started in."""
 
 
 @contextmanager
@@ -78,32 +103,41 @@ def even_trials(full: int, scale: float, minimum: int) -> int:
 
 
 def experiment(world: object, task_name: str, mode: str, method: str, seed: int,
-               trials: int, change_after: int, config: Table71, n_step: int,
-               **options: bool) -> TaskRun:
+               trials: int, change_after: int, config: TrialConfig, n_step: int,
+               task_options: Mapping[str, object] | None = None,
+               **options: bool | str) -> TaskRun:
     """One experiment of ``trials`` alternating trials in ``world``; the world changes after
-    ``change_after`` (boxes exchanged, target moved). Per-trial payoff, steps, success and
+    ``change_after`` (boxes exchanged, target moved). ``task_options`` go to the task (start,
+    push_needs_object), ``options`` to the learner. Per-trial payoff, steps, success and
     mode, the first action of each trial, the learned table and rules."""
     from behaviours.blob_grid import make_grid_perception
     from behaviours.object_state import make_object_perception
     from behaviours.xcs_tasks import NavigationTask, SearchTask, StackingTask
     from behaviours.xcs_trials import make_learner, run_experiment
 
+    extra = dict(task_options or {})
     if task_name == "navigation":
         task = NavigationTask(world, make_object_perception(mode, task_name),  # type: ignore
-                              exchange_after=change_after)
+                              exchange_after=change_after, seed=seed, **extra)
     elif task_name == "stacking":
-        task = StackingTask(world, make_object_perception(mode, task_name))  # type: ignore
+        task = StackingTask(world, make_object_perception(mode, task_name),  # type: ignore
+                            **extra)
     else:
         task = SearchTask(world, make_grid_perception(mode),  # type: ignore[arg-type]
-                          move_after=change_after)
-    learner = make_learner(task.actions, method, seed, **xcs_keywords(config), **options)
+                          move_after=change_after, **extra)
+    if isinstance(config, TaskConfig):
+        options = {"filter_scope": config.filter_scope, **options}
+    learner = make_learner(task.actions, method, seed, **xcs_keywords(config),
+                           learn_in_exploit=config.learn_in_exploit, **options)
     records = run_experiment(task, learner, trials=trials, n_step=n_step)
+    starts = ([task.start_lane(t) for t in range(trials)]
+              if isinstance(task, NavigationTask) else None)
     return TaskRun(
         payoff=[r.payoff for r in records], steps=[r.steps for r in records],
         success=[int(r.success) for r in records], explore=[int(r.explore) for r in records],
         first_action=[task.names[r.actions[0]] if r.actions else None for r in records],
         movability=[tuple(t) for t in learner.table.triples()],
-        rules=rule_listing(learner.learner.classifiers(), task.actions))
+        rules=rule_listing(learner.learner.classifiers(), task.actions), starts=starts)
 
 
 def rule_listing(classifiers: Sequence, actions: Sequence[str]) -> list[Rule]:

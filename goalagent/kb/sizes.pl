@@ -1,0 +1,334 @@
+/*  What one built-in call of an agent may make: SWI-Prolog does some work in C without
+    looking at signals, so neither the time limit nor Ctrl-C/SIGTERM (goalagent/kb/
+    watchdog.py) can end it once it has begun. Measured on SWI-Prolog 9.0.4: X is 7^(10^9)
+    takes 43 s in one inference; writing a 100,000,000-digit integer (format ~d, print/1)
+    30 s; number_codes/2 of 10,000,000 digits more than 4 minutes; tab(2000000000) writes
+    2 GB. So such work is bounded before it starts, as format/2,3's counts are (confine.pl):
+
+    - integers: ^, ** and << in an agent's arithmetic may make at most max_integer_bits/1
+      bits (an expression that contains them, or an is/2 expression holding a variable
+      bound to anything but a number when it runs, is evaluated step by step, each power
+      or shift checked before it is computed; a variable bound to a number costs is/2 one
+      inline test; comparisons, which conditions make many of a cycle, are checked only
+      when a power or shift is written in them); format/2,3 writes no integer larger;
+    - tab/1,2 writes at most max_repeat/1 spaces (as format's counts);
+    - a text an agent reads as a number or a term (number_codes/2, atom_to_term/3, ...)
+      holds no run of more than max_digits/1 digits;
+    - the runtime's print/1 and log/1 actions write at most max_print/1 characters (a term
+      that shares subterms, f(T, T) nested 40 deep, writes 2^40 leaves in one call).
+
+    confine.pl's prepare_call/3 asks sized/3 for every built-in call of an agent (loading
+    its text, or when a goal built at run time is called); rules.pl asks printable/1.
+*/
+:- module(ga_sizes, []).
+
+:- set_prolog_flag(generate_debug_info, false).
+
+%!  max_integer_bits(-Bits) is det.
+%   The largest integer (in bits) an agent's ^, ** or << may make, and format/2,3 may write:
+%   writing one this big takes ~0.1 s (301,030 digits).
+max_integer_bits(1000000).
+
+%!  max_digits(-Count) is det.
+%   The longest run of digits a text an agent reads as a number or term may hold.
+max_digits(30000).
+
+%!  max_repeat(-Count) is det.
+%   The most characters tab/1,2 writes in one call (format's counts: confine.pl).
+max_repeat(100000).
+
+%!  max_print(-Characters) is det.
+%   The longest text a print/1 or log/1 action writes.
+max_print(1000000).
+
+%!  sized(+G, +Ctx, -Sized) is semidet.
+%   G (a built-in call of an agent, Ctx as confine.pl's) is one whose size is bounded
+%   here; Sized is G itself when it can be checked now (and passes), else a goal that
+%   checks it when it runs. Throws ga_refused(Why) for one too big. Fails for any other G.
+sized(G, _, _) :-
+    var(G), !,
+    fail.
+sized(G, _, Sized) :-
+    arithmetic(G, Exprs), !,
+    (   member(E, Exprs),
+        grows(E)
+    ->  forall(( member(E1, Exprs), ground(E1) ),   % written out: refused when loading
+               catch(eval(E1, _), error(_, _), true)),
+        Sized = ga_sizes:arithmetic(G)
+    ;   G = (_ is E),
+        term_variables(E, Vars),
+        Vars \== []                         % a variable may hold an expression: checked
+    ->  numbers_test(Vars, Test),           % inline when it holds a number
+        Sized = ( Test -> G ; ga_sizes:arithmetic(G) )
+    ).
+sized(tab(N), _, Sized) :- !,
+    repeat_goal(tab(N), N, Sized).
+sized(tab(S, N), _, Sized) :- !,
+    repeat_goal(tab(S, N), N, Sized).
+sized(G, _, Sized) :-
+    parsed_text(G, Text), !,
+    (   ground(Text)
+    ->  parse_length(Text),
+        Sized = G
+    ;   Sized = ga_sizes:parsing(Text, G)
+    ).
+sized(G, c(M, _, _), Sized) :-
+    ( G = format(_, Args) ; G = format(_, _, Args) ), !,
+    (   ground(Args)
+    ->  small_integers(Args),
+        Sized = G
+    ;   Sized = ga_sizes:format_integers(Args, M:G)
+    ).
+
+%   numbers_test(+Vars, -Test): a goal true when every variable of Vars is a number.
+numbers_test([V], number(V)) :- !.
+numbers_test([V|Vs], (number(V), Test)) :-
+    numbers_test(Vs, Test).
+
+%   parsed_text(+G, -Text): G reads Text as a number or term (when Text is bound).
+parsed_text(number_codes(_, Text), Text).
+parsed_text(number_chars(_, Text), Text).
+parsed_text(number_string(_, Text), Text).
+parsed_text(atom_number(Text, _), Text).
+parsed_text(name(_, Text), Text).
+parsed_text(atom_to_term(Text, _, _), Text).
+parsed_text(term_to_atom(_, Text), Text).
+parsed_text(term_string(_, Text), Text).
+parsed_text(term_string(_, Text, _), Text).
+parsed_text(read_term_from_atom(Text, _, _), Text).
+
+%!  parsing(?Text, :G) is nondet.
+%   G, which reads Text (bound only now, if at all), after parse_length/1.
+:- meta_predicate parsing(?, 0).
+
+parsing(Text, G) :-
+    (   var(Text) -> true ; parse_length(Text) ),
+    call(G).
+
+%   parse_length(+Text): no run of digits (or letters: 0x.. numbers) in Text longer than
+%   max_digits/1 (only a text that long is scanned).
+parse_length(Text) :-
+    max_digits(Max),
+    (   text_codes(Text, Length, Codes),
+        Length > Max,
+        longest_run(Codes, 0, 0, Run),
+        Run > Max
+    ->  format(string(Why), "a text with ~D digits in a row to read, more than ~D (SWI-Prolog reads a number's digits in time that grows with their square, without looking at the time limit: 300,000 took 9 s)", [Run, Max]),
+        throw(ga_refused(Why))
+    ;   true
+    ).
+
+text_codes(Text, Length, Codes) :-
+    (   is_list(Text)
+    ->  length(Text, Length),
+        Length > 0,
+        catch(atom_codes(Atom, Text), _, fail),
+        atom_codes(Atom, Codes)
+    ;   catch(atom_length(Text, Length), _, fail),
+        atom_codes(Text, Codes)
+    ).
+
+longest_run([], Run, Longest0, Longest) :-
+    Longest is max(Run, Longest0).
+longest_run([C|Cs], Run, Longest0, Longest) :-
+    (   code_type(C, alnum)
+    ->  Run1 is Run + 1,
+        longest_run(Cs, Run1, Longest0, Longest)
+    ;   Longest1 is max(Run, Longest0),
+        longest_run(Cs, 0, Longest1, Longest)
+    ).
+
+%   arithmetic(+G, -Exprs): G evaluates the expressions Exprs.
+arithmetic(_ is E, [E]).
+arithmetic(A < B, [A, B]).
+arithmetic(A > B, [A, B]).
+arithmetic(A =< B, [A, B]).
+arithmetic(A >= B, [A, B]).
+arithmetic(A =:= B, [A, B]).
+arithmetic(A =\= B, [A, B]).
+
+%   grows(@E): E may make a huge integer in one step: a power or shift written in it.
+grows(E) :-
+    sub_term(T, E),
+    compound(T),
+    compound_name_arity(T, Op, 2),
+    memberchk(Op, [^, **, <<]),
+    !.
+
+%!  arithmetic(+G) is semidet.
+%   Calls the arithmetic built-in G with its expressions evaluated step by step (eval/2).
+arithmetic(X is E) :- !,
+    eval(E, V),
+    X is V.
+arithmetic(G) :-
+    G =.. [Op|Exprs],
+    maplist(eval, Exprs, Values),
+    G1 =.. [Op|Values],
+    call(G1).
+
+%   eval(+E, -V): V is E, each ^, ** and << of integers checked before it is computed.
+eval(E, V) :-
+    (   var(E)
+    ->  V is E                              % is/2's instantiation error
+    ;   number(E)
+    ->  V = E
+    ;   compound(E),
+        \+ is_list(E)                       % ("a", [X]: a character code)
+    ->  compound_name_arguments(E, Op, Args),
+        maplist(eval, Args, Values),
+        (   Values = [A, B], memberchk(Op, [^, **, <<])
+        ->  power_bits(Op, A, B)
+        ;   true
+        ),
+        compound_name_arguments(E1, Op, Values),
+        V is E1
+    ;   V is E
+    ).
+
+%   power_bits(+Op, +A, +B): the integer A Op B has at most max_integer_bits/1 bits.
+power_bits(Op, A, B) :-
+    (   integer(A), integer(B), B > 0,
+        result_bits(Op, A, B, Bits),
+        max_integer_bits(Max),
+        Bits > Max
+    ->  format(string(Why), "~w ~w ~w would make an integer of about ~D bits, more than ~D (SWI-Prolog computes and writes such integers without looking at the time limit)", [A, Op, B, Bits, Max]),
+        throw(ga_refused(Why))
+    ;   true
+    ).
+
+result_bits(<<, A, B, Bits) :- !,
+    Bits is B + msb(max(abs(A), 1)).
+result_bits(_, A, B, Bits) :-
+    abs(A) > 1,
+    Bits is B * (msb(abs(A)) + 1).
+
+%   repeat_goal(+G, +N, -Sized): tab/1,2 of N spaces (an expression).
+repeat_goal(G, N, Sized) :-
+    (   ground(N)
+    ->  catch(Count is N, _, fail),
+        repeat_count(Count),
+        Sized = G
+    ;   Sized = ga_sizes:repeat(G)
+    ),
+    !.
+repeat_goal(G, _, G).                       % (tab/1 raises its own error)
+
+%!  repeat(+G) is det.
+%   tab/1,2 (G) whose count is only known now.
+repeat(G) :-
+    ( G = tab(N) ; G = tab(_, N) ), !,
+    Count is N,
+    repeat_count(Count),
+    call(G).
+
+repeat_count(Count) :-
+    max_repeat(Max),
+    (   integer(Count), Count > Max
+    ->  format(string(Why), "tab writes ~D spaces, more than ~D (an output bomb SWI-Prolog cannot interrupt)", [Count, Max]),
+        throw(ga_refused(Why))
+    ;   true
+    ).
+
+%!  format_integers(+Args, :G) is semidet.
+%   format/2,3 (G) whose arguments Args are only known now: no integer among them too big
+%   to write (see max_integer_bits/1).
+:- meta_predicate format_integers(+, 0).
+
+format_integers(Args, G) :-
+    small_integers(Args),
+    call(G).
+
+small_integers(Args) :-
+    max_integer_bits(Max),
+    (   acyclic_term(Args),
+        big_integer(Args, Max, T)
+    ->  Bits is msb(abs(T)) + 1,
+        format(string(Why), "an integer of ~D bits written, more than ~D (SWI-Prolog writes such integers without looking at the time limit)", [Bits, Max]),
+        throw(ga_refused(Why))
+    ;   true
+    ).
+
+%   big_integer(@T, +Max, -Big): Big is the first integer of at least Max bits in the
+%   acyclic term T (lists walked in a loop: a long list needs no stack).
+big_integer(T, Max, Big) :-
+    (   integer(T)
+    ->  T =\= 0,
+        msb(abs(T)) >= Max,
+        Big = T
+    ;   compound(T)
+    ->  (   T = [_|_]
+        ->  big_integer_list(T, Max, Big)
+        ;   compound_name_arity(T, _, Arity),
+            big_integer_args(1, Arity, T, Max, Big)
+        )
+    ).
+
+big_integer_list(List, Max, Big) :-
+    (   nonvar(List),
+        List = [Head|Tail]
+    ->  (   big_integer(Head, Max, Big)
+        ->  true
+        ;   big_integer_list(Tail, Max, Big)
+        )
+    ;   big_integer(List, Max, Big)
+    ).
+
+big_integer_args(I, Arity, T, Max, Big) :-
+    I =< Arity,
+    arg(I, T, Arg),
+    (   big_integer(Arg, Max, Big)
+    ->  true
+    ;   I1 is I + 1,
+        big_integer_args(I1, Arity, T, Max, Big)
+    ).
+
+%!  printable(@T) is det.
+%   The print/1 or log/1 action of T may write it: throws ga_error(Message) for a text
+%   longer than max_print/1 characters, or an integer too big to write.
+printable(T) :-
+    max_print(Max),
+    (   ( atom(T) ; string(T) )
+    ->  atom_length(T, Length),
+        (   Length > Max
+        ->  too_long(Length, Max)
+        ;   true
+        )
+    ;   catch(small_integers(T), ga_refused(Why), throw(ga_error(Why))),
+        (   write_length(T, _, [quoted(true), max_length(Max)])
+        ->  true
+        ;   too_long(more, Max)
+        )
+    ).
+
+too_long(Length, Max) :-
+    (   integer(Length)
+    ->  format(string(Message), "a text of ~D characters to write, more than ~D", [Length, Max])
+    ;   format(string(Message), "a text of more than ~D characters to write", [Max])
+    ),
+    throw(ga_error(Message)).
+
+%!  reportable(+T0, -T) is det.
+%   T0 with every integer too big to convert for Python (more than max_integer_bits/1
+%   bits) replaced by an atom saying its size: a warning about a rule whose bindings hold
+%   one is still told (converting it would stop the agent, and take seconds).
+reportable(T0, T) :-
+    max_integer_bits(Max),
+    (   acyclic_term(T0),
+        big_integer(T0, Max, _)
+    ->  replace_big(T0, Max, T)
+    ;   T = T0
+    ).
+
+replace_big(T0, Max, T) :-
+    (   integer(T0), T0 =\= 0, msb(abs(T0)) >= Max
+    ->  Bits is msb(abs(T0)) + 1,
+        format(atom(T), "<an integer of ~D bits>", [Bits])
+    ;   compound(T0)
+    ->  compound_name_arguments(T0, Name, Args0),
+        maplist(replace_big_in(Max), Args0, Args),
+        compound_name_arguments(T, Name, Args)
+    ;   T = T0
+    ).
+
+replace_big_in(Max, T0, T) :-
+    replace_big(T0, Max, T).
