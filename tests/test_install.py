@@ -78,6 +78,30 @@ def test_the_plain_install_has_no_robot_weight(installed: Path) -> None:
         assert found.returncode != 0, f"{module} was installed without its extra"
 
 
+EXTRA_MODULES = ("goalagent.inspector",)  # the mind inspector: the inspector extra
+
+
+def test_every_module_of_the_language_imports_with_the_core_dependencies(
+        installed: Path) -> None:
+    """Nothing of goalagent but the inspector needs an extra (numpy, pydantic, ... stay in
+    the robot application)."""
+    script = (
+        "import importlib, pkgutil, goalagent\n"
+        "failed = []\n"
+        "for info in pkgutil.walk_packages(goalagent.__path__, 'goalagent.'):\n"
+        f"    if info.name.endswith('.__main__') or info.name.startswith({EXTRA_MODULES!r}):\n"
+        "        continue\n"
+        "    try:\n"
+        "        importlib.import_module(info.name)\n"
+        "    except ImportError as error:\n"
+        "        failed.append(f'{info.name}: {error}')\n"
+        "print(*failed, sep='\\n')\n")
+    result = subprocess.run([str(installed / "python"), "-c", script], capture_output=True,
+                            text=True, timeout=300)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert result.stdout == "\n", result.stdout
+
+
 def test_a_missing_extra_is_named(installed: Path, tmp_path: Path) -> None:
     agent = tmp_path / "a.goal"
     agent.write_text("main module [exit=always] { program { if true then print(hi). } }\n")
