@@ -81,6 +81,8 @@ def test_trace_kinds_after_a_space_or_an_equals_sign(counter: Path) -> None:
     assert spaced.returncode == 0, spaced.stderr
     assert spaced.stdout == joined.stdout
     assert "achieved count(2)" in spaced.stdout
+    labels = {line.split()[2] for line in spaced.stdout.splitlines() if " #" in line}
+    assert labels == {"inserted", "deleted", "achieved"}  # no rule or action lines
     bare = goalagent("run", "--trace", str(counter))  # --trace alone: everything
     assert bare.returncode == 0, bare.stderr
     assert "fired" in bare.stdout and "inserted" in bare.stdout
@@ -105,6 +107,7 @@ def test_goalagent_test_keeps_the_agents_output_apart(tmp_path: Path) -> None:
     lines = run.stdout.splitlines()
     assert lines[0] == "coffee.test2g:" and re.match(r"  \d+ passed, 0 failed", lines[-1])
     assert all(line.startswith("  ") for line in lines[1:])  # the report and nothing else
+    assert "made(coffee)" in run.stderr  # what the maker agent prints
 
 
 BOOM = '''
