@@ -32,7 +32,13 @@ from goalagent.agent.events import (
 )
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
-from goalagent.agent.problems import cause_traceback, goal_text, warning_text
+from goalagent.agent.problems import (
+    cause_traceback,
+    goal_origin,
+    goal_text,
+    module_of,
+    warning_text,
+)
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.agent.timers import Timer, due_percepts
@@ -41,7 +47,7 @@ from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
-from goalagent.kb.terms import Struct, Term, format_term
+from goalagent.kb.terms import Term, format_term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
@@ -127,7 +133,7 @@ class Agent:
                 for goal in program.goals:
                     self.ms.adopt(goal)
                     for _, why in self.ms.take_unchecked():
-                        self.warn(f"module {self._module_of(goal)}, goal at {goal.pos}: "
+                        self.warn(f"module {module_of(program, goal)}, goal at {goal.pos}: "
                                   f"checking whether {goal.text.strip()} is believed {why}; "
                                   "the goal is adopted")
             else:
@@ -442,28 +448,6 @@ class Agent:
             if self.listeners:
                 self.tell(goal_event(self.name, EventKind.GOAL_ACHIEVED, goal))
         for facts, why in self.ms.take_unchecked():
-            self.warn(f"{self._goal_origin(facts)}: checking whether goal {goal_text(facts)} "
-                      f"is achieved {why}; the goal is kept")
-
-    def _module_of(self, goal: ast.PrologText) -> str:
-        """The module whose goals section holds ``goal``."""
-        return next((module.name for module in self.program.modules
-                     if any(written is goal for written in module.goals)), "init")
-
-    def _goal_origin(self, facts: list[Term]) -> str:
-        """Where a goal was written, if it is one of the program's goals sections' (else
-        the program's file and the module running)."""
-        written = facts[0] if len(facts) == 1 else _conjunction(facts)
-        for goal in self.program.goals:
-            if self.ms.unify(goal, written) is not None:
-                return f"module {self._module_of(goal)}, goal at {goal.pos}"
-        module = self.focus[-1].module.name if self.focus else "main"
-        return f"module {module}, {self.program.file}"
-
-
-def _conjunction(facts: list[Term]) -> Term:
-    """``(f1, f2, ...)`` of a goal's facts."""
-    term = facts[-1]
-    for fact in reversed(facts[:-1]):
-        term = Struct(",", (fact, term))
-    return term
+            running = self.focus[-1].module.name if self.focus else "main"
+            self.warn(f"{goal_origin(self.program, self.ms, running, facts)}: checking whether "
+                      f"goal {goal_text(facts)} is achieved {why}; the goal is kept")
