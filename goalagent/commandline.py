@@ -24,8 +24,8 @@ METAVARS = {
     "trace_file": "FILE", "load_beliefs": "FILE", "save_beliefs": "FILE",
     "save_predicate": "NAME/ARITY", "save_every": "N|Ns|Nm|end", "breakpoint": "FILE:LINE|COND",
     "port": "N", "host": "ADDRESS", "max_inferences": "N", "max_query_seconds": "SECONDS",
-    "max_beliefs": "N", "max_memory": "MB", "max_module_depth": "N", "plot": "FILE", "path": "PATH",
-    "paths": "PATH",
+    "max_beliefs": "N", "max_memory": "MB", "max_module_depth": "N", "plot": "FILE",
+    "path": "PATH", "paths": "PATH",
 }
 """Metavars of the options whose name alone would not say what they take; any other option
 shows its name in capitals (``--out OUT``), a flag shows none."""
