@@ -264,9 +264,10 @@ AGENT_DEVIATIONS = (*CH5_DEVIATIONS, Deviation(
     "chapter 5 runs Algorithm 6 on the whole can, outside any agent.",
     "agents/garbage_disposal.goal takes transfer's percepts about any part (merged by eq. 6.3), "
     "moves its focus to a part with a reliable affordance, never asks the same question twice "
-    "in a learning episode (asked/1) and gives a part up when every action on it was tried "
-    "(docs/robot.md)."))
-"""What the agent does beyond the thesis's rules to use Algorithm 6's whole-can answers."""
+    "in a learning episode (asked/1) and gives a part up when every action on it was tried; "
+    "its transfer request runs Algorithm 6 up to line 23 (the look-alike of the source's "
+    "functional part) and the agent learns the other parts a pair at a time (docs/robot.md)."))
+"""What the agent does beyond the thesis's rules to use Algorithm 6's answers."""
 
 STUDY = Study(
     name="ch5-agent",
