@@ -309,14 +309,19 @@ def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(tmp_path: Path):
 
 
 def test_global_variables_flags_and_records_are_each_agent_s_own():
-    # agents read each other's global variables and flags (nb_getval, flag/3): a channel
+    # agents read each other's global variables and flags (nb_getval, flag/3): a channel;
+    # library(gensym) counts in the process's flags, so one agent's gensym/2 and
+    # reset_gensym/0 changed the names another made (attack round of 2026-11-26)
     writer = ("main module [exit=always] { program { if bel(nb_setval(k, secret), "
-              "flag(f, _, 42), recordz(r(1), secret), set_flag(g, 7)) then print(x). } }")
+              "flag(f, _, 42), recordz(r(1), secret), set_flag(g, 7), gensym(n, _), "
+              "gensym(n, _), gensym(m, _)) then print(x). } }")
     reader = """main module [exit=always] { program [order=linearall] {
         if bel(catch(nb_getval(k, V), _, V = none)) then insert(k(V)).
         if bel(flag(f, F, F), get_flag(g, G)) then insert(f(F, G)).
         if bel(findall(R, recorded(r(2), R), Rs)) then insert(r(Rs)).
         if bel(nb_setval(k, mine), nb_getval(k, M)) then insert(own(M)).
+        if bel(gensym(n, N1), gensym(n, N2), reset_gensym(n), gensym(n, N3), gensym(m, M1),
+               reset_gensym, gensym(m, M2)) then insert(names([N1, N2, N3, M1, M2])).
     } }"""
     mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
     try:
@@ -325,6 +330,13 @@ def test_global_variables_flags_and_records_are_each_agent_s_own():
         mas.run(max_cycles=1)
         assert reading.query("bel", "k(V), f(F, G), r(R), own(M)") == [
             {"V": Atom("none"), "F": 0, "G": 0, "R": [], "M": Atom("mine")}]
+        assert reading.query("bel", "names(Ns)") == [
+            {"Ns": [Atom("n1"), Atom("n2"), Atom("n1"), Atom("m1"), Atom("m1")]}]
+        writer_again = mas.launch("writer2", parse_agent(
+            "main module [exit=always] { program { if bel(gensym(n, N)) then insert(n(N)). "
+            "} }", "w2.goal"))
+        mas.run(max_cycles=1)
+        assert writer_again.query("bel", "n(N)") == [{"N": Atom("n1")}]
     finally:
         mas.close()
     engine = get_engine()  # and freed with their agents

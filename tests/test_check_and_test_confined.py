@@ -134,7 +134,7 @@ def test_goalagent_test_takes_the_sandbox_and_the_limits(tmp_path: Path):
     assert "FAILED  assert  (t.test2g:6:13)" in lines[2]
     assert "halt/0 would end or change the whole process" in lines[2]
     assert "passed  do main until ...  (t.test2g:7:13)" in lines[3]
-    assert "(t.test2g:7:24) -- a Prolog error at cycle 1" in lines[4]
+    assert "(t.test2g:7:24) -- a Prolog error at cycle 0" in lines[4]
     assert "not allowed in the sandbox" in lines[4]
     assert "FAILED  assert  (t.test2g:9:13)" in lines[5]
     assert "more than 1,000,000 inferences" in lines[5]

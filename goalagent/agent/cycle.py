@@ -200,12 +200,14 @@ class Agent:
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str, *, confined: bool = False,
+    def query(self, op: str, text: str, *, confined: bool = False, sandboxed: bool = False,
               limit: int | None = None) -> list[Bindings]:
         """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values (the
         first ``limit``); ``confined``: checked as the agent's own code is, in its sandbox if
-        it has one (a query a user types in the debugger or the inspector)."""
-        return self.ms.query(op, text, trusted=not confined, limit=limit)
+        it has one (a query a user types in the debugger); ``sandboxed``: so, and in the
+        sandbox always (one a web page sends the inspector)."""
+        return self.ms.query(op, text, trusted=not (confined or sandboxed),
+                             sandboxed=sandboxed, limit=limit)
 
     def beliefs(self) -> list[Term]:
         return self.ms.beliefs()

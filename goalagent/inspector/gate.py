@@ -29,7 +29,7 @@ from starlette.websockets import WebSocketClose
 MAX_MESSAGE = 64 * 1024  # characters of one message a page may send (beyond: an error)
 MAX_FRAME = 1024 * 1024  # bytes of one WebSocket frame read at all (beyond: closed, 1009)
 MAX_SOCKETS = 16  # browsers connected at once
-BURST, RATE = 100, 30.0  # messages a socket may send at once, then per second
+BURST, RATE = 100, 30.0  # messages a socket (and all together) may send at once, then a second
 _LOCAL = ("127.0.0.1", "localhost", "::1")
 _WILDCARD = ("0.0.0.0", "::", "")
 # The fields a message may have, and their types (op is one of OPS).
