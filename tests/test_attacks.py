@@ -1,7 +1,26 @@
 """Attack programs from the red team of 2026-11-23 evening (issue 14): each hole they found,
 as the smallest program that showed it. Runaway programs run in a child process with a
 timeout (one regression would otherwise hang the suite: SWI-Prolog cannot interrupt a
-cleanup handler while an exception unwinds)."""
+cleanup handler while an exception unwinds).
+
+Issue 24's failures (its "Why", items 1-9) and where each is tested:
+1. the inspector: tests/test_inspector_gate.py (Host, Origin, token; binary, deep, long and
+   malformed messages; 20,000 breakpoints; many pages flooding; queries confined and always
+   sandboxed) and tests/test_inspector.py (a page of another origin in Chromium, DNS
+   rebinding);
+2. phrase/2,3, call_dcg/3 and {}: here (grammar bodies) and tests/test_confinement.py;
+3. check and test running agent code: tests/test_check_and_test_confined.py;
+4. memory outside Prolog's stacks: tests/test_attacks_limits.py (memory);
+5. limits that ran over (~d of 100,000,000 digits, sig_atomic, prolog_alert_signal, tab,
+   runaway initial goals and goal checks, a sleeping test condition): tests/
+   test_attacks_limits.py, here (process-wide built-ins) and test_check_and_test_confined.py;
+6. process-wide built-ins without the sandbox, shared global variables and flags: here;
+7. one agent's deep fact stopping every save: tests/test_attacks_limits.py (saves);
+8. can files and the object database: tests/test_attacks_io.py;
+9. the smaller items (2 MB one-line program, agentfiles with ..\\.., --port 70000, --trace-file
+   /dev/full, SIGHUP, SIGTERM while starting, a save path that is a link):
+   tests/test_attacks_cli.py.
+"""
 
 from __future__ import annotations
 
@@ -360,3 +379,21 @@ def test_an_answer_with_many_variables_converts_in_linear_time():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             timeout=120, cwd=Path(__file__).resolve().parents[1])
     assert result.stdout.strip() == "40000", result.stderr
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+def test_a_sandboxed_agent_s_print_cannot_drive_the_terminal(sandbox: bool):
+    # attack round of 2026-11-26: print('\e]0;owned\a\e[2J') set the terminal's title and
+    # cleared it from a sandboxed agent; without the sandbox print/1 is the program's output
+    text = ("main module [exit=always] { program { if true then "
+            "print('\\e]0;owned\\a\\e[2Jdone'). } }")
+    output = io.StringIO()
+    agent = Agent(parse_agent(text, "p.goal"), limits=Limits(sandbox=sandbox), output=output)
+    try:
+        agent.run(max_cycles=1)
+    finally:
+        agent.close()
+    if sandbox:
+        assert output.getvalue() == "\\x1b]0;owned\\x07\\x1b[2Jdone\n"
+    else:
+        assert output.getvalue() == "\x1b]0;owned\x07\x1b[2Jdone\n"
