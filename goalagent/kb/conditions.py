@@ -69,11 +69,12 @@ class Conditions(PrologModules):
         ``trusted`` one (the runtime's own queries: the API, reports) is not, a
         ``sandboxed`` one (the mind inspector's) is confined in the sandbox."""
         text = ", ".join(_literal_text(literal) for literal in condition) or "true"
-        mode = TRUE if not trusted else FALSE
         if sandboxed:
             key, mode = f"sandbox\0{text}", Atom("sandbox")
+        elif trusted:
+            key, mode = f"trusted\0{text}", FALSE
         else:
-            key = f"trusted\0{text}" if trusted else text
+            key, mode = text, TRUE
         compiled = self._compiled.get(key)
         if compiled is not None:
             return compiled
