@@ -205,7 +205,7 @@ class Debugger(RunHook):
     def _event(self, event: Event) -> None:
         if self.on_event is not None:
             self.on_event(event)
-        if event.kind is not EventKind.RULE_TRIED or not event.bindings:
+        if event.kind is not EventKind.RULE_TRIED or not event.instantiations:
             return
         for breakpoint in self.breakpoints:
             if breakpoint.at(event.pos):

@@ -42,7 +42,7 @@ def _event_json(event: Event) -> dict[str, Any]:
     return {"kind": event.kind.value, "text": event.text,
             "pos": str(event.pos) if event.pos is not None else "",
             "bindings": [{name: show_term(value) for name, value in b.items()}
-                         for b in event.bindings]}
+                         for b in event.instantiations]}
 
 
 def _panel_json(view: PanelView) -> dict[str, Any]:
@@ -129,7 +129,7 @@ class Inspector:
     # ------------------------------------------------------------------ observing
     def _event(self, event: Event) -> None:
         if event.kind not in _SHOWN or (event.kind is EventKind.RULE_TRIED
-                                        and not event.bindings):
+                                        and not event.instantiations):
             return
         events = self._events.setdefault(event.agent, [])
         if len(events) < EVENTS_KEPT:
