@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Protocol
 
 from goalagent.agent.errors import AgentError
 from goalagent.agent.problems import cause_traceback, warning_text
+from goalagent.console import printable
 from goalagent.events import ProblemKind
 from goalagent.kb.interpreter_requests import Firing, Problem
 from goalagent.kb.terms import Atom, Struct, Term
@@ -59,8 +60,11 @@ def act_on_environment(agent: Agent, firing: Firing, index: int, action: Term) -
 
 
 def output(agent: Agent, text: str, log: bool) -> None:
-    """``print/1`` writes a line on the agent's output; ``log/1`` goes where warnings go."""
+    """``print/1`` writes a line on the agent's output; ``log/1`` goes where warnings go
+    (printable there). A sandboxed agent's line is printable too: it may not drive the
+    terminal (escape sequences set its title, its clipboard, what it shows)."""
     if log:
         agent.log(f"log: agent {agent.name}: {text}")
     else:
-        print(text, file=agent.output, flush=True)
+        print(printable(text) if agent.ms.limits.sandbox else text, file=agent.output,
+              flush=True)

@@ -322,7 +322,7 @@ class Agent:
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str, *, confined: bool = False,
+    def query(self, op: str, text: str, *, confined: bool = False, sandboxed: bool = False,
               limit: int | None = None) -> list[Bindings]:
         """The answers of a mental-state query, as Python values.
 
@@ -330,8 +330,9 @@ class Agent:
             op: ``bel``, ``goal``, ``a-goal``, ``goal-a`` or ``percept``.
             text: the query in Prolog (``count(X)``, ``on(X, Y), X \\= a``).
             confined: check it as the agent's own code is, in its sandbox if it has one (a
-                query a user typed in the debugger or the inspector); False: the query is
-                trusted.
+                query a user typed in the debugger); False: the query is trusted.
+            sandboxed: check it so, and in the sandbox whether the agent has one or not
+                (a query or condition a web page sent the mind inspector).
             limit: at most this many answers (the first ones); None: all of them.
 
         Returns:
@@ -342,7 +343,8 @@ class Agent:
         Raises:
             KBError: the query is not valid Prolog or raised an error.
         """
-        return self.ms.query(op, text, trusted=not confined, limit=limit)
+        return self.ms.query(op, text, trusted=not (confined or sandboxed),
+                             sandboxed=sandboxed, limit=limit)
 
     def beliefs(self) -> list[Term]:
         """The agent's beliefs (its belief base's facts), in order."""

@@ -73,6 +73,7 @@ class Inspector:
     def attach(self, debugger: Debugger) -> None:
         """Observe ``debugger``'s run and serve the page."""
         self._debugger = debugger
+        debugger.sandboxed = True  # a page's queries inspect minds, never the machine
         debugger.on_event = self._event
         debugger.on_cycle = self._cycle_ended
         self.port = self.server.start()
