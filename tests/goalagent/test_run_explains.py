@@ -153,9 +153,13 @@ def test_the_reliability_plot_never_lands_in_the_current_directory(
     saved = tmp_path / "out" / "learned.pl"
     beside = cli("run", str(program), "--save-beliefs", str(saved))
     assert beside.exit_code == 0, beside.stderr
-    assert f"reliability plot: {saved.parent / 'afford-learner.png'}" in beside.stderr
-    assert (saved.parent / "afford-learner.png").is_file()
+    assert f"reliability plot: {saved.parent / 'learned-afford-learner.png'}" in beside.stderr
+    assert (saved.parent / "learned-afford-learner.png").is_file()
     assert list(work.iterdir()) == []
+    other = cli("run", str(program), "--save-beliefs", str(saved.with_name("again.pl")))
+    assert other.exit_code == 0, other.stderr  # a second run saving beside keeps its own plot
+    assert {path.name for path in saved.parent.glob("*.png")} == {
+        "learned-afford-learner.png", "again-afford-learner.png"}
 
 
 DEEP = """
