@@ -27,7 +27,7 @@ from robot.reproduce.framework import (
     in_turn,
     markdown_table,
 )
-from robot.reproduce.studies.common.ch5 import NEW_CANS, THESIS_CANS, Perception
+from robot.reproduce.studies.common.ch5 import CH5_DEVIATIONS, NEW_CANS, THESIS_CANS, Perception
 
 ORDERS = {
     "thesis": THESIS_CANS + NEW_CANS,
@@ -266,6 +266,7 @@ STUDY = Study(
     listings=listings, default_seeds=5,
     quick={"orders": {"thesis": ("o1", "o3")}, "perceptions": ("truth",), "trials": 2},
     headline=("truth.thesis.o1.exploratory_actions", "truth.thesis.o3.exploratory_actions"),
+    deviations=CH5_DEVIATIONS,
     notes="""\
 **Setup**: `agents/garbage_disposal.mas2g` as shipped, `learning=transfer`. Each order starts
 from an empty known-object database; each can is presented with the database (and learned
