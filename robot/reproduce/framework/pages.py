@@ -226,7 +226,14 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
     seeds = [record.seed for record in document.cells[0].seeds]
     lines = [f"# {study.name}: sweep over {', '.join(keys)}", "", study.description, "",
              f"Produced by `{document.command}` ({len(document.cells)} cells, {len(seeds)} "
-             f"seeds each: {seed_ranges(seeds)}).", "", "## Headline metrics per cell", ""]
+             f"seeds each: {seed_ranges(seeds)}).", ""]
+    if len(seeds) < study.default_seeds:
+        full = document.command.replace(f"--seeds {len(seeds)}",
+                                        f"--seeds {study.default_seeds}")
+        lines += [f"**Reduced size**: {len(seeds)} seeds per cell, against the study's "
+                  f"{study.default_seeds}, to fit the shared machine; the full sweep is "
+                  f"`{full}`.", ""]
+    lines += ["## Headline metrics per cell", ""]
     rows = []
     for cell in document.cells:
         by_key = {row.key: row for row in cell.summary.metrics}
