@@ -66,6 +66,11 @@ class EnvTask:
             raise RuntimeError("nothing observed yet: reset the task first")
         return self._view
 
+    def applicable(self, view: View) -> tuple[int, ...] | None:
+        """The actions whose preconditions hold (§3.5.4), as the environment's own task says:
+        stacking pushes only with an object in front; None when every action applies."""
+        return self.inner.task.applicable(view)
+
 
 class EnvContact:
     """Algorithm 3's continuous world through a can-opening environment."""
