@@ -62,12 +62,19 @@ class Conditions(PrologModules):
         self._compiled: dict[str, CompiledCondition] = {}
         super().__init__(*args, **kwargs)
 
-    def compile(self, condition: ast.Condition, *, trusted: bool = False) -> CompiledCondition:
+    def compile(self, condition: ast.Condition, *, trusted: bool = False,
+                sandboxed: bool = False) -> CompiledCondition:
         """Compiles a condition once (cached per body text) into a clause of this agent;
         an agent's condition is confined (confine.pl: checked, dynamic calls guarded), a
-        ``trusted`` one (the runtime's own queries: the API, reports) is not."""
+        ``trusted`` one (the runtime's own queries: the API, reports) is not, a
+        ``sandboxed`` one (the mind inspector's) is confined in the sandbox."""
         text = ", ".join(_literal_text(literal) for literal in condition) or "true"
-        key = f"trusted\0{text}" if trusted else text
+        if sandboxed:
+            key, mode = f"sandbox\0{text}", Atom("sandbox")
+        elif trusted:
+            key, mode = f"trusted\0{text}", FALSE
+        else:
+            key, mode = text, TRUE
         compiled = self._compiled.get(key)
         if compiled is not None:
             return compiled
@@ -76,8 +83,7 @@ class Conditions(PrologModules):
             name = self._engine.unique_name("$ga_c")
             _condition_names[key] = name
         try:
-            names = self._call("compile", self._b, self._g, Atom(name), text,
-                               FALSE if trusted else TRUE, None)[5]
+            names = self._call("compile", self._b, self._g, Atom(name), text, mode, None)[5]
         except PrologRuntimeError as error:
             raise _condition_error(self._engine, condition, error) from None
         assert isinstance(names, list)
@@ -112,14 +118,16 @@ class Conditions(PrologModules):
         return [dict(zip(names, row, strict=True)) for row in rows]
 
     def query(self, op: str, text: str, bindings: Mapping[str, Term] | None = None, *,
-              limit: int | None = None, trusted: bool = True) -> list[dict[str, Term]]:
+              limit: int | None = None, trusted: bool = True,
+              sandboxed: bool = False) -> list[dict[str, Term]]:
         """Answers of ``op(text)``, op bel/goal/a-goal/goal-a/percept/true (see compile)."""
         if op not in _WRAPPERS and op != "true":
             raise KBError(f"unknown mental literal `{op}`: use one of "
                           f"{', '.join([*_WRAPPERS, 'true'])}")
         query = ast.PrologText(text, _QUERY_POS) if op != "true" else None
         literal = ast.MentalLiteral(op, query, _QUERY_POS)  # type: ignore[arg-type]
-        return self.solutions(self.compile((literal,), trusted=trusted), bindings, limit=limit)
+        compiled = self.compile((literal,), trusted=trusted, sandboxed=sandboxed)
+        return self.solutions(compiled, bindings, limit=limit)
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""

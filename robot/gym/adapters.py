@@ -67,8 +67,8 @@ class EnvTask:
         return self._view
 
     def applicable(self, view: View) -> tuple[int, ...] | None:
-        """The actions whose preconditions hold (§3.5.4), as the environment's own task says:
-        stacking pushes only with an object in front; None when every action applies."""
+        """The environment's task's preconditions (§3.5.4: stacking pushes only with an
+        object perceived in front), so XCS through Gymnasium chooses as it does directly."""
         return self.inner.task.applicable(view)
 
 
