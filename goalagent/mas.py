@@ -29,6 +29,7 @@ from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
+from goalagent.mas_capacity import agent_capacity, capacity_message
 from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
 
 
@@ -131,8 +132,13 @@ class MultiAgentSystem:
         warn: Callable[[str], None] | None = None,
         listeners: Sequence[Listener] = (),
         limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> None:
         self.environment = environment
+        # How many agents it may hold (None: as many as the memory available allows,
+        # goalagent.mas_capacity; measured when first asked).
+        self._max_agents = max_agents
+        self._capacity_by_hand = max_agents is not None
         self.limits = limits or Limits()  # each agent's, unless its agent file says more
         self._agent_limits: dict[str, Limits] = {}  # agent file name -> its agents' limits
         self.seed = seed
@@ -143,6 +149,7 @@ class MultiAgentSystem:
         self.postman = LocalPostman()
         self._directory = AgentDirectory()  # agent/1 of every member, stored once
         self.agents: list[Agent] = []
+        self._names: set[str] = set()  # the agents' names: a launch checks one in O(1)
         self.current: Agent | None = None  # the agent whose cycle is running
         self.interrupted = False  # a signal stopped the run
         self.failures: dict[str, str] = {}
@@ -173,6 +180,7 @@ class MultiAgentSystem:
             environment.home = Path(path).parent
         system = cls(environment, **kwargs)
         system._programs.update(programs)
+        system._check_capacity(mas, numbers)
         for agentfile in mas.agentfiles:
             if agentfile.limits:
                 system._agent_limits[agentfile.name] = system._limits_for(dict(agentfile.limits))
@@ -213,6 +221,28 @@ class MultiAgentSystem:
         system._start_environment(dict(env_params or {}))
         return system
 
+    def _check_capacity(self, mas: ast.MasProgram, numbers: Mapping[str, int]) -> None:
+        """Refuses, before any agent is built, a file launching more agents than the system
+        may hold (located at the launch rule, or agent file, that passes the limit)."""
+        counted = [(rule.number if rule.number != 1 else numbers.get(rule.agentfile, 1), rule.pos)
+                   for rule in mas.launches if not rule.on_entity]
+        if not mas.launches:
+            counted = [(agentfile.number, agentfile.pos) for agentfile in mas.agentfiles]
+        limit, by_hand = self.capacity()
+        total = 0
+        for number, pos in counted:
+            total += number
+            if total > limit:
+                raise GoalSyntaxError.at(pos, capacity_message(total, limit, by_hand=by_hand))
+
+    def capacity(self) -> tuple[int, bool]:
+        """How many agents this system may hold (``max_agents``, or what the memory available
+        when first asked allows: goalagent.mas_capacity), and whether it was set by hand."""
+        if self._max_agents is None:
+            self._max_agents = agent_capacity()
+            self._capacity_by_hand = False
+        return self._max_agents, self._capacity_by_hand
+
     def _limits_for(self, options: dict[str, object]) -> Limits:
         """The run's limits with an agent file's own (a sandbox stays a sandbox)."""
         options["sandbox"] = bool(options.get("sandbox")) or self.limits.sandbox
@@ -223,7 +253,11 @@ class MultiAgentSystem:
         """Create an agent (bounded by ``limits``, default the system's), register it for
         messages and (if any) with the environment. A name already taken is made unique as
         GOAL's runtime does, numbering the later ones: the first of ``name2``, ``name3``, ...
-        that is free (as entity launches number theirs)."""
+        that is free (as entity launches number theirs). One more agent than the system
+        may hold (``capacity``) is an AgentError."""
+        limit, by_hand = self.capacity()
+        if len(self.agents) >= limit:
+            raise AgentError(capacity_message(len(self.agents) + 1, limit, by_hand=by_hand))
         name = self._unique_name(name)
         io = None
         if self.environment is not None:
@@ -238,12 +272,13 @@ class MultiAgentSystem:
         for listener in self.listeners:
             agent.listen(listener)
         self.agents.append(agent)
+        self._names.add(name)
         self._directory.add(name)
         agent.ms.join(name, self._directory)
         return agent
 
     def _unique_name(self, name: str) -> str:
-        taken = {agent.name for agent in self.agents}
+        taken = self._names
         if name not in taken:
             return name
         return next(f"{name}{n}" for n in range(2, len(taken) + 3) if f"{name}{n}" not in taken)
@@ -286,7 +321,7 @@ class MultiAgentSystem:
                 launched = self._launched_per_rule.get(index, 0)
                 self._launched_per_rule[index] = launched + 1
                 name = entity if rule.agent_name == "*" else rule.agent_name
-                if any(agent.name == name for agent in self.agents):
+                if name in self._names:
                     name = f"{name}{launched + 1}"
                 self.launch(name, self._programs[rule.agentfile], entity,
                             limits=self._agent_limits.get(rule.agentfile))
