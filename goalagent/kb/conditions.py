@@ -66,8 +66,7 @@ class Conditions(PrologModules):
         """Compiles a condition once (cached per body text) into a clause of this agent;
         an agent's condition is confined (confine.pl: checked, dynamic calls guarded), a
         ``trusted`` one (the runtime's own queries: the API, reports) is not."""
-        text = ", ".join(_literal_text(literal) for literal in condition) or "true"
-        key = f"trusted\0{text}" if trusted else text
+        text, key = _key(condition, trusted)
         compiled = self._compiled.get(key)
         if compiled is not None:
             return compiled
@@ -84,6 +83,26 @@ class Conditions(PrologModules):
         compiled = CompiledCondition(self, name, tuple(str(item) for item in names), text)
         self._compiled[key] = compiled
         return compiled
+
+    def copy_conditions(self, like: Conditions, conditions: Iterable[ast.Condition]) -> bool:
+        """Copies the (confined) ``conditions`` ``like`` has compiled into this agent in one
+        call, as :meth:`compile` would make them here: ``like`` is an agent of the same
+        program loaded alike (no directives, the same limits), so only the module names
+        differ (clone_conditions/6 in mentalstate_load.pl). False, and nothing copied, when
+        ``like`` is closed, lacks one of them, or one names something of its own."""
+        originals = [like._compiled.get(_key(condition, False)[1]) for condition in conditions]
+        if like.closed or None in originals:
+            return False
+        (from_b, from_g), (to_b, to_g) = like.modules, self.modules
+        names = [Atom(original.clause) for original in originals]  # type: ignore[union-attr]
+        cloned = self._call("clone_conditions", from_b, from_g, to_b, to_g, names, None)[5]
+        if cloned != TRUE:
+            return False
+        for original in originals:
+            assert original is not None
+            self._compiled[original.text] = CompiledCondition(self, original.clause,
+                                                              original.names, original.text)
+        return True
 
     def solutions(self, cond: CompiledCondition, bindings: Mapping[str, Term] | None = None,
                   *, limit: int | None = None) -> list[dict[str, Term]]:
@@ -141,6 +160,12 @@ class Conditions(PrologModules):
         """Frees both Prolog modules and forgets the compiled conditions."""
         self._compiled.clear()
         super().close()
+
+
+def _key(condition: ast.Condition, trusted: bool) -> tuple[str, str]:
+    """A condition's Prolog text and the key it is compiled under (once per agent)."""
+    text = ", ".join(_literal_text(literal) for literal in condition) or "true"
+    return text, (f"trusted\0{text}" if trusted else text)
 
 
 def _literal_text(literal: ast.Literal) -> str:

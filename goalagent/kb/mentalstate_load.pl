@@ -301,6 +301,58 @@ compile(B, G, Name, Text, Confined, Names) :-
     Head =.. [Name|Vars],
     assertz(B:(Head :- Body)).
 
+%!  clone_conditions(+FromB, +FromG, +ToB, +ToG, +Names, -Cloned) is det.
+%   Copies the clauses compile/6 made of the conditions Names for the agent of FromB/FromG
+%   (and their goal clauses Name_I) to the agent of ToB/ToG, the two module names renamed:
+%   what compile/6 makes for another agent of the same program loaded alike, without
+%   reading and confining the texts again (launching 10,000 copies of an agent reads each
+%   condition once). Cloned = false, and nothing is copied, when a clause names anything
+%   else of the first agent's (an own global variable or flag key: confine_keys.pl).
+
+clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
+    findall(FromB-Clause, ( member(Name, Names), module_clause(FromB, Name, Clause) ), Own),
+    findall(FromG-Clause, ( member(Name, Names), goal_clause(FromG, Name, 0, Clause) ), Goals),
+    append(Own, Goals, Clauses),
+    sub_atom(FromB, 5, _, 0, Secret),               % ga_b_<secret>, ga_g_<secret>
+    length(Names, Count),
+    (   length(Own, Count),                         % one clause per condition
+        \+ ( sub_term(Text, Clauses), ( atom(Text) ; string(Text) ),
+             Text \== FromB, Text \== FromG, sub_atom(Text, _, _, _, Secret) )
+    ->  Map = [FromB-ToB, FromG-ToG],
+        forall(member(M0-Clause0, Clauses),
+               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
+        Cloned = true
+    ;   Cloned = false
+    ).
+
+module_clause(M, Name, (Head :- Body)) :-
+    current_predicate(M:Name/Arity),
+    functor(Head, Name, Arity),
+    clause(M:Head, Body).
+
+goal_clause(G, Name, I, Clause) :-
+    format(atom(Aux), '~w_~w', [Name, I]),
+    current_predicate(G:Aux/_),
+    (   module_clause(G, Aux, Clause)
+    ;   I1 is I + 1,
+        goal_clause(G, Name, I1, Clause)
+    ).
+
+renamed(Term0, Map, Term) :-
+    (   atom(Term0), memberchk(Term0-Term1, Map)
+    ->  Term = Term1
+    ;   compound(Term0)
+    ->  compound_name_arguments(Term0, F, Args0),
+        renamed_list(Args0, Map, Args),
+        compound_name_arguments(Term, F, Args)
+    ;   Term = Term0
+    ).
+
+renamed_list([], _, []).
+renamed_list([A0|As0], Map, [A|As]) :-
+    renamed(A0, Map, A),
+    renamed_list(As0, Map, As).
+
 translate((A0, B0), Name, (A, B), N0, N, Aux0, Aux) :- !,
     translate(A0, Name, A, N0, N1, Aux0, Aux1),
     translate(B0, Name, B, N1, N, Aux1, Aux).

@@ -115,6 +115,11 @@ class PrologModules:
         return self._b, self._g
 
     @property
+    def closed(self) -> bool:
+        """Whether the modules were freed (:meth:`close`)."""
+        return self._closed
+
+    @property
     def directives(self) -> str:
         """The ``:-`` directives of knowledge and beliefs (they change how texts read)."""
         return self._directives

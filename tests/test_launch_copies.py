@@ -1,0 +1,107 @@
+"""Agents launched from one program copy the conditions an earlier one compiled
+(clone_conditions/6) instead of reading and confining each text again; a copy must behave
+exactly as the agent's own compile would: it reads the agent's own beliefs and keys."""
+
+from __future__ import annotations
+
+import io
+
+import pytest
+
+from goalagent.kb.conditions import Conditions
+from goalagent.kb.terms import Atom
+from goalagent.mas import MultiAgentSystem
+from goalagent.parser import parse_agent
+
+COUNTER = """
+init module { beliefs { n(0). } }
+main module { program [order=linearall] {
+    if bel(n(N), N < 2, M is N + 1) then delete(n(N)) + insert(n(M)).
+    if bel(me(Me), n(1), atom_length(Me, L)) then insert(len(L)).
+} }
+"""
+
+KEYS = """
+main module { program [order=linearall] {
+    if bel(me(Me), not(nb_current(k, _)), nb_setval(k, Me)) then insert(set).
+    if bel(set, nb_getval(k, V)) then insert(got(V)).
+} }
+"""
+
+
+@pytest.fixture
+def copies(monkeypatch: pytest.MonkeyPatch) -> list[bool]:
+    """What each copy_conditions call answered (True: copied)."""
+    answers: list[bool] = []
+    copy = Conditions.copy_conditions
+
+    def spy(self: Conditions, like: Conditions, conditions: object) -> bool:
+        answers.append(copy(self, like, conditions))  # type: ignore[arg-type]
+        return answers[-1]
+
+    monkeypatch.setattr(Conditions, "copy_conditions", spy)
+    return answers
+
+
+def test_copied_conditions_read_each_agent_s_own_beliefs(copies: list[bool]) -> None:
+    program = parse_agent(COUNTER, "counter.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        for name in ("a", "bb", "ccc"):
+            system.launch(name, program)
+        assert copies == [True, True]
+        first = system.agents[0]
+        first.ms.delete("n(0)")
+        first.ms.insert("n(2)")  # the first agent's beliefs are not the others'
+        system.run(max_cycles=3)
+        assert [agent.query("bel", "n(N)") for agent in system.agents] == [
+            [{"N": 2}], [{"N": 2}], [{"N": 2}]]
+        assert [agent.query("bel", "len(L)") for agent in system.agents] == [
+            [], [{"L": 2}], [{"L": 3}]]
+    finally:
+        system.close()
+
+
+def test_a_condition_naming_an_own_key_is_compiled_by_each_agent(copies: list[bool]) -> None:
+    program = parse_agent(KEYS, "keys.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        for name in ("a", "b", "c"):
+            system.launch(name, program)
+        assert copies == [False, False]  # the first agent's key is in its clause
+        system.run(max_cycles=2)
+        assert [agent.query("bel", "got(V)") for agent in system.agents] == [
+            [{"V": Atom(name)}] for name in ("a", "b", "c")]
+    finally:
+        system.close()
+
+
+def test_once_the_agent_copied_from_is_closed_the_next_compiles_and_is_copied(
+        copies: list[bool]) -> None:
+    program = parse_agent(COUNTER, "counter.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        system.launch("a", program).close()
+        system.agents.clear()
+        later = [system.launch(name, program) for name in ("bb", "ccc")]
+        assert copies == [True]  # bb compiled its own (a was closed); ccc copied bb's
+        for agent in later:
+            agent.step()
+            agent.step()
+        assert [agent.query("bel", "len(L)") for agent in later] == [[{"L": 2}], [{"L": 3}]]
+    finally:
+        system.close()
+
+
+def test_agents_with_directives_compile_their_own(copies: list[bool]) -> None:
+    program = parse_agent(COUNTER.replace(
+        "beliefs { n(0). }", "knowledge { :- dynamic(seen/1). } beliefs { n(0). }"), "d.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        system.launch("a", program)
+        system.launch("bb", program)
+        assert copies == []
+        system.run(max_cycles=3)
+        assert system.agents[1].query("bel", "len(L)") == [{"L": 2}]
+    finally:
+        system.close()
