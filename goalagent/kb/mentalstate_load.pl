@@ -41,19 +41,28 @@ destroy(B, G) :-
 load(B, G, Items, Sandbox, RunsCode, Result) :-
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
-    program_heads(Items, B, Own),
-    load_(Items, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
+    maplist(read_item(B), Items, Read),
+    program_heads(Read, Own),
+    load_(Items, Read, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
 
-%   program_heads(+Items, +B, -Own): the Name/Arity of every clause, grammar rule and
+%   read_item(+B, +Item, -Read): the item's text read before anything is loaded, t(Term),
+%   or unread when it does not read yet (its operators come with a directive); load_/8
+%   uses the term while no directive has run (nothing else changes how a text reads).
+read_item(B, Item, Read) :-
+    arg(1, Item, Text),
+    (   catch(read_text(Text, B, Term, _), _, fail)
+    ->  Read = t(Term)
+    ;   Read = unread
+    ).
+
+%   program_heads(+Read, -Own): the Name/Arity of every clause, grammar rule and
 %   dynamic declaration of the program, read before any is loaded: a clause may call a
 %   predicate of the agent's own that is written further on and named like a built-in
 %   confine.pl refuses (told/0, append/1). A text that only reads once its directives
 %   have run (its operators) is left out; it is read, and reported, when it is loaded.
-program_heads(Items, B, Own) :-
+program_heads(Read, Own) :-
     findall(Name/Arity,
-            ( member(Item, Items),
-              arg(1, Item, Text),
-              catch(read_text(Text, B, Term, _), _, fail),
+            ( member(t(Term), Read),
               term_head(Term, Name, Arity) ),
             Own0),
     sort(Own0, Own).
@@ -84,18 +93,27 @@ declared(Specs, Name, Arity) :-
     ;   Specs = Name//Arity0, integer(Arity0), Arity is Arity0 + 2
     ).
 
-load_([], _, _, _, _, _, ok).
-load_([Item|Items], I, B, G, Ctx, RunsCode, Result) :-
+load_([], _, _, _, _, _, _, ok).
+load_([Item|Items], [Read|Reads], I, B, G, Ctx, RunsCode, Result) :-
     Item =.. [Kind, Text],
-    (   catch(( read_text(Text, B, Term, _),     % after earlier directives (operators)
+    (   catch(( read_once(Read, Text, B, Term),  % after earlier directives (operators)
                 load_term(Term, Kind, B, G, Ctx, RunsCode) ), E, true)
     ->  (   var(E)
         ->  I1 is I + 1,
-            load_(Items, I1, B, G, Ctx, RunsCode, Result)
+            (   Term = (:- _)                   % a directive may change how texts read
+            ->  maplist(=(unread), Reads0),
+                same_length(Reads, Reads0)
+            ;   Reads0 = Reads
+            ),
+            load_(Items, Reads0, I1, B, G, Ctx, RunsCode, Result)
         ;   load_error(E, I, Text, Result)
         )
     ;   Result = error(I, "directive failed")
     ).
+
+read_once(t(Term), _, _, Term) :- !.
+read_once(unread, Text, B, Term) :-
+    read_text(Text, B, Term, _).
 
 load_error(error(syntax_error(What), Context), I, Text, error(I, Msg)) :- !,
     syntax_message(What, Msg0),
