@@ -72,7 +72,8 @@ class Agent:
         self.name = name or program.name
         self.io = io
         self.postman = postman
-        self.random = random.Random(seed)
+        self._seed = seed
+        self._random: random.Random | None = None  # made when first drawn from
         get_engine().seed_random(seed)  # Prolog's random/1, random_float, roulette choices
         self.output = output or sys.stdout
         self.listeners: list[Listener] = []
@@ -127,6 +128,14 @@ class Agent:
         return cls(parse_agent(text, file), **kwargs)
 
     # ------------------------------------------------------------------ public API
+    @property
+    def random(self) -> random.Random:
+        """The agent's own random numbers (random rule orders), seeded with its seed when
+        first drawn from: a generator holds 2.5 KB, and most agents never draw."""
+        if self._random is None:
+            self._random = random.Random(self._seed)
+        return self._random
+
     def step(self) -> CycleReport:
         """Run one reasoning cycle (the first one also runs the init module)."""
         if self.terminated:
