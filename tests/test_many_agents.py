@@ -2,7 +2,8 @@
 the conditions an earlier one compiled (clone_conditions/6) instead of reading and
 confining each text again, and a copy behaves exactly as the agent's own compile would (it
 reads the agent's own beliefs and keys); an agent's random generator is made when first
-drawn from, seeded as it was at launch."""
+drawn from, seeded as it was at launch; Prolog's generator is seeded before anything
+draws, as if each agent had seeded it when launched."""
 
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ import random
 import pytest
 
 from goalagent.kb.conditions import Conditions
-from goalagent.kb.terms import Atom
+from goalagent.kb.engine import get_engine
+from goalagent.kb.terms import Atom, Struct
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 
@@ -121,3 +123,48 @@ def test_an_agent_s_random_numbers_are_those_of_its_seed_when_first_drawn() -> N
         assert second.random is second.random  # one generator, drawn on
     finally:
         system.close()
+
+
+DRAWS = """
+init module { knowledge { KNOWLEDGE } beliefs { n(0). first(0). } goals { GOAL } }
+main module { program {
+    if bel(n(0), random_between(1, 1000000, X)) then insert(drew(X)) + delete(n(0)).
+} }
+"""
+
+LUCKY = "lucky(X) :- random_between(1, 1000000, Y), Y =:= X."
+DRAWING_DIRECTIVE = ":- dynamic(first/1). :- random_between(1, 1000000, Y), assertz(first(Y))."
+
+
+def _draws(knowledge: str, goal: str, agents: int, *, eager: bool,
+           monkeypatch: pytest.MonkeyPatch) -> list[list[dict[str, object]]]:
+    """What each of ``agents`` agents of the DRAWS program drew (first/1 and drew/1) in
+    its first two cycles, seeds 5, 6, ...; ``eager``: Prolog seeded at each launch, as
+    before seeds were held back."""
+    engine = get_engine()
+    if eager:
+        monkeypatch.setattr(engine, "seed_random", lambda seed: engine.call(
+            "set_random", Struct("seed", (seed,)), module="system"))
+    program = parse_agent(DRAWS.replace("KNOWLEDGE", knowledge).replace("GOAL", goal),
+                          "draws.goal")
+    system = MultiAgentSystem(output=io.StringIO(), seed=5)
+    try:
+        for index in range(agents):
+            system.launch(f"a{index}", program)
+        system.run(max_cycles=2)
+        return [agent.query("bel", "drew(X) ; first(X), X > 0") for agent in system.agents]
+    finally:
+        system.close()
+        monkeypatch.undo()
+
+
+@pytest.mark.parametrize(("knowledge", "goal"), [
+    ("", "g(1)."),  # nothing draws before the first cycle: it draws from the last seed
+    (LUCKY, "lucky(3)."),  # checking the goal runs a knowledge rule that draws
+    (DRAWING_DIRECTIVE, ""),  # a directive draws while the agent loads
+], ids=["cycles", "goal-check", "directive"])
+def test_prolog_draws_the_numbers_it_drew_when_each_launch_seeded_it(
+        knowledge: str, goal: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    held_back = _draws(knowledge, goal, 3, eager=False, monkeypatch=monkeypatch)
+    assert all(drawn for drawn in held_back)
+    assert held_back == _draws(knowledge, goal, 3, eager=True, monkeypatch=monkeypatch)
