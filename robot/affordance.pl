@@ -20,7 +20,7 @@
 % with a domain_error that says what is wrong.
 %
 % Merging a percept into the belief base (eq. 6.3) is ONE event-module rule, plus one that
-% adopts a percept about an affordance not believed yet (tests/test_affordance_agent.py runs
+% adopts a percept about an affordance not believed yet (tests/robot/test_affordance_agent.py runs
 % exactly these two in a GOAL agent):
 %     event module { program {
 %         forall bel(percept(afford(O, A, E, T1, S1, R1)), afford(O, A, E, T, S, R),

@@ -4,7 +4,7 @@ Every predicate the manual documents (its chapters on built-ins, extensions, mod
 tabling, coroutining, threads, engines, foreign code, the hackers' corner, profiling, saved
 states, ...), section by section, with what confine.pl does with it when an agent writes it:
 without the sandbox and with it (see scripts/confinement_review.pl). The table is re-checked
-by tests/test_confinement_review.py; after a change to the confinement, write it again:
+by tests/goalagent/kb/test_confinement_review.py; after a change to the confinement, write it again:
 
     .venv/bin/python scripts/confinement_review.py            # from the table's own rows
     .venv/bin/python scripts/confinement_review.py --manual DIR   # from a manual's sources
@@ -23,6 +23,8 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+
+from ondisk import write_atomically
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "confinement-review.md"
@@ -189,7 +191,7 @@ def write_doc(rows: list[Row], path: Path = DOC) -> None:
         lines += [f"| `{_cell(row.indicator)}` | {row.exists} | {row.plain} | {row.sandbox} | "
                   f"{row.issue24} |" for row in members]
         lines.append("")
-    path.write_text("\n".join(lines), encoding="utf-8")
+    write_atomically(path, "\n".join(lines))
 
 
 def main(manual: Annotated[Path | None, typer.Option(

@@ -3,7 +3,7 @@ perception) after 8 steps, with a condition breakpoint and a query answered.
 
 Run from the repository root: ``MUJOCO_GL=egl .venv/bin/python scripts/inspector_screenshot.py``.
 Drives Debian's headless Chromium through chromedriver (both installed by scripts/setup.sh),
-as tests/test_inspector.py does; the screenshot is put in place atomically.
+as tests/goalagent/inspector/test_inspector.py does; the screenshot is put in place atomically.
 """
 
 from __future__ import annotations

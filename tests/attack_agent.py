@@ -1,6 +1,6 @@
 """A one-rule-base agent made from knowledge and rules text, for the confinement and attack
-tests (tests/test_confinement.py, tests/test_attacks.py): RUNTIME_MODULES are the modules
-no agent may change."""
+tests (tests/goalagent/kb/test_confinement.py, tests/attacks/test_attacks.py): RUNTIME_MODULES
+are the modules no agent may change."""
 
 from __future__ import annotations
 

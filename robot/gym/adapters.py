@@ -66,6 +66,11 @@ class EnvTask:
             raise RuntimeError("nothing observed yet: reset the task first")
         return self._view
 
+    def applicable(self, view: View) -> tuple[int, ...] | None:
+        """The environment's task's preconditions (§3.5.4: stacking pushes only with an
+        object perceived in front), so XCS through Gymnasium chooses as it does directly."""
+        return self.inner.task.applicable(view)
+
 
 class EnvContact:
     """Algorithm 3's continuous world through a can-opening environment."""

@@ -175,8 +175,8 @@ STUDY = Study(
                   "τ = 0.6, and learning restarts.", "eq. 6.3 from (5, 5, 1) gives 0.833, "
                   "0.714 and then (8, 5, 0.625) — still above τ (0.57 is 4/7, not 5/8); a "
                   "fourth failure gives (9, 5, 0.556) < τ. The agent keeps eq. 6.3, so "
-                  "learning restarts after four failures (tests/test_affordance_library.py, "
-                  "tests/test_affordance_agent.py check 0.833, 0.714, 0.625, 0.556)."),
+                  "learning restarts after four failures (tests/robot/test_affordance_library.py, "
+                  "tests/robot/test_affordance_agent.py check 0.833, 0.714, 0.625, 0.556)."),
         Deviation("Switching learning off", "§6.3.4: learning ends when every Rel < r2 = "
                   "0.05.", "under eq. 6.3 a verdict r2 merged into an affordance never takes "
                   "Rel below r2, so the agent stops learning on a part once every action was "

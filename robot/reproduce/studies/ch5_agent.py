@@ -16,6 +16,7 @@ from pydantic import Field, field_validator
 
 from robot.reproduce.framework import (
     Claim,
+    Deviation,
     Figure,
     Metric,
     Panel,
@@ -27,7 +28,7 @@ from robot.reproduce.framework import (
     in_turn,
     markdown_table,
 )
-from robot.reproduce.studies.common.ch5 import NEW_CANS, THESIS_CANS, Perception
+from robot.reproduce.studies.common.ch5 import CH5_DEVIATIONS, NEW_CANS, THESIS_CANS, Perception
 
 ORDERS = {
     "thesis": THESIS_CANS + NEW_CANS,
@@ -258,12 +259,21 @@ def figures(config: Config, seeds: Sequence[Result]) -> list[Figure]:
                    panels)]
 
 
+AGENT_DEVIATIONS = (*CH5_DEVIATIONS, Deviation(
+    "The agent", "chapter 6's rules 6.2, 6.4 and 6.12 learn and use one part at a time; "
+    "chapter 5 runs Algorithm 6 on the whole can, outside any agent.",
+    "agents/garbage_disposal.goal takes transfer's percepts about any part (merged by eq. 6.3), "
+    "moves its focus to a part with a reliable affordance, never asks the same question twice "
+    "in a learning episode (asked/1) and gives a part up when every action on it was tried "
+    "(docs/robot.md)."))
+"""What the agent does beyond the thesis's rules to use Algorithm 6's whole-can answers."""
+
 STUDY = Study(
     name="ch5-agent",
     description="Table 5.4 through the agent: each can learned by transfer from the cans before "
                 "it (three orders), beside Algorithm 6 alone and random learning",
     config=Config, result=Result, run=run, metrics=metrics, claims=claims, figures=figures,
-    listings=listings, default_seeds=5,
+    listings=listings, default_seeds=5, deviations=AGENT_DEVIATIONS,
     quick={"orders": {"thesis": ("o1", "o3")}, "perceptions": ("truth",), "trials": 2},
     headline=("truth.thesis.o1.exploratory_actions", "truth.thesis.o3.exploratory_actions"),
     notes="""\

@@ -1,5 +1,5 @@
-"""What ``ch5-agent`` (and tests/test_transfer_agent.py) run: the garbage disposal agent on a
-sequence of cans, each with the known objects learned before it, as
+"""What ``ch5-agent`` (and tests/robot/reproduce/test_transfer_agent.py) run: the garbage
+disposal agent on a sequence of cans, each with the known objects learned before it, as
 ``goalagent run agents/garbage_disposal.mas2g --env-param learning=transfer`` runs it; and
 Algorithm 6 alone on a can from the same known objects (its N, Table 5.4).
 

@@ -1,0 +1,29 @@
+"""bench/xcs.py runs end to end at a tiny size and prints every measure it promises."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_xcs_bench_prints_rates_accuracies_and_ratios_for_all_four():
+    result = subprocess.run([sys.executable, "bench/xcs.py", "--trials-6", "150",
+                             "--trials-11", "150"], cwd=ROOT, capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    for expected in ("goalagent", "xcs 1.0.0", "scikit-XCS 1.0.8", "xcsf", "trials/s",
+                     "accuracy", "6-mux: goalagent / faster of xcs and scikit-XCS",
+                     "11-mux: goalagent / faster of xcs and scikit-XCS", "goalagent / xcsf",
+                     "target >= 3×"):
+        assert expected in out, expected
+
+
+def test_xcs_bench_refuses_a_silly_trial_count():
+    result = subprocess.run([sys.executable, "bench/xcs.py", "--trials-6", "0"], cwd=ROOT,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert "--trials-6 must be at least 1" in result.stderr

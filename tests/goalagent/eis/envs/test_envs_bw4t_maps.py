@@ -1,0 +1,43 @@
+"""BW4T's standard maps (issue 26), re-created from their published layouts: systems naming
+them run. Each has BW4T's 28 zones (9 rooms, the drop zone, corridors) and its sequence."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import pytest
+
+from goalagent.eis.envs.bw4t.mapfile import load_map, shipped_maps
+from goalagent.mas import MultiAgentSystem
+
+ROBOT = Path(__file__).resolve().parents[4] / "agents" / "examples" / "bw4t_robot.goal"
+STANDARD = {"Random": 0, "SuperRandom": 0, "Banana": 6, "Dutch Flag": 6, "Rainbow": 6}
+
+
+@pytest.mark.parametrize("name, sequence", STANDARD.items())
+def test_bw4t_standard_maps_are_shipped(name: str, sequence: int) -> None:
+    assert name in shipped_maps()
+    layout = load_map(name)
+    rooms = [zone for zone in layout.zones if zone.kind == "ROOM" and zone.name != "DropZone"]
+    assert len(layout.zones) == 28 and len(rooms) == 9
+    assert len(layout.sequence) == sequence
+    assert load_map(f"environments/maps/{name}") == layout  # where BW4T setups keep them
+
+
+@pytest.mark.parametrize("name", ["Random", "Banana"])
+def test_a_system_naming_a_standard_map_runs(tmp_path: Path, name: str) -> None:
+    (tmp_path / "s.mas2g").write_text(
+        f'environment {{ env = "bw4t-client-3.9.1.jar". init = [map = "{name}"]. }}\n'
+        f'agentfiles {{ "{ROBOT}" [name = robot]. }}\n'
+        "launchpolicy { when entity@env do launch robot. }\n")
+    failures: list[str] = []
+    system = MultiAgentSystem.from_mas_file(tmp_path / "s.mas2g", output=io.StringIO(),
+                                            warn=failures.append)
+    try:
+        system.run(max_cycles=30)
+        assert system.agents and not system.failures
+        assert [a.name for a in system.agents] == ["robot"]
+        assert system.agents[0].total_actions > 0
+    finally:
+        system.close()

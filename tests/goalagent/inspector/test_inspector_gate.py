@@ -1,0 +1,225 @@
+"""Who may drive the mind inspector (issue 24 item 1): only its own page, at its own address,
+with the run's token; what a page sends is bounded; its queries are confined as agent code
+(and sandboxed with --sandbox). The browser's side (a page of another origin, a rebound host
+name) is in tests/goalagent/inspector/test_inspector.py; here a WebSocket client speaks to a
+real run."""
+
+from __future__ import annotations
+
+import contextlib
+import http.client
+import json
+import re
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from urllib.parse import urlsplit
+
+import pytest
+from websockets.exceptions import InvalidStatus
+from websockets.sync.client import ClientConnection, connect
+
+from goalagent.inspector.gate import BURST, Gate
+
+AGENT = """
+init module { beliefs { count(0). } goals { count(3). } }
+main module [exit=nogoals] { program {
+    if bel(count(N), N < 3, M is N + 1) then delete(count(N)) + insert(count(M)).
+} }
+"""
+
+
+class Inspected:
+    """A run with --inspect: its process, port and token."""
+
+    def __init__(self, process: subprocess.Popen, url: str) -> None:
+        self.process = process
+        parts = urlsplit(url)
+        self.port = parts.port
+        self.token = parts.query.split("=", 1)[1]
+
+    def get(self, path: str, **headers: str) -> tuple[int, str]:
+        connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=30)
+        try:
+            connection.request("GET", path, headers=headers)
+            response = connection.getresponse()
+            return response.status, response.read().decode()
+        finally:
+            connection.close()
+
+    @contextlib.contextmanager
+    def socket(self, token: str | None = None,
+               origin: str | None = "own") -> Iterator[ClientConnection]:
+        """A WebSocket to the inspector (its first state read)."""
+        own = f"http://127.0.0.1:{self.port}"
+        with connect(f"ws://127.0.0.1:{self.port}/ws?token={token or self.token}",
+                     origin=own if origin == "own" else origin,  # type: ignore[arg-type]
+                     open_timeout=30, max_size=None) as socket:
+            assert json.loads(socket.recv(timeout=30))["type"] == "state"
+            yield socket
+
+
+def _reply(socket: ClientConnection, sent: str | bytes) -> dict:
+    """The first answer or error after sending ``sent`` (states pushed meanwhile skipped)."""
+    socket.send(sent)
+    while True:
+        message = json.loads(socket.recv(timeout=60))
+        if message["type"] != "state":
+            return message
+
+
+def _query(socket: ClientConnection, text: str) -> dict:
+    return _reply(socket, json.dumps({"op": "query", "agent": "counter", "text": text}))
+
+
+@pytest.fixture(params=[False, True], ids=["plain", "sandbox"])
+def inspected(request, tmp_path: Path) -> Iterator[Inspected]:
+    (tmp_path / "counter.goal").write_text(AGENT)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "goalagent", "run", "counter.goal", "--inspect", "--port", "0"]
+        + ["--sandbox"] * request.param, cwd=tmp_path, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True, stdin=subprocess.DEVNULL)
+    try:
+        line = process.stderr.readline()
+        match = re.search(r"http://127\.0\.0\.1:\d+/\?token=[\w-]+", line)
+        assert match, line
+        yield Inspected(process, match.group(0))
+    finally:
+        if process.poll() is None:
+            process.send_signal(signal.SIGINT)
+        _, err = process.communicate(timeout=60)
+        assert "Traceback" not in err, err
+
+
+def test_only_the_right_host_origin_and_token_are_served(inspected: Inspected):
+    port, token = inspected.port, inspected.token
+    assert inspected.get(f"/?token={token}")[0] == 200
+    assert inspected.get(f"/?token={token}", Host=f"localhost:{port}")[0] == 200
+    for path, headers in [
+        ("/", {}),                                            # no token
+        ("/?token=guess", {}),
+        (f"/?token={token}&token=guess", {}),
+        (f"/?token={token}", {"Host": f"rebound.test:{port}"}),   # DNS rebinding
+        (f"/?token={token}", {"Host": f"127.0.0.1:{port + 1}"}),
+        (f"/?token={token}", {"Host": "127.0.0.1"}),
+        (f"/?token={token}", {"Origin": "http://evil.test"}),
+        (f"/?token={token}", {"Origin": f"https://127.0.0.1:{port}"}),
+    ]:
+        status, body = inspected.get(path, **headers)
+        assert status == 403 and body.startswith("forbidden: "), (path, headers)
+    for token, origin in [(None, None), ("guess", "own"), (None, "http://evil.test"),
+                          (None, f"http://127.0.0.1:{port + 1}"), (None, "null")]:
+        with pytest.raises(InvalidStatus, match="403"), inspected.socket(token, origin):
+            pass
+    with inspected.socket(origin=f"http://localhost:{port}"):
+        pass
+
+
+def test_bad_messages_get_a_json_error(inspected: Inspected):
+    with inspected.socket() as socket:
+        for sent, says in [
+            (b"\x00\xff binary", "not binary"),
+            ("[" * 30000 + "]" * 30000, "not a JSON message"),  # deeper than Python reads
+            ("1" * 5000, "not a JSON message"),  # more digits than Python converts
+            ('{"op": "query", "text": "' + "x" * 70000 + '"}', "at most 65,536"),
+            ("not json", "not a JSON message"),
+            ("[1, 2]", "a JSON object"),
+            ('{"op": "fly"}', "unknown op"),
+            ('{"op": "query", "agent": ["counter"], "text": "bel(true)"}', "fields"),
+            ('{"op": "history", "index": true}', "fields"),
+            ('{"op": "history", "index": 10}', "no cycle 10"),
+        ]:
+            reply = _reply(socket, sent)
+            assert reply["type"] == "error" and says in reply["text"], (sent[:30], reply)
+        assert _query(socket, "bel(count(X))")["answers"] == ["X=0"]  # still answering
+
+
+def test_a_flood_of_messages_leaves_it_responsive(inspected: Inspected):
+    with inspected.socket() as socket:
+        for index in range(20000):  # 20,000 breakpoints made it unresponsive
+            socket.send(json.dumps({"op": "break", "text": f"bel(flood({index}))"}))
+        time.sleep(BURST / 30 + 0.5)  # the budget refills
+        started = time.monotonic()
+        with inspected.socket() as other:
+            assert _query(other, "bel(count(X))")["answers"] == ["X=0"]
+        assert time.monotonic() - started < 10
+        errors = []
+        while True:  # what the flood was answered: a few breakpoints, one rate error
+            try:
+                message = json.loads(socket.recv(timeout=2))
+            except TimeoutError:
+                break
+            if message["type"] == "error":
+                errors.append(message["text"])
+            elif message["type"] == "state":
+                assert len(message["breakpoints"]) <= BURST
+        assert errors.count("too many messages: at most 30 a second") >= 1
+
+
+@pytest.mark.parametrize("query, says", [
+    ("bel(halt)", "whole process"),
+    ("bel(ga_kb:assertz(owned))", "qualified with a module"),
+    ("bel(current_module(M))", "would reveal"),
+    ("bel(G = halt, call(G))", "whole process"),
+])
+def test_queries_are_confined_as_agent_code(inspected: Inspected, query: str, says: str):
+    with inspected.socket() as socket:
+        reply = _query(socket, query)
+        assert reply["type"] == "error" and "refused" in reply["text"] and says in reply["text"]
+        assert _query(socket, "bel(count(X))")["answers"] == ["X=0"]
+        assert inspected.process.poll() is None
+
+
+def test_queries_run_in_the_sandbox_of_a_sandboxed_run(inspected: Inspected):
+    with inspected.socket() as socket:
+        reply = _query(socket, "bel(shell('touch PWNED'))")
+        if "--sandbox" in inspected.process.args:
+            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"]
+            reply = _reply(socket, json.dumps({"op": "break", "text": "bel(open(f, write, _))"}))
+            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"]
+        else:  # without the sandbox an agent may use the shell, and so may its queries; then
+            assert reply["type"] == "answer"  # Ctrl-C still ends the paused run (the fixture's
+            # SIGINT: shell/1 left SIGINT restarting the wait for a command, which hung)
+
+
+def _scope(kind: str, host: str, origin: str | None, token: str = "t") -> dict:
+    headers = [(b"host", host.encode())] + ([(b"origin", origin.encode())] if origin else [])
+    return {"type": kind, "headers": headers, "query_string": f"token={token}".encode()}
+
+
+@pytest.mark.parametrize("bound, host, origin, allowed", [
+    ("127.0.0.1", "127.0.0.1:8765", None, True),
+    ("127.0.0.1", "localhost:8765", "http://localhost:8765", True),
+    ("127.0.0.1", "[::1]:8765", "http://[::1]:8765", True),
+    ("127.0.0.1", "LOCALHOST:8765", None, True),
+    ("127.0.0.1", "127.0.0.1:8765", "http://127.0.0.1:8765/", False),
+    ("127.0.0.1", "user@127.0.0.1:8765", None, False),
+    ("127.0.0.1", "192.168.1.5:8765", None, False),
+    ("0.0.0.0", "192.168.1.5:8765", "http://192.168.1.5:8765", True),   # listening everywhere
+    ("0.0.0.0", "rebound.test:8765", None, False),                      # never a name
+    ("192.168.1.5", "192.168.1.5:8765", None, True),
+    ("127.0.0.1", "127.0.0.1:80", None, False),
+])
+def test_the_gate_knows_the_inspector_s_own_addresses(bound: str, host: str, origin: str | None,
+                                                      allowed: bool):
+    gate = Gate(app=None, host=bound, token="t")  # type: ignore[arg-type]
+    gate.port = 8765
+    assert (gate.refusal(_scope("http", host, origin)) is None) == allowed
+    assert gate.refusal(_scope("http", "127.0.0.1:8765", None, token="u")) is not None
+    assert gate.refusal(_scope("websocket", "127.0.0.1:8765", None)) is not None  # no Origin
+
+
+def test_big_answers_are_cut_and_many_variables_convert_fast(inspected: Inspected):
+    # 10,000 fresh variables in one answer took 178 s to convert (each compared with every
+    # one seen before), holding the run and Ctrl-C
+    with inspected.socket() as socket:
+        started = time.monotonic()
+        reply = _query(socket, "bel(length(L, 20000))")
+        assert time.monotonic() - started < 30
+        assert reply["type"] == "answer" and reply["answers"][0].endswith(
+            "... (40,003 characters)")
+        many = _query(socket, "bel(between(1, 1000000, X))")["answers"]
+        assert len(many) == 101 and many[0] == "X=1" and many[-1] == "... (more answers)"
