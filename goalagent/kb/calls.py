@@ -221,7 +221,7 @@ class PrologCalls(TermConversion):
     def seed_random(self, seed: int) -> None:
         """Seeds Prolog's random generator (random/1, random_member/2, ...) for repeatable
         runs: at once for what Prolog runs next, but given to SWI-Prolog only before a call
-        that may run agent code -- seeding costs 2.8 million instructions (GMP), a third of
+        that may run agent code -- seeding costs 2.8 million instructions (GMP), 29% of
         launching an agent, and launching N agents seeds N times, each seed replacing the
         last one before anything draws."""
         self.pending_seed = int(seed)
