@@ -1,13 +1,15 @@
-# The README's two commands: `make demo` (set up + main demo) and `make test` (set up, the
-# import-layer contract of pyproject.toml, then the suite).
+# The README's two commands: `make demo` (set up the package with its robot extra, then the
+# main demo) and `make test` (set up everything the tests use, the import-layer contract of
+# pyproject.toml, then the suite, which builds the documentation site with --strict).
 export MUJOCO_GL ?= egl
 PY := .venv/bin/python
 
-.PHONY: setup demo test lint bench
+.PHONY: setup demo test lint bench docs
 setup:
 	bash scripts/setup.sh
 
-demo: setup
+demo:
+	bash scripts/setup.sh --demo
 	.venv/bin/goalagent run agents/garbage_disposal.mas2g \
 		--save-beliefs out/exp1.pl --plot out/exp1-reliability.png
 	.venv/bin/goalagent run agents/garbage_disposal.mas2g --env-param can=o2 \
@@ -22,3 +24,6 @@ lint:
 
 bench:
 	$(PY) bench/cycles.py
+
+docs: setup
+	.venv/bin/mkdocs build --strict

@@ -101,6 +101,8 @@ class TransferResult:
 
     learner: TransferLearner
     reports: tuple[PairReport, ...]
+    known: KnownObject
+    """The entry the can got in the database."""
 
     @property
     def actions(self) -> int:
@@ -145,25 +147,27 @@ def learn_by_transfer(world: GarbageWorld, perception: Perception,
                       database: KnownObjectDatabase, *, delta: float = 0.1,
                       effect_name: str = "opened",
                       random_state: int | np.random.RandomState | None = None,
-                      r1: float = 0.3, r2: float = 0.05) -> TransferResult:
+                      r1: float = 0.3, r2: float = 0.05,
+                      other_parts: bool = True) -> TransferResult:
     """Algorithm 6 on the can against ``database``, then remember the can in it.
 
     The can is left as learning found it; the database gets (or replaces) the entry named
-    after the can, so the next can may transfer from this one.
+    after the can, so the next can may transfer from this one. ``other_parts=False`` stops
+    Algorithm 6 after the source's functional part (``TransferLearner.other_parts``).
     """
     can = CanUnderTest(world, perception)
     try:
         learner = TransferLearner(database=list(database), goal=delta,
-                                  random_state=random_state).fit(can)
+                                  random_state=random_state, other_parts=other_parts).fit(can)
     finally:
         can.restore()
-    database.add(KnownObject.learned(world.can, learner,
-                                     extra={"can_file": world.spec.source}))
+    known = KnownObject.learned(world.can, learner, extra={"can_file": world.spec.source})
+    database.add(known)
     tried = list(dict.fromkeys((t.part, t.action) for t in learner.trials_))
     reports = tuple(_pair_report(learner.models_, learner.bounds_, learner.functional_,
                                  learner.trials_, pair, effect_name, delta, r1, r2)
                     for pair in tried)
-    return TransferResult(learner, reports)
+    return TransferResult(learner, reports, known)
 
 
 class PairEpisode:
@@ -174,15 +178,18 @@ class PairEpisode:
     action opens the can (5.9), on the can as learning found it. The report is the one a
     transfer run gives for a pair it tried. Once the functional pair is known (an explored
     action opened the can, or ``verified`` says a use of a pair did), the can joins
-    ``database`` with every pair explored, so that later cans can transfer from it.
+    ``database`` with every pair explored, so that later cans can transfer from it; with
+    ``prior`` (what a transfer that stopped short learned on this can before), with those
+    pairs, actions and source too.
     """
 
     def __init__(self, world: GarbageWorld, perception: Perception,
                  database: KnownObjectDatabase, *, delta: float = 0.1,
                  random_state: int | np.random.RandomState | None = None,
-                 r1: float = 0.3, r2: float = 0.05) -> None:
+                 r1: float = 0.3, r2: float = 0.05, prior: KnownObject | None = None) -> None:
         self.world = world
         self.database = database
+        self.prior = prior
         self.delta, self.r1, self.r2 = delta, r1, r2
         self.can = CanUnderTest(world, perception)
         rng = check_random_state(random_state)
@@ -211,8 +218,11 @@ class PairEpisode:
             return
         self.functional = FunctionalPair(part, action, theta)
         view = self.session.view
+        prior = self.prior
+        models = {**(dict(prior.models) if prior else {}), **self.session.models}
         self.database.add(KnownObject(
             name=self.world.can, parts=dict(view.parts), above=frozenset(view.above),
-            bounds=dict(self.session.bounds), models=dict(self.session.models),
-            functional=self.functional, n_actions=len(self.session.trials),
+            bounds=dict(self.session.bounds), models=models, functional=self.functional,
+            n_actions=len(self.session.trials) + (prior.n_actions if prior else 0),
+            source=prior.source if prior else None,
             extra={"can_file": self.world.spec.source}))

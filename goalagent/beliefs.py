@@ -83,12 +83,25 @@ def load_beliefs(agents: Agent | Iterable[Agent], path: str | Path,
         return facts.count
 
 
+def knows(agent: Agent, predicate: SavedPredicate) -> bool:
+    """Whether ``predicate`` is one of the agent's (declared, believed or known)."""
+    return bool(agent.query("bel", f"current_predicate({quote_atom(predicate.name)}/"
+                                   f"{predicate.arity})"))
+
+
+def _may_know(agent: Agent, predicate: SavedPredicate) -> bool:
+    """:func:`knows`, or True when the agent cannot be asked (the save then says why)."""
+    try:
+        return knows(agent, predicate)
+    except KBError:
+        return True
+
+
 def beliefs_of(agent: Agent, predicate: SavedPredicate) -> list[Term]:
     """The agent's current beliefs of ``predicate`` as terms, in belief-base order. Facts
     taking more memory than the agent's --max-memory (an agent stopped for holding too
     much) are not read: a KBError says so (writing them would take minutes)."""
-    if not agent.query("bel", f"current_predicate({quote_atom(predicate.name)}/"
-                              f"{predicate.arity})"):
+    if not knows(agent, predicate):
         return []
     names = [f"A{index}" for index in range(predicate.arity)]
     text = f"{quote_atom(predicate.name)}({', '.join(names)})" if names else quote_atom(
@@ -182,12 +195,20 @@ class BeliefSaver(RunHook):
     """The ``--save-beliefs`` hook: saves the saved predicates while the run goes (see
     :class:`SaveInterval`) and when it ends -- before any report, so what was learned is on
     disk whatever a report does. Every save replaces the file atomically, so after kill -9
-    the file is the last complete save."""
+    the file is the last complete save.
+
+    ``predicates`` are always written (those named with ``--save-predicate``, and those of
+    an extension whose environment the run uses); ``offered`` ones (the other extensions')
+    only when some agent has the predicate: a plain agent's file says nothing of
+    ``afford/6``."""
 
     def __init__(self, path: Path, predicates: Sequence[SavedPredicate],
-                 every: SaveInterval | None = None) -> None:
+                 every: SaveInterval | None = None,
+                 offered: Sequence[SavedPredicate] = ()) -> None:
         self.path = path
         self.predicates = tuple(predicates)
+        self.offered = tuple(offered)
+        self.written: tuple[SavedPredicate, ...] = self.predicates  # by the last save
         self.every = every or SaveInterval()
         self.saves = 0
         self._cycles = 0
@@ -218,8 +239,12 @@ class BeliefSaver(RunHook):
         self._last = time.monotonic()
 
     def save(self, agents: Iterable[Agent]) -> Saved:
-        """Write the saved predicates of ``agents`` now."""
-        saved = save_beliefs(agents, self.predicates, self.path)
+        """Write the saved predicates of ``agents`` now (the offered ones some agent has)."""
+        group = list(agents)
+        self.written = self.predicates + tuple(
+            predicate for predicate in self.offered
+            if any(_may_know(agent, predicate) for agent in group))
+        saved = save_beliefs(group, self.written, self.path)
         self.saves += 1
         self._failed = False
         return saved
@@ -228,8 +253,13 @@ class BeliefSaver(RunHook):
         """Save and say how many beliefs of which predicates went where (and whose not)."""
         saved = self.save(run.system.agents)
         self._tell_unsaved(run, saved)
-        which = ", ".join(predicate.indicator for predicate in self.predicates)
-        run.console.print(f"saved {saved.count} {which} beliefs to {self.path}", markup=False)
+        which = ", ".join(predicate.indicator for predicate in self.written)
+        if which:
+            run.console.print(f"saved {saved.count} {which} beliefs to {self.path}",
+                              markup=False)
+        else:
+            run.console.print(f"saved no beliefs to {self.path}: no agent has a predicate to "
+                              "save (name one with --save-predicate NAME/ARITY)", markup=False)
 
     def _tell_unsaved(self, run: RunContext, saved: Saved) -> None:
         """A warning for each agent a save left out (once per agent and reason)."""

@@ -17,14 +17,14 @@ from importlib import metadata
 from pathlib import Path
 from typing import Annotated, Any
 
-import click
 import typer
 from rich.console import Console
-from typer.core import TyperCommand
 
 from goalagent.agent import AgentError
+from goalagent.agent.problems import cause_traceback
 from goalagent.beliefs import BeliefSaver, SaveInterval, load_beliefs
 from goalagent.checking import check_file, did_you_mean, files_to_check, unknown_parameter
+from goalagent.commandline import HELP_OPTIONS, RunCommand, readable_metavars
 from goalagent.console import USER_ERROR, err_console, user_error
 from goalagent.debugger import Debugger, DebuggerError, FrontEnd
 from goalagent.eis.exceptions import EnvironmentInterfaceException
@@ -36,6 +36,7 @@ from goalagent.extensions import (
     SavedPredicate,
     installed_extensions,
 )
+from goalagent.extras import install_hint
 from goalagent.kb.engine import KBError
 from goalagent.kb.limits import Limits, default_module_depth
 from goalagent.mas import MultiAgentSystem, ParameterText
@@ -85,7 +86,8 @@ def _env_params(pairs: list[str]) -> dict[str, ParameterText]:
 
 def _saved_predicates(indicators: list[str],
                       extensions: Sequence[Extension]) -> tuple[SavedPredicate, ...]:
-    """The extensions' saved predicates, then those named by ``--save-predicate NAME/ARITY``."""
+    """The extensions' saved predicates, then those named by ``--save-predicate NAME/ARITY``
+    (an extension's own comes first when both name it)."""
     chosen = {p.indicator: p for e in extensions for p in e.saved_predicates}
     for indicator in indicators:
         name, sep, arity = indicator.strip().rpartition("/")
@@ -119,15 +121,6 @@ def _close_trace(printer: TracePrinter) -> bool:
         return False
 
 
-class _RunCommand(TyperCommand):
-    """``run``, where ``--trace`` alone means ``--trace=all`` (Typer has no option whose
-    value may be left out, and ``--trace`` was a plain flag before it took kinds)."""
-
-    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
-        return super().parse_args(ctx, ["--trace=all" if arg == "--trace" else arg
-                                        for arg in args])
-
-
 def _language_run_options(
     path: Annotated[Path, typer.Argument(help="A .goal agent file or a .mas2g system file.")],
     env: Annotated[str | None, typer.Option(help="Environment name or module:Class.")] = None,
@@ -140,8 +133,9 @@ def _language_run_options(
     seed: Annotated[int, typer.Option(help="Seed for rule order and Prolog's random.")] = 0,
     trace: Annotated[str | None, typer.Option(
         help="Show what the agents do, per agent and cycle: --trace for everything, "
-             "--trace=KINDS to choose (percepts, rules, actions, beliefs, goals, messages, "
-             "warnings, modules; idle adds rules tried with no instantiation).")] = None,
+             "--trace KINDS (or --trace=KINDS) to choose, comma-separated: percepts, rules, "
+             "actions, beliefs, goals, messages, warnings, modules; idle adds rules tried "
+             "with no instantiation.")] = None,
     trace_file: Annotated[Path | None, typer.Option(
         help="Write the trace to this file instead of stdout (JSON lines when it ends in "
              ".jsonl).")] = None,
@@ -249,7 +243,7 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
         raise user_error(str(err)) from None
     hooks: list[RunHook] = []
     if values["save_beliefs"] is not None:  # first: saved before any report runs
-        hooks.append(BeliefSaver(values["save_beliefs"], predicates, every))
+        hooks.append(_belief_saver(values, predicates, every, system, extensions))
     hooks += [make() for extension in extensions for make in extension.run_hooks]
     debugger = _debugger(values, system, extensions)
     if debugger is not None:
@@ -306,6 +300,25 @@ def _check_env_options(path: Path, env: str | None,
             raise user_error(f"--env-param {key}: {problem}")
 
 
+def _belief_saver(values: dict[str, Any], predicates: Sequence[SavedPredicate],
+                  every: SaveInterval, system: MultiAgentSystem,
+                  extensions: Sequence[Extension]) -> BeliefSaver:
+    """The ``--save-beliefs`` hook: the predicates named with ``--save-predicate`` and those
+    of an extension whose environment the run uses always; another extension's only where
+    an agent has them (a plain agent's file says nothing of the robot's afford/6)."""
+    environment = system.environment
+    used = "" if environment is None else (
+        f"{type(environment).__module__}:{type(environment).__qualname__}")
+    named = {indicator.strip() for indicator in values["save_predicate"] or []}
+    always = {p.indicator for e in extensions if used in e.environments.values()
+              for p in e.saved_predicates}
+    offered = {p.indicator for e in extensions for p in e.saved_predicates} - always - {
+        f"{name}/{int(arity)}" for name, _, arity in (n.rpartition("/") for n in named)}
+    return BeliefSaver(values["save_beliefs"],
+                       [p for p in predicates if p.indicator not in offered], every,
+                       offered=[p for p in predicates if p.indicator in offered])
+
+
 def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
                   options: dict[str, Any]) -> MultiAgentSystem:
     """The system of a .mas2g file, or of one .goal agent (on ``env``); user errors exit 2."""
@@ -321,6 +334,9 @@ def _build_system(path: Path, env: str | None, params: dict[str, ParameterText],
         return MultiAgentSystem.for_agent_file(path, environment=env, env_params=params,
                                                **options)
     except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
+        shown = cause_traceback(err)  # (GOALAGENT_DEBUG: the environment's own code that raised)
+        if shown is not None:
+            err_console.print(shown, markup=False)
         raise user_error(str(err)) from None
 
 
@@ -390,13 +406,15 @@ def test(
 ) -> None:
     """Run GOAL agent tests (.test2g): the system each file names, its agents' steps and its
     conditions, under the limits and confinement of run (a condition that runs past a limit
-    or is refused fails its item); a report per test, exit code 1 when one failed."""
+    or is refused fails its item); a report per test on stdout (what the agents print goes
+    to stderr), exit code 1 when one failed."""
     limits = _limits(max_inferences, max_query_seconds, max_beliefs, sandbox, max_module_depth,
                      max_memory)
     failed = False
     for path in paths:
         try:
             report = run_test_file(path, max_cycles=max_cycles, seed=seed, limits=limits,
+                                   output=sys.stderr,
                                    warn=lambda message: err_console.print(message, markup=False))
         except (GoalSyntaxError, AgentError, KBError, EnvironmentInterfaceException) as err:
             raise user_error(str(err)) from None
@@ -423,9 +441,10 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
     """The ``goalagent`` command line: ``run``, ``check`` and ``test``, then the extensions'
     commands."""
     extensions = installed_extensions() if extensions is None else extensions
-    app = typer.Typer(add_completion=False, no_args_is_help=True, help=HELP)
+    app = typer.Typer(no_args_is_help=True, help=HELP, context_settings=HELP_OPTIONS,
+                      rich_markup_mode=None)
     app.callback()(_version_option)
-    app.command(name="run", cls=_RunCommand)(_run_command(extensions))
+    app.command(name="run", cls=RunCommand)(_run_command(extensions))
     app.command()(check)
     app.command(name="test")(test)
     for extension in extensions:
@@ -434,14 +453,27 @@ def create_app(extensions: Sequence[Extension] | None = None) -> typer.Typer:
     return app
 
 
+def command(extensions: Sequence[Extension] | None = None) -> Any:
+    """The ``goalagent`` command as click runs it: :func:`create_app`'s, with shell
+    completion (``--install-completion``) and readable metavars on every option."""
+    built = typer.main.get_command(create_app(extensions))
+    readable_metavars(built)
+    return built
+
+
 def main() -> None:
     """The ``goalagent`` console script. Whatever goes wrong ends in one ``error:`` line,
-    never a traceback (``GOALAGENT_DEBUG=1`` shows it, for reporting a bug)."""
+    never a traceback (``GOALAGENT_DEBUG=1`` shows it, for reporting a bug); a package of an
+    extra that is not installed is named with the extra."""
     try:
-        create_app()()
+        command()(prog_name="goalagent")
     except Exception as error:  # noqa: BLE001 - the last guard of the command line
         if os.environ.get("GOALAGENT_DEBUG"):
             raise
+        hint = install_hint(error.name) if isinstance(error, ModuleNotFoundError) else None
+        if hint is not None:  # an extra that is not installed
+            err_console.print(f"error: this command {hint}", markup=False)
+            sys.exit(USER_ERROR)
         err_console.print(f"error: internal error, please report it: {type(error).__name__}: "
                           f"{error}", markup=False)
         sys.exit(1)

@@ -123,6 +123,8 @@ class Debugger(RunHook):
     breakpoints: list[Breakpoint] = field(default_factory=list)
     on_event: Callable[[Event], None] | None = None  # also told every event (the inspector)
     on_cycle: Callable[[Agent], None] | None = None  # also told after every cycle
+    # queries and conditions always in the sandbox (the inspector's: a web page wrote them)
+    sandboxed: bool = False
     system: MultiAgentSystem | None = None
     context: RunContext | None = None
     _truth: dict[tuple[str, str], bool] = field(default_factory=dict)
@@ -184,7 +186,8 @@ class Debugger(RunHook):
         the agent's own code (``DebuggerError`` when malformed or refused)."""
         op, query = split_query(text)
         try:
-            answers = agent.query(op, query, confined=True, limit=MAX_ANSWERS + 1)
+            answers = agent.query(op, query, confined=True, sandboxed=self.sandboxed,
+                                  limit=MAX_ANSWERS + 1)
         except KBError as err:
             raise DebuggerError(str(err)) from None
         more = ["... (more answers)"] if len(answers) > MAX_ANSWERS else []
@@ -202,7 +205,7 @@ class Debugger(RunHook):
     def _event(self, event: Event) -> None:
         if self.on_event is not None:
             self.on_event(event)
-        if event.kind is not EventKind.RULE_TRIED or not event.bindings:
+        if event.kind is not EventKind.RULE_TRIED or not event.instantiations:
             return
         for breakpoint in self.breakpoints:
             if breakpoint.at(event.pos):
@@ -235,17 +238,18 @@ class Debugger(RunHook):
             for agent in self.system.agents:
                 self._truth[(breakpoint.text, agent.name)] = self._holds(agent, breakpoint)
 
-    @staticmethod
-    def _holds(agent: Agent, breakpoint: Breakpoint) -> bool:
+    def _holds(self, agent: Agent, breakpoint: Breakpoint) -> bool:
         try:
-            return bool(agent.query(breakpoint.op, breakpoint.query, confined=True, limit=1))
+            return bool(agent.query(breakpoint.op, breakpoint.query, confined=True,
+                                    sandboxed=self.sandboxed, limit=1))
         except KBError:
             return False
 
     def _check_query(self, op: str, query: str) -> None:
         if self.system is not None and self.system.agents:
             try:
-                self.system.agents[0].query(op, query, confined=True, limit=1)
+                self.system.agents[0].query(op, query, confined=True,
+                                            sandboxed=self.sandboxed, limit=1)
             except KBError as err:
                 raise DebuggerError(str(err)) from None
 

@@ -5,8 +5,9 @@ more, and a command then reads its files and builds its system before ``goalagen
 installs the run's own handlers (goalagent/runner.py: the final save, exit 130/143/129).
 Until then, and in commands that have no handlers of their own, SIGINT, SIGTERM and SIGHUP
 end the process at once with one line saying so and the signal's exit code (128 + N): no
-silent death, no KeyboardInterrupt traceback. This module imports only the standard library,
-so the handlers are in place before anything slow is imported.
+silent death, no KeyboardInterrupt traceback. This module imports only the standard library
+(and goalagent.swi, which does too), so the handlers are in place before anything slow is
+imported.
 """
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ import os
 import signal
 import sys
 from types import FrameType
+
+from goalagent.swi import SWIPrologMissing
 
 HANDLED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
@@ -49,12 +52,16 @@ def _drop_output_that_cannot_be_written() -> None:
 
 
 def main() -> None:
-    """Install the handlers, then run the command line."""
+    """Install the handlers, then run the command line (one line and exit 2 when there is
+    no SWI-Prolog it can run on)."""
     for signum in HANDLED:
         signal.signal(signum, _stop)
     try:
-        from goalagent.cli import main as command_line
-
+        try:
+            from goalagent.cli import main as command_line
+        except SWIPrologMissing as missing:
+            sys.stderr.write(f"error: {missing}\n")
+            sys.exit(2)
         command_line()
     finally:
         _drop_output_that_cannot_be_written()

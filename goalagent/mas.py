@@ -11,11 +11,11 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 from goalagent import ast
 from goalagent.agent import ActionFailed, Agent, AgentError, Listener, LocalPostman, Tracer
-from goalagent.eis.exceptions import EnvironmentInterfaceException
+from goalagent.eis.exceptions import ActException, ActExceptionKind, EnvironmentInterfaceException
 from goalagent.eis.interface import Environment, EnvironmentState
 from goalagent.eis.registry import load_environment
 from goalagent.eis.terms import (
@@ -29,8 +29,20 @@ from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
-from goalagent.mas_capacity import agent_capacity, capacity_message
-from goalagent.parser import GoalSyntaxError, load_agents, parse_agent_file, parse_mas_file
+from goalagent.mas_capacity import agent_capacity, capacity_message, check_launches
+from goalagent.parser import (
+    GoalSyntaxError,
+    load_agents,
+    parse_agent,
+    parse_agent_file,
+    parse_mas_file,
+)
+
+_CANNOT_TAKE = frozenset({ActExceptionKind.UNKNOWN_ACTION, ActExceptionKind.WRONG_PARAMETERS,
+                          ActExceptionKind.NOT_REGISTERED, ActExceptionKind.WRONG_ENTITY,
+                          ActExceptionKind.NO_ENTITIES})
+"""Why an environment cannot take an action at all: GOAL's runtime stops the agent then
+(``RunState.doPerformAction``); a refusal or failure is a warning and the agent goes on."""
 
 
 class EntityIO:
@@ -54,7 +66,7 @@ class EntityIO:
         try:
             per_entity = self.environment.get_all_percepts(self.agent)
         except EnvironmentInterfaceException as err:
-            raise ActionFailed(str(err)) from None
+            raise ActionFailed(str(err)) from err
         current = [p for percepts in per_entity.values() for p in percepts]
         return [percept_to_term(p) for p in current + pushed]
 
@@ -62,7 +74,8 @@ class EntityIO:
         try:
             self.environment.perform_action(self.agent, action_from_term(action))
         except EnvironmentInterfaceException as err:
-            raise ActionFailed(str(err)) from None
+            fatal = isinstance(err, ActException) and err.kind in _CANNOT_TAKE
+            raise ActionFailed(str(err), fatal=fatal) from err
 
 
 @dataclass(frozen=True)
@@ -120,7 +133,33 @@ def read_parameter(value: Term | ParameterText, *, path: bool) -> Term:
 
 
 class MultiAgentSystem:
-    """Agents, their environment and the message routing between them."""
+    """Agents, their environment and the message routing between them.
+
+    Made from a ``.mas2g`` file (:meth:`from_mas_file`), or from one agent file or text on
+    an environment (:meth:`for_agent_file`, :meth:`for_agent_text`); :meth:`run` runs the
+    agents in turn, one cycle each, until all have stopped; :meth:`close` frees them and
+    kills the environment. A single ``.goal`` file run from the command line is such a system
+    of one agent.
+
+    Args:
+        environment: the environment the agents act in (None: none).
+        seed: agent number i gets seed ``seed + i``.
+        output: where the agents' ``print/1`` writes (default: stdout).
+        tracer: called with (agent, kind, text) for every event of every agent.
+        warn: called with each warning or failure line (default: printed on stderr).
+        listeners: told every event of every agent (``--trace``, the inspector).
+        limits: each agent's bounds (default ``Limits()``), unless its agent file sets its
+            own.
+        max_agents: how many agents it may hold (``--max-agents``; None: as many as the
+            memory available holds, goalagent.mas_capacity); a launch past it is refused.
+
+    Attributes:
+        agents: the agents launched so far, in launch order (``system.agents[0]`` is the
+            agent of :meth:`for_agent_file` and :meth:`for_agent_text`). Entity-launched
+            agents join when the environment offers their entity.
+        environment: the environment, or None.
+        failures: agent name -> why it failed, for the agents stopped by an error.
+    """
 
     def __init__(
         self,
@@ -135,9 +174,7 @@ class MultiAgentSystem:
         max_agents: int | None = None,
     ) -> None:
         self.environment = environment
-        # How many agents it may hold (None: as many as the memory available allows,
-        # goalagent.mas_capacity; measured when first asked).
-        self._max_agents = max_agents
+        self._max_agents = max_agents  # (None: measured when first asked)
         self._capacity_by_hand = max_agents is not None
         self.limits = limits or Limits()  # each agent's, unless its agent file says more
         self._agent_limits: dict[str, Limits] = {}  # agent file name -> its agents' limits
@@ -164,10 +201,40 @@ class MultiAgentSystem:
         path: str | Path,
         *,
         env_params: Mapping[str, Term | ParameterText] | None = None,
-        **kwargs,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> MultiAgentSystem:
-        """Parse a `.mas2g` file (any GOAL version), start its environment and launch its
-        agents (GOAL 4/5 agent files or GOAL 6+ agent definitions)."""
+        """Parse a ``.mas2g`` file (any GOAL version), start its environment and launch its
+        agents (GOAL 4/5 agent files or GOAL 6+ agent definitions).
+
+        Args:
+            path: the system file.
+            env_params: init parameters that replace or add to the file's
+                (``--env-param``), as terms (``parse_parameter("[0,0,0]")``) or as typed
+                text (``ParameterText("db.json")``: a file name where the environment
+                declares a path).
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
+            max_agents: how many agents it may hold (None: what the memory available holds);
+                a file launching more is refused before any agent is built.
+
+        Returns:
+            The system, its environment started, before any agent's first cycle.
+
+        Raises:
+            GoalSyntaxError: a file is malformed or names what does not exist.
+            AgentError: an agent's program cannot be loaded.
+            EnvironmentInterfaceException: the environment refused its init parameters.
+        """
         mas = parse_mas_file(path)
         programs = load_agents(mas)
         numbers = {agentfile.name: agentfile.number for agentfile in mas.agentfiles}
@@ -178,9 +245,10 @@ class MultiAgentSystem:
                        if mas.environment else None)
         if environment is not None:
             environment.home = Path(path).parent
-        system = cls(environment, **kwargs)
+        system = cls(environment, seed=seed, output=output, tracer=tracer, warn=warn,
+                     listeners=listeners, limits=limits, max_agents=max_agents)
         system._programs.update(programs)
-        system._check_capacity(mas, numbers)
+        check_launches(mas, numbers, *system.capacity())
         for agentfile in mas.agentfiles:
             if agentfile.limits:
                 system._agent_limits[agentfile.name] = system._limits_for(dict(agentfile.limits))
@@ -209,31 +277,93 @@ class MultiAgentSystem:
         *,
         environment: str | None = None,
         env_params: Mapping[str, Term | ParameterText] | None = None,
-        **kwargs,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> MultiAgentSystem:
-        """A system of the one agent in ``path``, on ``environment`` if given."""
+        """A system of the one agent in a ``.goal`` file, on ``environment`` if given (as
+        ``goalagent run FILE --env NAME`` makes it).
+
+        Args:
+            path: the agent file.
+            environment: a registered environment name (``blocksworld``) or
+                ``package.module:Class``; None: no environment.
+            env_params: the environment's init parameters, as terms or typed text
+                (``ParameterText``).
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
+            max_agents: how many agents it may hold (None: what the memory available holds).
+
+        Returns:
+            The system; its agent is ``system.agents[0]``.
+        """
         program = parse_agent_file(path)
-        env = _make_environment(environment, ast.Pos(str(path), 1, 1)) if environment else None
+        return cls._of_one(program, ast.Pos(str(path), 1, 1), Path(path).parent, environment,
+                           env_params, dict(seed=seed, output=output, tracer=tracer,
+                                            warn=warn, listeners=listeners, limits=limits,
+                                            max_agents=max_agents))
+
+    @classmethod
+    def for_agent_text(
+        cls,
+        text: str,
+        *,
+        file: str = "<string>",
+        environment: str | None = None,
+        env_params: Mapping[str, Term | ParameterText] | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        listeners: Sequence[Listener] = (),
+        limits: Limits | None = None,
+    ) -> MultiAgentSystem:
+        """A system of one agent given as program text, on ``environment`` if given: the way
+        to put an agent made from a string in an environment (step it as
+        ``system.agents[0].step()``).
+
+        Args:
+            text: the agent program (the single-file ``.goal`` format).
+            file: the name its errors and positions give.
+            environment: a registered environment name or ``package.module:Class``.
+            env_params: the environment's init parameters, as terms or typed text
+                (``ParameterText``).
+            seed: agent number i gets seed ``seed + i``.
+            output: where the agents' ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event of every agent.
+            warn: called with each warning or failure line (default: printed on stderr).
+            listeners: told every event of every agent.
+            limits: each agent's bounds (default ``Limits()``).
+
+        Returns:
+            The system; its agent is ``system.agents[0]``.
+        """
+        program = parse_agent(text, file)
+        return cls._of_one(program, ast.Pos(file, 1, 1), None, environment, env_params,
+                           dict(seed=seed, output=output, tracer=tracer, warn=warn,
+                                listeners=listeners, limits=limits))
+
+    @classmethod
+    def _of_one(cls, program: ast.AgentProgram, pos: ast.Pos, home: Path | None,
+                environment: str | None, env_params: Mapping[str, Term | ParameterText] | None,
+                options: dict[str, Any]) -> MultiAgentSystem:
+        """The system of one program on ``environment`` (files it names looked for in
+        ``home``)."""
+        env = _make_environment(environment, pos) if environment else None
         if env is not None:
-            env.home = Path(path).parent
-        system = cls(env, **kwargs)
+            env.home = home
+        system = cls(env, **options)
         system.launch(program.name, program)
         system._start_environment(dict(env_params or {}))
         return system
-
-    def _check_capacity(self, mas: ast.MasProgram, numbers: Mapping[str, int]) -> None:
-        """Refuses, before any agent is built, a file launching more agents than the system
-        may hold (located at the launch rule, or agent file, that passes the limit)."""
-        counted = [(rule.number if rule.number != 1 else numbers.get(rule.agentfile, 1), rule.pos)
-                   for rule in mas.launches if not rule.on_entity]
-        if not mas.launches:
-            counted = [(agentfile.number, agentfile.pos) for agentfile in mas.agentfiles]
-        limit, by_hand = self.capacity()
-        total = 0
-        for number, pos in counted:
-            total += number
-            if total > limit:
-                raise GoalSyntaxError.at(pos, capacity_message(total, limit, by_hand=by_hand))
 
     def capacity(self) -> tuple[int, bool]:
         """How many agents this system may hold (``max_agents``, or what the memory available
@@ -302,7 +432,8 @@ class MultiAgentSystem:
         a, b.`` (the first rule whose entity condition fits and that may still launch: all
         its agents on this entity) and plain agents waiting for a body: the first agent
         without an entity gets this one."""
-        if entity not in self.environment.free_entities():
+        environment = self.environment
+        if environment is None or entity not in environment.free_entities():
             return
         groups: dict[int, list[int]] = {}
         for index, rule in enumerate(self._entity_launches):
@@ -312,8 +443,8 @@ class MultiAgentSystem:
             if first.entity_type not in (None, type) or first.entity_name not in (None, entity):
                 continue
             ready = [index for index in indices
-                     if self._entity_launches[index].max is None
-                     or self._launched_per_rule.get(index, 0) < self._entity_launches[index].max]
+                     if (most := self._entity_launches[index].max) is None
+                     or self._launched_per_rule.get(index, 0) < most]
             if not ready:
                 continue
             for index in ready:
@@ -327,12 +458,19 @@ class MultiAgentSystem:
                             limits=self._agent_limits.get(rule.agentfile))
             return
         for agent in self.agents:
-            if not self.environment.associated_entities(agent.name):
-                self.environment.associate_entity(agent.name, entity)
+            if not environment.associated_entities(agent.name):
+                environment.associate_entity(agent.name, entity)
                 return
 
-    def handle_state_change(self, state) -> None:
+    def handle_state_change(self, state: EnvironmentState) -> None:
         """Environment state changes need no action from the scheduler."""
+
+    def handle_free_entity(self, entity: str, agents: list[str]) -> None:
+        """An entity freed by its agents waits for an agent to ask for it: nothing to do."""
+
+    def handle_deleted_entity(self, entity: str, agents: list[str]) -> None:
+        """An entity that left takes its percepts with it: nothing to do (its agents run on
+        without a body, as in GOAL)."""
 
     # ------------------------------------------------------------------ running
     def run(self, max_cycles: int | None = None,

@@ -15,9 +15,13 @@ limit by hand.
 from __future__ import annotations
 
 import resource
+from collections.abc import Mapping
+
+from goalagent import ast
+from goalagent.parser import GoalSyntaxError
 
 __all__ = ["BYTES_PER_AGENT", "MEMORY_SHARE", "agent_capacity", "available_memory",
-           "capacity_message"]
+           "capacity_message", "check_launches"]
 
 BYTES_PER_AGENT = 64 * 1024
 """Resident memory counted for each agent (measured 40 -- 52 KiB, see the module's doc)."""
@@ -55,6 +59,22 @@ def capacity_message(wanted: int, limit: int, *, by_hand: bool) -> str:
     return (f"{wanted:,} agents need about {need}, more than the {room} this "
             f"process may use ({MEMORY_SHARE:.0%} of the memory available): the limit is "
             f"{limit:,} agents; free memory, or raise it with --max-agents N")
+
+
+def check_launches(mas: ast.MasProgram, numbers: Mapping[str, int], limit: int,
+                   by_hand: bool) -> None:
+    """Refuses, before any agent is built, a file launching more than ``limit`` agents
+    (``numbers``: each agent file's ``number``): a GoalSyntaxError at the launch rule, or
+    agent file, that passes it."""
+    counted = [(rule.number if rule.number != 1 else numbers.get(rule.agentfile, 1), rule.pos)
+               for rule in mas.launches if not rule.on_entity]
+    if not mas.launches:
+        counted = [(agentfile.number, agentfile.pos) for agentfile in mas.agentfiles]
+    total = 0
+    for number, pos in counted:
+        total += number
+        if total > limit:
+            raise GoalSyntaxError.at(pos, capacity_message(total, limit, by_hand=by_hand))
 
 
 def _size(size: int) -> str:

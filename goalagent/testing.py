@@ -19,6 +19,7 @@ item's position, and the rest of the file goes on.
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -124,8 +125,10 @@ class _Judge:
         rest = tuple(lit for lit in condition if lit not in positive and lit not in negative)
         candidates: list[Bindings] = [dict(bindings or {})]
         for literal in positive:
+            query = literal.query
+            assert query is not None  # (done(Action) always has its action)
             candidates = [match for candidate in candidates for action in self.done
-                          if (match := ms.unify(literal.query, action, candidate)) is not None]
+                          if (match := ms.unify(query, action, candidate)) is not None]
         results: list[Bindings] = []
         for candidate in candidates:
             solutions = [candidate]
@@ -143,8 +146,9 @@ class _Judge:
         return results
 
     def _done_matches(self, literal: ast.Literal, bindings: Bindings) -> bool:
-        return any(self.agent.ms.unify(literal.query, action, bindings) is not None
-                   for action in self.done)  # type: ignore[union-attr]
+        query = literal.query if isinstance(literal, ast.MentalLiteral) else None
+        return query is not None and any(self.agent.ms.unify(query, action, bindings) is not None
+                                         for action in self.done)
 
     def holds(self, condition: ast.Condition, bindings: Bindings | None = None) -> bool:
         return bool(self.answers(condition, bindings, limit=1))
@@ -225,8 +229,9 @@ class _Monitor:
             return Verdict(text, pos, self.at is None,
                            f"{broken} at cycle {self.at}" if self.at is not None else states)
         if kind == "atend":
-            held, error = self.judge.judge(self.condition.condition, "at the end")
-            return Verdict(text, pos, held, error or ("" if held else "did not hold at the end"))
+            at_end, error = self.judge.judge(self.condition.condition, "at the end")
+            return Verdict(text, pos, at_end,
+                           error or ("" if at_end else "did not hold at the end"))
         if self.pending:
             cycle, answer = next(iter(self.pending.values()))
             shown = ", ".join(f"{n}={format_term(v)}" for n, v in answer.items())
@@ -447,7 +452,7 @@ class _TestRun:
                     watch.before_cycle()
                 pending = self.pending.pop(agent.name, None)
                 self.system.step(agent, None if pending is None else
-                                 lambda agent=agent, pending=pending: agent.perform(*pending))
+                                 functools.partial(agent.perform, *pending))
                 self._observe(agent)
                 script = waiting.get(agent.name)
                 if script is not None and not script.advance():

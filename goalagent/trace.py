@@ -1,12 +1,13 @@
 """``goalagent run --trace[=KINDS] [--trace-file F]``: the agents' events as lines people read.
 
 Every line names the agent and its cycle (``robot #3  fired ...``). KINDS (comma-separated)
-choose what is shown: percepts (as changes: ``+on(c,table) -on(c,a)``), rules, actions,
-beliefs, goals, messages, warnings, modules; ``all`` is every one of them. Rules tried with
-no instantiation are left out unless ``idle`` is asked for. A trace file is written as JSON
-lines when its name ends in ``.jsonl`` (one object per event, with the rule's position and
-bindings), as text otherwise, atomically when the run ends. User data is never read as Rich
-markup: lines are built as ``rich.text.Text``.
+choose what is shown, each exactly: percepts (as changes: ``+on(c,table) -on(c,a)``), rules,
+actions (a firing's actions, one ``action`` line each unless rules are shown too: then the
+rule's line carries them), beliefs, goals, messages, warnings, modules; ``all`` is every one.
+Rules tried with no instantiation are left out unless ``idle`` is asked for. A trace file is
+written as JSON lines when its name ends in ``.jsonl`` (one object per event, with the rule's
+position and bindings), as text otherwise, atomically when the run ends. User data is never
+read as Rich markup: lines are built as ``rich.text.Text``.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from ondisk import AtomicFile, check_target
 KINDS: dict[str, frozenset[EventKind]] = {
     "percepts": frozenset({EventKind.PERCEPTS}),
     "rules": frozenset({EventKind.RULE_TRIED, EventKind.RULE_FIRED}),
+    # A firing's actions: its line when rules are shown too, else one `action` line each.
     "actions": frozenset({EventKind.RULE_FIRED, EventKind.ACTION_REFUSED,
                           EventKind.PRECONDITION_FAILED}),
     "beliefs": frozenset({EventKind.BELIEF_ADDED, EventKind.BELIEF_DELETED}),
@@ -38,6 +40,7 @@ KINDS: dict[str, frozenset[EventKind]] = {
     "modules": frozenset({EventKind.MODULE_ENTERED, EventKind.MODULE_LEFT}),
 }
 IDLE = "idle"  # also show rules tried with no instantiation
+ACTION = "action"  # the label of an action line (actions traced without their rules)
 
 
 class TraceKindError(ValueError):
@@ -72,17 +75,17 @@ def show(term: Term) -> str:
     return show_term(term)
 
 
-def _record(event: Event, text: str) -> dict:
-    """The JSON object of one event."""
-    record: dict = {"agent": event.agent, "cycle": event.cycle, "kind": event.kind.name.lower(),
-                    "text": text}
+def _record(event: Event, label: str, text: str) -> dict:
+    """The JSON object of one event (an action line: ``kind`` action)."""
+    kind = "action" if label == ACTION else event.kind.name.lower()
+    record: dict = {"agent": event.agent, "cycle": event.cycle, "kind": kind, "text": text}
     if event.module is not None:
         record["module"] = event.module
     if event.pos is not None:
         record["pos"] = str(event.pos)
-    if event.bindings:
+    if event.instantiations:
         record["bindings"] = [{name: show(value) for name, value in bindings.items()}
-                              for bindings in event.bindings]
+                              for bindings in event.instantiations]
     return record
 
 
@@ -105,21 +108,29 @@ class TracePrinter:
     def __call__(self, event: Event) -> None:
         if event.kind not in self.kinds:
             return
-        text = self.text(event)
-        if text is None:
+        if event.kind is EventKind.RULE_FIRED and EventKind.RULE_TRIED not in self.kinds:
+            for action in event.actions:  # actions without rules: the actions alone
+                self._show(event, ACTION, action)
             return
+        text = self.text(event)
+        if text is not None:
+            self._show(event, str(event.kind), text)
+
+    def _show(self, event: Event, label: str, text: str) -> None:
+        """One line of ``event`` (``label``: its kind, or ``action``) where it goes."""
         if self.path is not None:
-            line = json.dumps(_record(event, text)) if self._json else self.line(event, text)
+            line = (json.dumps(_record(event, label, text)) if self._json
+                    else self.line(event, text, label))
             self._write(line + "\n")
         if self.console is not None:
             self.console.print(Text.assemble((event.agent, "dim"), " ",
                                              (f"#{event.cycle:<3}", "dim"), " ",
-                                             (f"{event.kind:>12}", "cyan"), " ", text))
+                                             (f"{label:>12}", "cyan"), " ", text))
 
     @staticmethod
-    def line(event: Event, text: str) -> str:
-        """One plain text line."""
-        return f"{event.agent} #{event.cycle:<3} {event.kind:>12} {text}"
+    def line(event: Event, text: str, label: str | None = None) -> str:
+        """One plain text line (``label``: what it shows, default the event's kind)."""
+        return f"{event.agent} #{event.cycle:<3} {label or event.kind:>12} {text}"
 
     def text(self, event: Event) -> str | None:
         """What to show for ``event``; None to leave it out (an idle rule, unchanged
@@ -131,7 +142,7 @@ class TracePrinter:
             changes = [f"+{p}" for p in sorted(now - before)]
             changes += [f"-{p}" for p in sorted(before - now)]
             return " ".join(changes) or None
-        if event.kind is EventKind.RULE_TRIED and not event.bindings and not self.idle:
+        if event.kind is EventKind.RULE_TRIED and not event.instantiations and not self.idle:
             return None
         return event.text
 

@@ -4,7 +4,8 @@ A run hook (``goalagent.extensions.RunHook``) of the robot extension: it records
 agent's reliabilities after each cycle and, when the run ends, prints the ``afford/6`` table
 of each agent that has any on stderr and writes its reliability plot (``--plot FILE``, with
 ``-AGENT`` added when several agents report). Without ``--plot`` the plot goes beside the
-``--save-beliefs`` file (the run's output folder) or else into a fresh temporary folder, as
+``--save-beliefs`` file STEM.pl (the run's output folder) as ``STEM-afford-AGENT.png``, so
+two runs saving in one folder keep their own, or else into a fresh temporary folder as
 ``afford-AGENT.png``: a run never litters the current directory.
 """
 
@@ -29,7 +30,7 @@ to ``--save-beliefs``)."""
 
 PLOT_OPTION = RunOption(
     "plot", Path, "PNG of afford/6 reliabilities over the actions taken "
-                  "(default: afford-AGENT.png beside --save-beliefs, else in a "
+                  "(default: STEM-afford-AGENT.png beside --save-beliefs STEM.pl, else in a "
                   "temporary folder; printed when written).")
 
 
@@ -89,10 +90,11 @@ class AffordanceReport(RunHook):
 
 def plot_path(run: RunContext, agent: str, *, several: bool) -> Path | None:
     """Where ``agent``'s reliability plot goes: ``--plot`` (``-AGENT`` added when
-    ``several`` agents report), else ``afford-AGENT.png`` beside ``--save-beliefs``; None
-    without either (the caller makes a temporary folder and prints the path)."""
+    ``several`` agents report), else ``STEM-afford-AGENT.png`` beside the ``--save-beliefs``
+    file STEM.pl (so two runs saving in one folder keep their own plots); None without
+    either (the caller makes a temporary folder and prints the path)."""
     plot: Path | None = run.options.get("plot")  # type: ignore[assignment]
     if plot is not None:
         return plot.with_name(f"{plot.stem}-{agent}{plot.suffix}") if several else plot
     saved: Path | None = run.options.get("save_beliefs")  # type: ignore[assignment]
-    return saved.parent / f"afford-{agent}.png" if saved is not None else None
+    return saved.parent / f"{saved.stem}-afford-{agent}.png" if saved is not None else None

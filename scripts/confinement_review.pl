@@ -5,8 +5,9 @@
 :- module(ga_review, [verdict/5, current_predicate_or_library/2]).
 
 %!  verdict(+B, +Name, +Arity, -Plain, -Sandbox) is det.
-%   Plain, Sandbox: refused(Why), checked (some goal is checked when it runs), agent
-%   (made the agent's own: its key, its catch or cleanup), or allowed (as written).
+%   Plain, Sandbox: refused(Why), checked (some goal is checked when it runs), sized
+%   (what it makes is bounded before it starts: goalagent/kb/sizes.pl), agent (made the
+%   agent's own: its key, its catch or cleanup), or allowed (as written).
 verdict(B, Name, Arity, Plain, Sandbox) :-
     functor(G, Name, Arity),
     (   catch(ga_confine:key_family(Name/Arity, _), _, fail) -> arg(1, G, k) ; true ),
@@ -21,6 +22,8 @@ mode_verdict(G, Ctx, Verdict) :-
                 functor(Checked, Name, _),
                 memberchk(Name, [call_checked, closure_checked, grammar_checked])
             ->  Verdict = checked
+            ;   sub_term(X, Out), compound(X), X = ga_sizes:_
+            ->  Verdict = sized
             ;   Verdict = agent
             ) ),
           E,

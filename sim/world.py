@@ -4,8 +4,9 @@
 rendering, the camera model) whose model is rebuilt when the can changes. It moves the
 Cartesian arm (position-controlled, force-limited slide actuators; every move is a
 straight-line ramp of the set-point followed by settling), grasps and drops the ball (a weld
-equality switched on and off), reports ground truth (``state()``) and records mp4 videos of
-the head camera.
+equality switched on and off) and reports ground truth (``state()``). Two jobs are mixins of
+their own: holding a part with the hand (sim/hold.py) and recording mp4 videos of the head
+camera (sim/recording.py); ``step`` runs their hooks around every physics step.
 
 The opening is the straight-line gap (m) between the rim's front edge and the lid's front edge,
 i.e. the width of the dark gap the thesis measures in the image (eq. 5.14). Seen from the head
@@ -18,24 +19,21 @@ width is not foreshortened by the camera's pitch and lies at the rim's depth).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import mujoco
 import numpy as np
 
-from ondisk import atomic_path
 from sim.base import CameraModel, RenderedWorld
+from sim.hold import HandHold
+from sim.recording import Recording
 from sim.scene import (
     ARM_KP,
     ARM_RANGE,
     BALL_RADIUS,
     CANS,
     GRIP_OFFSET,
-    HOLD_SOLREF,
-    HOLDABLE,
     HOME,
     MARKER_SIZE,
     TABLE_TOP,
@@ -51,14 +49,6 @@ ARM_SPEED = 0.4
 """Speed (m/s) of the arm's set-point along a straight-line move."""
 ARRIVE_TOL = 1.5e-3
 """Distance (m) from the set-point at which the hand counts as arrived."""
-HOLD_REACH = 0.01
-"""The hand takes hold of a part only if it is at most this far (m) from the part's surface."""
-SLIDING_SOLREF = (-44000.0, -2.0)
-"""A sliding hold's constraint (MuJoCo's direct solref: stiffness, damping): as stiff as the
-ball joint's (timeconst 0.005 s) but nearly undamped, since the damping would also act along
-the face and drag the sliding hand (moved ~2 mm of a 1 cm step instead of ~8 mm)."""
-FRAME_RATE = 25.0
-"""Frames per second of simulated time in recorded videos."""
 
 
 @dataclass(frozen=True)
@@ -83,7 +73,7 @@ class WorldState:
     effector_pos: tuple[float, float, float]
 
 
-class GarbageWorld(RenderedWorld):
+class GarbageWorld(HandHold, Recording, RenderedWorld):
     """One can on a table, a Cartesian arm with a grasping hand, a ball and a head camera."""
 
     default_camera = "head"
@@ -96,7 +86,6 @@ class GarbageWorld(RenderedWorld):
         super().__init__(build_mjcf(spec), width, height)
         self._spec = spec
         self._seed = seed
-        self._recorder: _Recorder | None = None
         self.reset(seed=seed)
 
     # ----------------------------------------------------------------- set-up
@@ -117,11 +106,7 @@ class GarbageWorld(RenderedWorld):
         ball[:2] += rng.uniform(-0.01, 0.01, size=2)
         self._grip_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, "grip")
         d.eq_active[self._grip_id] = 0
-        self._holds = {part: mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, f"hold_{part}")
-                       for part in HOLDABLE if part in self.parts}
-        for hold in self._holds.values():
-            d.eq_active[hold] = 0
-        self._sliding: tuple[int, int, tuple[np.ndarray, np.ndarray]] | None = None
+        self._reset_holds()
         self.arm_stiffness = ARM_KP
         self.set_ball_collisions(True)
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
@@ -129,8 +114,7 @@ class GarbageWorld(RenderedWorld):
         self._hand_body = m.body("hand").id
         self.steps = 0
         mujoco.mj_forward(m, d)
-        if self._recorder is not None:  # simulated time restarts at 0 in the same video
-            self._recorder.next_time = d.time
+        self._restart_recording_clock()
         self.settle(500)
 
     @property
@@ -159,12 +143,10 @@ class GarbageWorld(RenderedWorld):
         """Advance the physics ``n`` steps, one at a time: a sliding hold's anchor follows the
         hand and the recorder (if one is running) is fed between steps."""
         for _ in range(n):
-            if self._sliding is not None:
-                _slide_anchor(self.model, self.data, self._sliding, self.effector_pos)
+            self._follow_hand()
             mujoco.mj_step(self.model, self.data)
             self.steps += 1
-            if self._recorder is not None:
-                self._recorder.maybe_capture(self)
+            self._record_frame()
 
     # -------------------------------------------------------------------- arm
     @property
@@ -235,50 +217,6 @@ class GarbageWorld(RenderedWorld):
         """Aim the arm's controllers at where the hand is, so it pushes on nothing, and settle."""
         self.data.ctrl[:3] = self.effector_pos - np.asarray(HOME)
         self.settle(300)
-
-    # ------------------------------------------------------------------- hold
-    @property
-    def held_part(self) -> str | None:
-        """The part the hand keeps hold of, if any (see ``hold``)."""
-        return next((p for p, eq in self._holds.items() if self.data.eq_active[eq]), None)
-
-    def hold(self, part: str, sliding: bool = False) -> None:
-        """Keep hold of ``part`` at the point the hand touches: a ball joint from now on.
-
-        The hand must be within ``HOLD_REACH`` of the part (approach it first). While held,
-        the part follows the hand as far as its own joint lets it, both ways: the hand that
-        pushed a lid open can pull it shut again (thesis ch. 4's paired skills).
-        ``sliding``: keep only the hand's distance from the part's front face (the plane
-        across the part's own x axis), and let the hand slide over the face, within its
-        edges: a hand pressed on a lid that rests against it, as NAO's hand on the push-lid
-        (thesis §4.6), rather than one gripping a point of it.
-        """
-        if part not in self._holds:
-            held = ", ".join(self._holds) or "nothing"
-            raise ValueError(f"can {self.can} has no part {part!r} to hold; it has {held}")
-        if self.held_part is not None:
-            raise ValueError(f"the hand already holds the {self.held_part}; release it first")
-        gap = _distance_to(self.model, self.data, part)
-        if gap > HOLD_REACH:
-            raise ValueError(f"the hand is {gap:.3f} m from the {part}; it must be within "
-                             f"{HOLD_REACH} m to take hold (approach the part first)")
-        m, d = self.model, self.data
-        body = m.body(part).id
-        eq = self._holds[part]
-        m.eq_data[eq, 0:3] = 0.0  # the hand's centre ...
-        offset = self.effector_pos - d.xpos[body]
-        m.eq_data[eq, 3:6] = d.xmat[body].reshape(3, 3).T @ offset  # ... where it is on the part
-        m.eq_solref[eq] = SLIDING_SOLREF if sliding else HOLD_SOLREF
-        d.eq_active[eq] = 1
-        self._sliding = (eq, body, _face_extent(m, body)) if sliding else None
-        self.relax()
-
-    def release(self) -> None:
-        """Let go of the held part (nothing happens if none is held)."""
-        for eq in self._holds.values():
-            self.data.eq_active[eq] = 0
-        self._sliding = None
-        self.relax()
 
     # ------------------------------------------------------------------- ball
     @property
@@ -420,44 +358,6 @@ class GarbageWorld(RenderedWorld):
         return bool(WALL < p[0] < c.depth - WALL and abs(p[1]) < c.width / 2 - WALL
                     and TABLE_TOP < p[2] < c.rim - BALL_RADIUS / 2)
 
-    # ----------------------------------------------------------------- camera
-    @contextmanager
-    def record(self, path: str | Path, camera: str = "head") -> Iterator[Path]:
-        """Record an mp4 of the ``camera`` view of everything simulated inside the block."""
-        import imageio.v2 as imageio
-
-        self._camera(camera)
-        out = Path(path)
-        with atomic_path(out) as partial:  # the video is put in place whole when it ends
-            writer = imageio.get_writer(str(partial), fps=FRAME_RATE, macro_block_size=1)
-            self._recorder = _Recorder(writer, camera, self.data.time)
-            try:
-                self._recorder.capture(self)
-                yield out
-            finally:
-                self._recorder = None
-                writer.close()
-
-
-class _Recorder:
-    """Captures a frame every 1/FRAME_RATE s of simulated time into an imageio writer."""
-
-    def __init__(self, writer: object, camera: str, start: float):
-        """Remember where frames go and when the next one is due."""
-        self.writer = writer
-        self.camera = camera
-        self.next_time = start
-
-    def capture(self, world: GarbageWorld) -> None:
-        """Append the current frame."""
-        self.writer.append_data(world.render(self.camera))  # type: ignore[attr-defined]
-        self.next_time += 1.0 / FRAME_RATE
-
-    def maybe_capture(self, world: GarbageWorld) -> None:
-        """Append a frame if one is due at the world's current time."""
-        if world.data.time >= self.next_time:
-            self.capture(world)
-
 
 def _spec_of(can: str | CanSpec) -> CanSpec:
     """The CanSpec of a thesis can's name, or ``can`` itself."""
@@ -466,34 +366,6 @@ def _spec_of(can: str | CanSpec) -> CanSpec:
     if can not in CANS:
         raise ValueError(f"unknown can {can!r}; expected one of {', '.join(CANS)}")
     return CANS[can]
-
-
-def _slide_anchor(model: mujoco.MjModel, data: mujoco.MjData,
-                  sliding: tuple[int, int, tuple[np.ndarray, np.ndarray]],
-                  hand: np.ndarray) -> None:
-    """Move a sliding hold's anchor over the face to where the hand is (its depth stays)."""
-    eq, body, (lo, hi) = sliding
-    local = data.xmat[body].reshape(3, 3).T @ (hand - data.xpos[body])
-    model.eq_data[eq, 4:6] = np.clip(local[1:], lo, hi)
-
-
-def _distance_to(model: mujoco.MjModel, data: mujoco.MjData, part: str) -> float:
-    """Smallest distance (m) between the hand and the colliding geoms of ``part``."""
-    hand = model.geom("hand").id
-    body = model.body(part).id
-    geoms = [g for g in range(model.ngeom)
-             if model.geom_bodyid[g] == body and model.geom_contype[g]]
-    return min(mujoco.mj_geomDistance(model, data, hand, g, 1.0, None) for g in geoms)
-
-
-def _face_extent(model: mujoco.MjModel, body: int) -> tuple[np.ndarray, np.ndarray]:
-    """(y, z) bounds, in ``body``'s frame, of its colliding geoms: the face a hand slides on."""
-    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] == body and model.geom_contype[g]:
-            centre, half = model.geom_pos[g][1:], model.geom_size[g][1:]
-            lo, hi = np.minimum(lo, centre - half), np.maximum(hi, centre + half)
-    return lo, hi
 
 
 def _has_body(model: mujoco.MjModel, name: str) -> bool:

@@ -16,7 +16,8 @@ every model (§5.5.1: "The purpose is not to learn every prediction model ... bu
 the goal condition (5.9) as fast as possible"). Line 31's Algorithm 4 stops at the goal too
 unless ``stop_at_goal`` is False: Algorithm 4 as printed explores every pair before it
 selects. With no relevant source it is Algorithm 4 exactly. ``branch_`` says which of these
-found the goal: direct, gradient, other_action, other_part, fallback, no_source, or failed.
+found the goal: direct, gradient, other_action, other_part, fallback, no_source, or failed
+(nothing did, or ``other_parts=False`` stopped it after the source's functional part).
 
 Choices the thesis leaves open, made here: λ_k of line 13 is the step after which the source's
 models predict the goal's opening (a Newton step on ĥ∘ĝ of the source, clipped to Θ); the loop
@@ -76,7 +77,11 @@ class TransferLearner(PartBasedLearner):
     Parameters beyond ``PartBasedLearner``'s: ``database``; ``consistency_tol`` (m), how far
     an observed displacement may lie from the source's prediction and still be consistent;
     ``n_neighbors``, ``max_distance``, ``weights`` of the part similarity (Algorithm 5);
-    ``stop_at_goal``, whether line 31's Algorithm 4 stops once an action reached the goal.
+    ``stop_at_goal``, whether line 31's Algorithm 4 stops once an action reached the goal;
+    ``other_parts``, whether to go on past the look-alike of the source's functional part
+    (lines 24-31: one try per action on the other look-alike parts, then Algorithm 4 on the
+    novel ones). False stops after line 23 and leaves those parts to the caller: an agent
+    that learns them a pair at a time, in its own order (issue 32).
 
     After ``fit(obj)``, besides PartBasedLearner's attributes: ``candidates_`` (Algorithm 5's
     ranking), ``source_`` (the source's name or None), ``similar_parts_`` (Ψ_sim) and
@@ -87,6 +92,7 @@ class TransferLearner(PartBasedLearner):
         **PartBasedLearner._parameter_constraints,
         "database": "no_validation",  # any iterable of KnownObject: checked in fit
         "consistency_tol": [POSITIVE], "n_neighbors": [POSITIVE_INT], "stop_at_goal": ["boolean"],
+        "other_parts": ["boolean"],
         "max_distance": [POSITIVE, None], "weights": ["array-like", None],
     }
 
@@ -96,12 +102,14 @@ class TransferLearner(PartBasedLearner):
                  consistency_tol: float = 0.01, n_neighbors: int = 3,
                  max_distance: float = 1.0, weights: Sequence[float] = DEFAULT_WEIGHTS,
                  aim: str = "goal_plus_delta1", stop_at_goal: bool = True,
+                 other_parts: bool = True,
                  random_state: int | np.random.RandomState | None = None) -> None:
         super().__init__(n=n, n_min=n_min, settle_tol=settle_tol,
                          min_displacement=min_displacement, goal=goal, delta1=delta1,
                          delta2=delta2, max_checks=max_checks, aim=aim,
                          random_state=random_state)
         self.stop_at_goal = stop_at_goal
+        self.other_parts = other_parts
         self.database = database
         self.consistency_tol = consistency_tol
         self.n_neighbors = n_neighbors
@@ -148,6 +156,8 @@ class TransferLearner(PartBasedLearner):
         others = [a for a in session.bounds if a != action]
         if self._check_consistency(session, known, rehearsal.part, part, others):
             return "other_action"
+        if not self.other_parts:
+            return "failed"
         for source_part in known.parts:
             if source_part == rehearsal.part:
                 continue

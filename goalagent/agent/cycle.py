@@ -28,11 +28,17 @@ from goalagent.agent.events import (
     message_event,
     percepts_event,
     plain_variables,
-    readable_text,
+    readable,
 )
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
-from goalagent.agent.problems import goal_text, warning_text
+from goalagent.agent.problems import (
+    cause_traceback,
+    goal_origin,
+    goal_text,
+    module_of,
+    warning_text,
+)
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
 from goalagent.agent.timers import Timer, due_percepts
@@ -41,7 +47,7 @@ from goalagent.kb.engine import KBError, get_engine
 from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
-from goalagent.kb.terms import Struct, Term, format_term
+from goalagent.kb.terms import Term, format_term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
@@ -52,7 +58,35 @@ IDLE_WARNING_CYCLES = 100
 
 
 class Agent:
-    """A GOAL agent: program + mental state + reasoning cycle."""
+    """A GOAL agent: its program, its mental state in SWI-Prolog and its reasoning cycle.
+
+    Made from a file or a text (:meth:`from_file`, :meth:`from_string`), it runs a cycle at
+    a time (:meth:`step`) or to the end (:meth:`run`) and answers queries on its mental
+    state (:meth:`query`). Alone it has no environment: its user actions only do what their
+    postconditions say. To put one agent in an environment, make a system of it
+    (``MultiAgentSystem.for_agent_text(text, environment="blocksworld")``) and step
+    ``system.agents[0]``; or pass ``io``, any object with ``percepts()`` and ``act(action)``.
+
+    Args:
+        program: the parsed program (``goalagent.parser.parse_agent``).
+        name: the agent's name (default: the program's).
+        io: its environment connection (``AgentIO``); None: no percepts, user actions only
+            change the mental state.
+        postman: delivers its messages (``LocalPostman`` in a system); None: messages go
+            nowhere.
+        seed: seeds the choice among a rule's instantiations, ``random`` orders and
+            Prolog's random numbers.
+        output: where ``print/1`` writes (default: stdout).
+        tracer: called with (agent, kind, text) for every event (as ``--trace`` prints).
+        warn: called with each warning line (default: printed on stderr).
+        idle_warning: cycles without any action, new percept or message after which an
+            agent with goals left is warned about once (None: never).
+        limits: inferences, seconds, beliefs and the sandbox (default: ``Limits()``).
+
+    Raises:
+        AgentError: the program cannot be loaded (a clause SWI-Prolog refuses, a goal that
+            is not ground, ...), with its file, line and column.
+    """
 
     def __init__(
         self,
@@ -72,8 +106,7 @@ class Agent:
         self.name = name or program.name
         self.io = io
         self.postman = postman
-        self._seed = seed
-        self._random: random.Random | None = None  # made when first drawn from
+        self.random = random.Random(seed)
         get_engine().seed_random(seed)  # Prolog's random/1, random_float, roulette choices
         self.output = output or sys.stdout
         self.listeners: list[Listener] = []
@@ -100,7 +133,7 @@ class Agent:
                 for goal in program.goals:
                     self.ms.adopt(goal)
                     for _, why in self.ms.take_unchecked():
-                        self.warn(f"module {self._module_of(goal)}, goal at {goal.pos}: "
+                        self.warn(f"module {module_of(program, goal)}, goal at {goal.pos}: "
                                   f"checking whether {goal.text.strip()} is believed {why}; "
                                   "the goal is adopted")
             else:
@@ -118,26 +151,98 @@ class Agent:
 
     # ------------------------------------------------------------------ construction
     @classmethod
-    def from_file(cls, path: str | Path, **kwargs) -> Agent:
-        """Load an agent from a `.goal` file (``GoalSyntaxError`` on a malformed one)."""
-        return cls(parse_agent_file(path), **kwargs)
+    def from_file(
+        cls,
+        path: str | Path,
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        idle_warning: int | None = IDLE_WARNING_CYCLES,
+        limits: Limits | None = None,
+    ) -> Agent:
+        """Load an agent from a ``.goal`` file.
+
+        Args:
+            path: the agent file.
+            name: the agent's name (default: the program's).
+            io: its environment connection (None: none).
+            postman: delivers its messages (None: messages go nowhere).
+            seed: seeds its choices among instantiations and Prolog's random numbers.
+            output: where ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event.
+            warn: called with each warning line (default: printed on stderr).
+            idle_warning: idle cycles before the one warning about them (None: never).
+            limits: inferences, seconds, beliefs and the sandbox (default ``Limits()``).
+
+        Returns:
+            The agent, before its first cycle.
+
+        Raises:
+            GoalSyntaxError: the file is malformed (its message is ``file:line:col: ...``).
+            AgentError: the program cannot be loaded.
+        """
+        return cls(parse_agent_file(path), name=name, io=io, postman=postman, seed=seed,
+                   output=output, tracer=tracer, warn=warn, idle_warning=idle_warning,
+                   limits=limits)
 
     @classmethod
-    def from_string(cls, text: str, file: str = "<string>", **kwargs) -> Agent:
-        """Load an agent from program text."""
-        return cls(parse_agent(text, file), **kwargs)
+    def from_string(
+        cls,
+        text: str,
+        file: str = "<string>",
+        *,
+        name: str | None = None,
+        io: AgentIO | None = None,
+        postman: Postman | None = None,
+        seed: int = 0,
+        output: TextIO | None = None,
+        tracer: Tracer | None = None,
+        warn: Callable[[str], None] | None = None,
+        idle_warning: int | None = IDLE_WARNING_CYCLES,
+        limits: Limits | None = None,
+    ) -> Agent:
+        """Load an agent from program text (the single-file ``.goal`` format).
+
+        Args:
+            text: the program.
+            file: the name its errors and positions give (default ``<string>``).
+            name: the agent's name (default: the program's).
+            io: its environment connection (None: none).
+            postman: delivers its messages (None: messages go nowhere).
+            seed: seeds its choices among instantiations and Prolog's random numbers.
+            output: where ``print/1`` writes (default: stdout).
+            tracer: called with (agent, kind, text) for every event.
+            warn: called with each warning line (default: printed on stderr).
+            idle_warning: idle cycles before the one warning about them (None: never).
+            limits: inferences, seconds, beliefs and the sandbox (default ``Limits()``).
+
+        Returns:
+            The agent, before its first cycle.
+
+        Raises:
+            GoalSyntaxError: the text is malformed.
+            AgentError: the program cannot be loaded.
+        """
+        return cls(parse_agent(text, file), name=name, io=io, postman=postman, seed=seed,
+                   output=output, tracer=tracer, warn=warn, idle_warning=idle_warning,
+                   limits=limits)
 
     # ------------------------------------------------------------------ public API
-    @property
-    def random(self) -> random.Random:
-        """The agent's own random numbers (random rule orders), seeded with its seed when
-        first drawn from: a generator holds 2.5 KB, and most agents never draw."""
-        if self._random is None:
-            self._random = random.Random(self._seed)
-        return self._random
-
     def step(self) -> CycleReport:
-        """Run one reasoning cycle (the first one also runs the init module)."""
+        """Run one reasoning cycle (the first one also runs the init module).
+
+        Returns:
+            What the cycle did: the rules that fired with their bindings, the actions,
+            percepts, messages and warnings.
+
+        Raises:
+            AgentError: the agent has terminated.
+        """
         if self.terminated:
             raise AgentError(f"agent {self.name} has terminated")
         self.cycle += 1
@@ -146,7 +251,8 @@ class Agent:
             self._perceive()  # (without them, no percepts and no messages: nothing to do)
         if self.focus:
             focus = self.focus[-1]
-            modules = [(self._event, {})] if self._event is not None else []
+            modules: list[tuple[ast.Module, Bindings]] = (
+                [(self._event, {})] if self._event is not None else [])
             modules.append((focus.module, focus.bindings))
             outcome = self._rules.run_modules(modules, count_last=True)
             exit_option = focus.module.exit or "always"
@@ -204,22 +310,49 @@ class Agent:
         return self.report
 
     def run(self, max_cycles: int | None = None) -> RunResult:
-        """Cycle until the agent terminates or ``max_cycles`` cycles have run."""
+        """Cycle until the agent terminates or has run ``max_cycles`` cycles in all.
+
+        Args:
+            max_cycles: the most cycles (counted from its first); None: no bound.
+
+        Returns:
+            The cycles run, whether it terminated, its actions and the goals left.
+        """
         while not self.terminated and (max_cycles is None or self.cycle < max_cycles):
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str, *, confined: bool = False,
+    def query(self, op: str, text: str, *, confined: bool = False, sandboxed: bool = False,
               limit: int | None = None) -> list[Bindings]:
-        """Answers of ``op(text)`` (bel, goal, a-goal, goal-a, percept) as Python values (the
-        first ``limit``); ``confined``: checked as the agent's own code is, in its sandbox if
-        it has one (a query a user types in the debugger or the inspector)."""
-        return self.ms.query(op, text, trusted=not confined, limit=limit)
+        """The answers of a mental-state query, as Python values.
+
+        Args:
+            op: ``bel``, ``goal``, ``a-goal``, ``goal-a`` or ``percept``.
+            text: the query in Prolog (``count(X)``, ``on(X, Y), X \\= a``).
+            confined: check it as the agent's own code is, in its sandbox if it has one (a
+                query a user typed in the debugger); False: the query is trusted.
+            sandboxed: check it so, and in the sandbox whether the agent has one or not
+                (a query or condition a web page sent the mind inspector).
+            limit: at most this many answers (the first ones); None: all of them.
+
+        Returns:
+            One mapping per answer, from each variable of ``text`` to its value (``Atom``
+            for an atom, ``str`` for a string, ``Struct`` for a compound, numbers and lists
+            as themselves); ``[]`` when there is none, ``[{}]`` for a yes without variables.
+
+        Raises:
+            KBError: the query is not valid Prolog or raised an error.
+        """
+        return self.ms.query(op, text, trusted=not (confined or sandboxed),
+                             sandboxed=sandboxed, limit=limit)
 
     def beliefs(self) -> list[Term]:
+        """The agent's beliefs (its belief base's facts), in order."""
         return self.ms.beliefs()
 
     def goals(self) -> list[list[Term]]:
+        """The agent's goals, each as the list of its facts (``on(a,b), on(b,c)`` is one goal
+        of two facts)."""
         return self.ms.goals()
 
     def close(self) -> None:
@@ -233,7 +366,7 @@ class Agent:
     def tell(self, event: Event) -> None:
         """Tell the listeners an event (stamped with the current cycle; fresh variables in its
         text shown as ``_``)."""
-        event = dataclasses.replace(event, cycle=self.cycle, text=readable_text(event))
+        event = dataclasses.replace(readable(event), cycle=self.cycle)
         for listener in self.listeners:
             listener(event)
 
@@ -267,6 +400,9 @@ class Agent:
             except ActionFailed as err:
                 self.warn(warning_text(Problem(ProblemKind.PERCEPTS_UNAVAILABLE, str(err)),
                                        self.program))
+                shown = cause_traceback(err)
+                if shown is not None:
+                    self.log(shown)
         if self.timers:
             percepts = percepts + due_percepts(self)
         self.ms.set_percepts(percepts)
@@ -314,28 +450,6 @@ class Agent:
             if self.listeners:
                 self.tell(goal_event(self.name, EventKind.GOAL_ACHIEVED, goal))
         for facts, why in self.ms.take_unchecked():
-            self.warn(f"{self._goal_origin(facts)}: checking whether goal {goal_text(facts)} "
-                      f"is achieved {why}; the goal is kept")
-
-    def _module_of(self, goal: ast.PrologText) -> str:
-        """The module whose goals section holds ``goal``."""
-        return next((module.name for module in self.program.modules
-                     if any(written is goal for written in module.goals)), "init")
-
-    def _goal_origin(self, facts: list[Term]) -> str:
-        """Where a goal was written, if it is one of the program's goals sections' (else
-        the program's file and the module running)."""
-        written = facts[0] if len(facts) == 1 else _conjunction(facts)
-        for goal in self.program.goals:
-            if self.ms.unify(goal, written) is not None:
-                return f"module {self._module_of(goal)}, goal at {goal.pos}"
-        module = self.focus[-1].module.name if self.focus else "main"
-        return f"module {module}, {self.program.file}"
-
-
-def _conjunction(facts: list[Term]) -> Term:
-    """``(f1, f2, ...)`` of a goal's facts."""
-    term = facts[-1]
-    for fact in reversed(facts[:-1]):
-        term = Struct(",", (fact, term))
-    return term
+            running = self.focus[-1].module.name if self.focus else "main"
+            self.warn(f"{goal_origin(self.program, self.ms, running, facts)}: checking whether "
+                      f"goal {goal_text(facts)} is achieved {why}; the goal is kept")

@@ -6,8 +6,8 @@ line of text for people."""
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 from goalagent import ast
@@ -19,20 +19,40 @@ from goalagent.kb.terms import Struct, Term, Var, format_term
 _SHOWN_INSTANTIATIONS = 5  # a tried rule's line shows this many instantiations at most
 
 
+Bindings = Mapping[str, Term]
+"""Variable name (as the program writes it) -> its value: the one shape of bindings in the
+Python API (``Event.bindings``, ``FiredRule.bindings``, an answer of ``Agent.query``)."""
+
+
 @dataclass(frozen=True)
 class Event:
-    """One thing that happened in an agent. ``module`` and ``pos`` locate the rule (rule
-    events); ``bindings`` has one entry per instantiation (RULE_TRIED) or the firing's;
-    ``term`` is the percept list, belief, goal or action concerned; ``cycle`` the agent's
-    cycle (set when the agent tells the event)."""
+    """One thing that happened in an agent, as ``Agent.listen`` tells it.
+
+    Attributes:
+        kind: what happened (a rule fired, a belief was added, ...).
+        agent: the agent's name.
+        text: one line for people, as ``--trace`` prints it.
+        module: the rule's module (rule events and module calls), else None.
+        pos: where the rule is written (rule events), else None.
+        bindings: the variables of the firing (``RULE_FIRED``) or of the refused action
+            (``ACTION_REFUSED``) with their values, e.g. ``event.bindings["X"]``; empty for
+            other kinds (a tried rule has several: see ``instantiations``).
+        instantiations: every instantiation of a tried rule's condition (``RULE_TRIED``), in
+            the order they were tried; the one of a firing or refused action; else empty.
+        term: the percept list, belief, goal (its facts) or message content concerned.
+        actions: the actions a firing performed (``RULE_FIRED``), as its text shows them.
+        cycle: the agent's cycle (set when the agent tells the event).
+    """
 
     kind: EventKind
     agent: str
     text: str
     module: str | None = None
     pos: ast.Pos | None = None
-    bindings: tuple[dict[str, Term], ...] = ()
+    bindings: Bindings = field(default_factory=dict)
+    instantiations: tuple[Bindings, ...] = ()
     term: Term | None = None
+    actions: tuple[str, ...] = ()
     cycle: int = 0
 
 
@@ -71,6 +91,7 @@ def _goal_text(goal: Term) -> str:
 def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Event:
     """The event for a step the interpreter told."""
     kind, rule = step.kind, step.rule
+    performed: tuple[str, ...] = ()  # a firing's actions
     module = rule.module if rule is not None else None
     shown = rule.shown if rule is not None else None  # the name the user gave the module
     pos = rule.rule.pos if rule is not None else None
@@ -86,6 +107,7 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
         assert rule is not None
         bindings = step.bindings[0]
         actions = describe_firing(rule, bindings, step.done, step.terms)
+        performed = actions
         text = f"{shown} {pos} [{_shown(bindings)}] -> {' + '.join(actions) or '(block)'}"
     elif kind is EventKind.ACTION_REFUSED:
         assert rule is not None and step.action_index is not None
@@ -96,12 +118,17 @@ def interpreter_event(agent: str, step: Step, program: ast.AgentProgram) -> Even
     elif kind is EventKind.PRECONDITION_FAILED:
         assert step.spec_index is not None
         spec = program.actionspecs[step.spec_index]
+        assert step.term is not None
         text = f"{format_term(step.term)}: pre {{{spec.pre.text}}} does not hold"
     elif kind in (EventKind.BELIEF_ADDED, EventKind.BELIEF_DELETED):
+        assert step.term is not None
         text = format_term(step.term)
     else:  # a goal adopted, dropped or achieved
+        assert step.term is not None
         text = _goal_text(step.term)
-    return Event(kind, agent, text, module, pos, step.bindings, step.term)
+    chosen = step.bindings[0] if kind is not EventKind.RULE_TRIED and step.bindings else {}
+    return Event(kind, agent, text, module, pos, chosen, tuple(step.bindings), step.term,
+                 performed)
 
 
 def percepts_event(agent: str, percepts: Sequence[Term]) -> Event:
@@ -152,16 +179,24 @@ def _fresh_names(term: Term | None) -> Iterable[str]:
             yield from _fresh_names(arg)
 
 
-def readable_text(event: Event) -> str:
-    """The event's text with the fresh variable names of its bindings and term (a message's
-    ``?canMake(_G31,_G32)``, a firing's ``Y=f(_G7)``) shown as ``_``."""
-    names = {name for bindings in event.bindings for value in bindings.values()
+def readable(event: Event) -> Event:
+    """The event with the fresh variable names of its bindings and term (a message's
+    ``?canMake(_G31,_G32)``, a firing's ``Y=f(_G7)``) shown as ``_`` in its text and in its
+    actions."""
+    names = {name for bindings in event.instantiations for value in bindings.values()
              for name in _fresh_names(value)}
     names.update(_fresh_names(event.term))
-    text = event.text
-    for name in sorted(names, key=len, reverse=True):  # _G123 before _G12
-        text = text.replace(name, "_")
-    return text
+    if not names:
+        return event
+    ordered = sorted(names, key=len, reverse=True)  # _G123 before _G12
+
+    def shown(text: str) -> str:
+        for name in ordered:
+            text = text.replace(name, "_")
+        return text
+
+    return replace(event, text=shown(event.text),
+                               actions=tuple(shown(action) for action in event.actions))
 
 
 _PROLOG_VARIABLE = re.compile(r"(?<![\w'])_G?\d+\b")  # _123 or _G123, not in an atom

@@ -4,10 +4,17 @@ closed) and those of the environment and messaging seams. The agent goes on afte
 
 from __future__ import annotations
 
+import os
+import traceback
+from typing import TYPE_CHECKING
+
 from goalagent import ast
 from goalagent.events import ProblemKind
 from goalagent.kb.interpreter_requests import Problem
-from goalagent.kb.terms import Term, format_term
+from goalagent.kb.terms import Struct, Term, format_term
+
+if TYPE_CHECKING:
+    from goalagent.kb.mentalstate import MentalState
 
 
 def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
@@ -51,7 +58,49 @@ def warning_text(problem: Problem, program: ast.AgentProgram) -> str:
     return f"{action.pos}: {action.name} failed: {detail}"
 
 
+DEBUG_VARIABLE = "GOALAGENT_DEBUG"
+"""Set (to anything but empty) to see tracebacks: of an internal error (the command line) and
+of an exception raised in an environment's own Python code (below)."""
+
+
+def cause_traceback(error: BaseException) -> str | None:
+    """With ``GOALAGENT_DEBUG`` set, the traceback of the exception at the root of ``error``
+    (an environment's own code that raised, behind the failure it was reported as), to find
+    the bug in that code; None otherwise, or when nothing is behind ``error``."""
+    if not os.environ.get(DEBUG_VARIABLE):
+        return None
+    root = error
+    while root.__cause__ is not None:
+        root = root.__cause__
+    if root is error:
+        return None
+    return "".join(traceback.format_exception(type(root), root, root.__traceback__)).rstrip()
 def goal_text(facts: Term | None) -> str:
     """A goal's facts as the program would write them (``on(a, b), clear(c)``)."""
     items = facts if isinstance(facts, list) else [facts]
     return ", ".join(format_term(fact) for fact in items)
+
+
+def module_of(program: ast.AgentProgram, goal: ast.PrologText) -> str:
+    """The module whose goals section holds ``goal``."""
+    return next((module.name for module in program.modules
+                 if any(written is goal for written in module.goals)), "init")
+
+
+def goal_origin(program: ast.AgentProgram, ms: MentalState, running: str,
+                facts: list[Term]) -> str:
+    """Where a goal was written, if it is one of the program's goals sections' (else the
+    program's file and the ``running`` module), for a warning about it."""
+    written = facts[0] if len(facts) == 1 else _conjunction(facts)
+    for goal in program.goals:
+        if ms.unify(goal, written) is not None:
+            return f"module {module_of(program, goal)}, goal at {goal.pos}"
+    return f"module {running}, {program.file}"
+
+
+def _conjunction(facts: list[Term]) -> Term:
+    """``(f1, f2, ...)`` of a goal's facts."""
+    term = facts[-1]
+    for fact in reversed(facts[:-1]):
+        term = Struct(",", (fact, term))
+    return term

@@ -36,8 +36,8 @@ def describe(action: ast.Action, bindings: Bindings, term: Term | None = None) -
         args = tuple(instantiate(arg, bindings) for arg in action.args)
         return format_term(Struct(action.name, args))
     values = {name: format_term(value) for name, value in bindings.items()}
-    args = ", ".join(rename_variables(arg.text, values) for arg in action.args)
-    return f"{action.name}({args})"
+    shown = ", ".join(rename_variables(arg.text, values) for arg in action.args)
+    return f"{action.name}({shown})"
 
 
 def describe_firing(rule: RuleInfo, bindings: Bindings, done: int,

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from enum import Enum
 from pathlib import Path
-from typing import Protocol
+from typing import ClassVar, Protocol
 
 from goalagent.eis.exceptions import (
     ActException,
@@ -97,7 +97,7 @@ class AgentListener(Protocol):
 class Environment(EntityRelations):
     """Base of all environments: state machine, entities, agents, percepts, actions, listeners."""
 
-    name: str = "environment"
+    name: ClassVar[str] = "environment"
 
     def __init__(self) -> None:
         super().__init__()

@@ -92,10 +92,10 @@ def _alternatives(hint: object) -> tuple[object, ...]:
     return ()
 
 
-def _describe(hint: object) -> str:
+def describe_hint(hint: object) -> str:
     """Words for what a type hint accepts, used in error messages."""
     if _alternatives(hint):
-        return " or ".join(_describe(alternative) for alternative in _alternatives(hint))
+        return " or ".join(describe_hint(alternative) for alternative in _alternatives(hint))
     if hint is str:
         return "a name or string"
     if hint is int:
@@ -110,7 +110,7 @@ def _describe(hint: object) -> str:
         return "a compound term"
     if hint is list or typing.get_origin(hint) is list:
         args = typing.get_args(hint)
-        return f"a list, each element {_describe(args[0])}" if args else "a list"
+        return f"a list, each element {describe_hint(args[0])}" if args else "a list"
     if isinstance(hint, type) and issubclass(hint, _PARAMETER_CLASSES):
         return f"an {hint.__name__}" if hint.__name__[0] in "AEIOU" else f"a {hint.__name__}"
     return "any term"
@@ -177,8 +177,8 @@ def _convert(param: Parameter, hint: object) -> object:
             try:
                 return [_convert(element, item) for element in param.params]
             except _Mismatch:
-                raise _Mismatch(_describe(hint)) from None
-    raise _Mismatch(_describe(hint))
+                raise _Mismatch(describe_hint(hint)) from None
+    raise _Mismatch(describe_hint(hint))
 
 
 def _to_percept(item: object, env: str) -> Percept:
@@ -208,7 +208,7 @@ class _ActionSpec:
 
     def signature(self) -> str:
         """The action as users see it in messages, e.g. ``move(block: a name or string, ...)``."""
-        shown = ", ".join(f"{pname}: {_describe(hint)}" for pname, hint in self.params)
+        shown = ", ".join(f"{pname}: {describe_hint(hint)}" for pname, hint in self.params)
         return f"{self.name}({shown})"
 
 

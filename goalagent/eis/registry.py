@@ -22,6 +22,7 @@ from typing import TypeVar, overload
 from goalagent.eis.exceptions import ManagementException, NoEnvironmentException
 from goalagent.eis.interface import Environment
 from goalagent.extensions import Extension, installed_extensions
+from goalagent.extras import install_hint
 
 E = TypeVar("E", bound=type[Environment])
 
@@ -152,7 +153,9 @@ def _import_path(spec: str) -> type[Environment]:
     try:
         module = _import_here_too(module_name)
     except ImportError as error:
+        hint = install_hint(error.name) if isinstance(error, ModuleNotFoundError) else None
         raise NoEnvironmentException(
+            f"cannot load environment '{spec}': it {hint}" if hint else
             f"cannot load environment '{spec}': {error}"
         ) from error
     target: object = module

@@ -5,6 +5,8 @@ base of :class:`~goalagent.eis.interface.Environment`.
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from goalagent.eis.exceptions import (
     AgentException,
     EntityException,
@@ -26,7 +28,7 @@ class EntityRelations:
     """Entities (name -> type, in the order they appeared), agents (name -> associated
     entities, in registration order) and the listeners of both."""
 
-    name: str
+    name: ClassVar[str]  # the environment's name, for messages
 
     def __init__(self) -> None:
         self._entities: dict[str, str] = {}

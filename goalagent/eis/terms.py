@@ -161,6 +161,9 @@ class _Named:
     """
 
     __slots__ = ("name", "_params", "_term")
+    name: str
+    _params: tuple[Parameter, ...] | None  # None until read, for one made from a term
+    _term: Term | None  # None until asked for, for one made from parameters
 
     def __init__(self, name: str, params: Iterable[Parameter] = ()) -> None:
         object.__setattr__(self, "name", name)
@@ -221,6 +224,7 @@ class _Named:
         """The kb term: an atom when there are no parameters, else a compound."""
         term = self._term
         if term is None:
+            assert self._params is not None  # (one of the two is always there)
             term = _named_term(self.name, [to_term(param) for param in self._params])
             object.__setattr__(self, "_term", term)
         return term
@@ -326,7 +330,7 @@ def to_parameter(value: object) -> Parameter:
     raise _not_shorthand(value)
 
 
-def to_python(param: Parameter) -> object:
+def to_python(param: Parameter) -> Term:
     """A plain Python value for a parameter: atoms as ``Atom``, functions as ``Struct``."""
     if isinstance(param, TruthValue):
         return param.value

@@ -42,7 +42,7 @@ def _event_json(event: Event) -> dict[str, Any]:
     return {"kind": event.kind.value, "text": event.text,
             "pos": str(event.pos) if event.pos is not None else "",
             "bindings": [{name: show_term(value) for name, value in b.items()}
-                         for b in event.bindings]}
+                         for b in event.instantiations]}
 
 
 def _panel_json(view: PanelView) -> dict[str, Any]:
@@ -73,6 +73,7 @@ class Inspector:
     def attach(self, debugger: Debugger) -> None:
         """Observe ``debugger``'s run and serve the page."""
         self._debugger = debugger
+        debugger.sandboxed = True  # a page's queries inspect minds, never the machine
         debugger.on_event = self._event
         debugger.on_cycle = self._cycle_ended
         self.port = self.server.start()
@@ -128,7 +129,7 @@ class Inspector:
     # ------------------------------------------------------------------ observing
     def _event(self, event: Event) -> None:
         if event.kind not in _SHOWN or (event.kind is EventKind.RULE_TRIED
-                                        and not event.bindings):
+                                        and not event.instantiations):
             return
         events = self._events.setdefault(event.agent, [])
         if len(events) < EVENTS_KEPT:

@@ -29,7 +29,7 @@ from starlette.websockets import WebSocketClose
 MAX_MESSAGE = 64 * 1024  # characters of one message a page may send (beyond: an error)
 MAX_FRAME = 1024 * 1024  # bytes of one WebSocket frame read at all (beyond: closed, 1009)
 MAX_SOCKETS = 16  # browsers connected at once
-BURST, RATE = 100, 30.0  # messages a socket may send at once, then per second
+BURST, RATE = 100, 30.0  # messages a socket (and all together) may send at once, then a second
 _LOCAL = ("127.0.0.1", "localhost", "::1")
 _WILDCARD = ("0.0.0.0", "::", "")
 # The fields a message may have, and their types (op is one of OPS).
@@ -112,13 +112,13 @@ class Gate:
 
 
 class Budget:
-    """How many messages a socket may send now (a token bucket: ``BURST`` at once, refilled
-    at ``RATE`` a second); it warns once per stretch of messages over the budget."""
+    """How many messages may be sent now (a token bucket: ``BURST`` at once, refilled at
+    ``RATE`` a second); over budget, it says so at most once a second."""
 
     def __init__(self) -> None:
         self._left = float(BURST)
         self._at = time.monotonic()
-        self._warned = False
+        self._warned_at = float("-inf")
 
     def take(self) -> bool:
         """One message's worth; False when over budget."""
@@ -127,15 +127,16 @@ class Budget:
         self._at = now
         if self._left >= 1:
             self._left -= 1
-            self._warned = False
             return True
         return False
 
     def warn(self) -> bool:
-        """True the first time in a stretch over budget (answer that one only)."""
-        first = not self._warned
-        self._warned = True
-        return first
+        """True when no warning was given in the last second (answer that one only)."""
+        now = time.monotonic()
+        if now - self._warned_at < 1:
+            return False
+        self._warned_at = now
+        return True
 
 
 def parse_message(frame: dict[str, Any]) -> dict[str, Any] | str:

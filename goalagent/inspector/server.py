@@ -37,7 +37,7 @@ from goalagent.inspector.gate import (
 )
 
 HISTORY_LIMIT = 5000  # cycles kept for scrolling back (oldest dropped first)
-COMMANDS_WAITING = 1000  # commands queued for the run thread at most (beyond: an error)
+COMMANDS_WAITING = 200  # commands queued for the run thread at most (beyond: an error)
 # What the page is served with: never framed by another page, never cached, no referrer.
 _PAGE_HEADERS = {"Content-Security-Policy": "frame-ancestors 'none'",
                  "X-Frame-Options": "DENY", "Cache-Control": "no-store",
@@ -63,6 +63,9 @@ class InspectorServer:
         self._history: deque[dict[str, Any]] = deque(maxlen=HISTORY_LIMIT)
         self._lock = threading.Lock()
         self._sockets: set[WebSocket] = set()
+        # the run's own budget beside each socket's: the run thread answers one command at
+        # a time, and 15 pages each sending their burst of queries held it for 35 s
+        self._budget = Budget()
         self._loop: asyncio.AbstractEventLoop | None = None
         self._page = files("goalagent.inspector").joinpath("page.html").read_text("utf-8")
         app = Starlette(routes=[Route("/", self._index), WebSocketRoute("/ws", self._socket)])
@@ -134,7 +137,7 @@ class InspectorServer:
                 frame = await socket.receive()
                 if frame["type"] == "websocket.disconnect":
                     break
-                if not budget.take():
+                if not (budget.take() and self._budget.take()):
                     if budget.warn():
                         await self._send(socket, _error(f"too many messages: at most "
                                                         f"{RATE:g} a second"))

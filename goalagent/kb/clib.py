@@ -33,12 +33,14 @@ from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_int64, c_size_t,
 from types import ModuleType
 
 from goalagent.kb.errors import KBError
+from goalagent.swi import SWIPrologMissing, install_line, too_old, version_text
 
 SWI_KEEPS = frozenset({signal.SIGSEGV, signal.SIGUSR2})
 """The signals whose handlers SWI installs and keeps (see the module docstring)."""
 _SIGACTION_BYTES = 512  # more than any libc's struct sigaction (glibc x86-64: 152)
 _HANDLER_BYTES = ctypes.sizeof(c_void_p)  # the handler is the struct's first member
 _swi_argv: ctypes.Array | None = None  # SWI keeps pointers into its argv: kept alive here
+PL_QUERY_VERSION = 10  # PL_query's question for the version (SWI-Prolog.h): 90004 for 9.0.4
 
 
 def _dispositions(libc: ctypes.CDLL) -> dict[int, ctypes.Array]:
@@ -84,7 +86,12 @@ def _load_pyswip() -> ModuleType:
     package = importlib.util.module_from_spec(spec)
     sys.modules["pyswip"] = package  # its __init__ not run yet: it would start SWI
     try:
-        core = importlib.import_module("pyswip.core")  # finds and loads libswipl only
+        try:
+            core = importlib.import_module("pyswip.core")  # finds and loads libswipl only
+        except (ImportError, OSError) as error:  # none found, or one that does not load
+            reason = " ".join(str(error).split())
+            raise SWIPrologMissing(install_line(f"none ({reason})")) from None
+        _check_version(core._lib._name)
         _initialise_swi(core)
         spec.loader.exec_module(package)
     except BaseException:
@@ -92,6 +99,17 @@ def _load_pyswip() -> ModuleType:
             del sys.modules[name]
         raise
     return core
+
+
+def _check_version(library: str) -> None:
+    """Refuse a libswipl older than goalagent supports (``SWIPrologMissing``), before it
+    is started."""
+    query = ctypes.CDLL(library).PL_query
+    query.restype = ctypes.c_int64
+    query.argtypes = (c_int,)
+    number = query(PL_QUERY_VERSION)
+    if too_old(number):
+        raise SWIPrologMissing(install_line(version_text(number)))
 
 
 _pyswip_core = _load_pyswip()

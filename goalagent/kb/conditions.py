@@ -62,11 +62,19 @@ class Conditions(PrologModules):
         self._compiled: dict[str, CompiledCondition] = {}
         super().__init__(*args, **kwargs)
 
-    def compile(self, condition: ast.Condition, *, trusted: bool = False) -> CompiledCondition:
+    def compile(self, condition: ast.Condition, *, trusted: bool = False,
+                sandboxed: bool = False) -> CompiledCondition:
         """Compiles a condition once (cached per body text) into a clause of this agent;
         an agent's condition is confined (confine.pl: checked, dynamic calls guarded), a
-        ``trusted`` one (the runtime's own queries: the API, reports) is not."""
-        text, key = _key(condition, trusted)
+        ``trusted`` one (the runtime's own queries: the API, reports) is not, a
+        ``sandboxed`` one (the mind inspector's) is confined in the sandbox."""
+        text = _text(condition)
+        if sandboxed:
+            key, mode = f"sandbox\0{text}", Atom("sandbox")
+        elif trusted:
+            key, mode = f"trusted\0{text}", FALSE
+        else:
+            key, mode = text, TRUE
         compiled = self._compiled.get(key)
         if compiled is not None:
             return compiled
@@ -75,8 +83,7 @@ class Conditions(PrologModules):
             name = self._engine.unique_name("$ga_c")
             _condition_names[key] = name
         try:
-            names = self._call("compile", self._b, self._g, Atom(name), text,
-                               FALSE if trusted else TRUE, None)[5]
+            names = self._call("compile", self._b, self._g, Atom(name), text, mode, None)[5]
         except PrologRuntimeError as error:
             raise _condition_error(self._engine, condition, error) from None
         assert isinstance(names, list)
@@ -90,7 +97,7 @@ class Conditions(PrologModules):
         program loaded alike (no directives, the same limits), so only the module names
         differ (clone_conditions/6 in mentalstate_load.pl). False, and nothing copied, when
         ``like`` is closed, lacks one of them, or one names something of its own."""
-        originals = [like._compiled.get(_key(condition, False)[1]) for condition in conditions]
+        originals = [like._compiled.get(_text(condition)) for condition in conditions]
         if like.closed or None in originals:
             return False
         (from_b, from_g), (to_b, to_g) = like.modules, self.modules
@@ -131,14 +138,16 @@ class Conditions(PrologModules):
         return [dict(zip(names, row, strict=True)) for row in rows]
 
     def query(self, op: str, text: str, bindings: Mapping[str, Term] | None = None, *,
-              limit: int | None = None, trusted: bool = True) -> list[dict[str, Term]]:
+              limit: int | None = None, trusted: bool = True,
+              sandboxed: bool = False) -> list[dict[str, Term]]:
         """Answers of ``op(text)``, op bel/goal/a-goal/goal-a/percept/true (see compile)."""
         if op not in _WRAPPERS and op != "true":
             raise KBError(f"unknown mental literal `{op}`: use one of "
                           f"{', '.join([*_WRAPPERS, 'true'])}")
         query = ast.PrologText(text, _QUERY_POS) if op != "true" else None
         literal = ast.MentalLiteral(op, query, _QUERY_POS)  # type: ignore[arg-type]
-        return self.solutions(self.compile((literal,), trusted=trusted), bindings, limit=limit)
+        compiled = self.compile((literal,), trusted=trusted, sandboxed=sandboxed)
+        return self.solutions(compiled, bindings, limit=limit)
 
     def instantiate(self, text: ast.PrologText | str, bindings: Mapping[str, Term]) -> Term:
         """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
@@ -162,10 +171,9 @@ class Conditions(PrologModules):
         super().close()
 
 
-def _key(condition: ast.Condition, trusted: bool) -> tuple[str, str]:
-    """A condition's Prolog text and the key it is compiled under (once per agent)."""
-    text = ", ".join(_literal_text(literal) for literal in condition) or "true"
-    return text, (f"trusted\0{text}" if trusted else text)
+def _text(condition: ast.Condition) -> str:
+    """A condition's Prolog text (the key an agent's own condition is compiled under)."""
+    return ", ".join(_literal_text(literal) for literal in condition) or "true"
 
 
 def _literal_text(literal: ast.Literal) -> str:

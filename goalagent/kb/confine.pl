@@ -130,6 +130,8 @@ prepare(G, Ctx, Prepared) :-
     ->  refuse("~q/~w: this lambda form (library(yall)) cannot be checked; write Params>>Body or a helper predicate", [Name, Arity])
     ;   \+ library_goal(G, Ctx)
     ->  library_refused(G, Ctx)
+    ;   agent_counter(G, Ctx, Counter)        % gensym/2's counters: each agent's own
+    ->  Prepared = Counter
     ;   agent_key(G, Ctx, G1),
         prepare_call(G1, Ctx, Prepared)
     ).
@@ -582,6 +584,14 @@ unqualified(_).
 prepare_condition(Cond0, B, Cond) :-
     context(B, Ctx),
     prepare_literals(Cond0, Ctx, Cond, 0, _).
+
+%!  prepare_sandboxed_condition(+Cond0, +B, -Cond) is det.
+%   As prepare_condition/3, and in the sandbox whether or not the agent is: a condition
+%   written in the mind inspector's page inspects a mind and changes nothing outside it
+%   (the agent's own predicates it calls run as the agent loaded them).
+prepare_sandboxed_condition(Cond0, B, Cond) :-
+    load_sandbox,
+    prepare_literals(Cond0, c(B, true, []), Cond, 0, _).
 
 prepare_literals((A0, B0), Ctx, (A, B), I0, I) :- !,
     prepare_literals(A0, Ctx, A, I0, I1),

@@ -1,6 +1,8 @@
-/*  Each agent's own global variables, flags and recorded keys (included into ga_confine).
-    SWI-Prolog has one table of each for the whole process: without this, one agent's
-    nb_setval(k, V) was every agent's nb_getval(k, V), a channel between agents.
+/*  Each agent's own global variables, flags, recorded keys and gensym/2 counters
+    (included into ga_confine). SWI-Prolog has one table of each for the whole process:
+    without this, one agent's nb_setval(k, V) was every agent's nb_getval(k, V), and one
+    agent's gensym(k, X) or reset_gensym/0 changed the names every other agent made, a
+    channel between agents.
 */
 
 %   agent_key(+G0, +Ctx, -G): global variables, flags and recorded keys are the process's;
@@ -62,6 +64,32 @@ note_key(M, Family, Key) :-
     ->  true
     ;   assertz(M:'$ga_key'(Family, Key))
     ).
+
+%   agent_counter(+G, +Ctx, -Prepared): library(gensym) keeps its counters in the process's
+%   flags ('$gs_'Base); an agent's gensym/2 and reset_gensym/0,1 count in flags of its own
+%   (noted as its keys are).
+agent_counter(gensym(Base, Atom), c(M, _, _), ga_confine:agent_gensym(M, Base, Atom)).
+agent_counter(reset_gensym(Base), c(M, _, _), ga_confine:agent_reset_gensym(M, Base)).
+agent_counter(reset_gensym, c(M, _, _), ga_confine:agent_reset_gensym(M)).
+
+agent_gensym(M, Base, Atom) :-
+    gensym_key(M, Base, Key),
+    flag(Key, Old, Old + 1),
+    note_key(M, flag, Key),
+    New is Old + 1,
+    atom_concat(Base, New, Atom).
+
+agent_reset_gensym(M, Base) :-
+    gensym_key(M, Base, Key),
+    (   M:'$ga_key'(flag, Key) -> flag(Key, _, 0) ; true ).
+
+agent_reset_gensym(M) :-
+    format(atom(Prefix), '~w:$gs_', [M]),
+    forall(( M:'$ga_key'(flag, Key), sub_atom(Key, 0, _, _, Prefix) ), flag(Key, _, 0)).
+
+gensym_key(M, Base, Key) :-
+    must_be(atomic, Base),
+    format(atom(Key), '~w:$gs_~w', [M, Base]).
 
 %!  forget_keys(+M) is det.
 %   Frees the global variables and recorded keys of the agent of module M (its flags are

@@ -28,6 +28,8 @@ class FactFileError(KBError):
     """A clause of a file of facts that is refused (or that an agent cannot take), at
     ``pos``; ``reason`` says why."""
 
+    pos: Pos  # (always known, unlike other KBErrors')
+
     def __init__(self, pos: Pos, reason: str) -> None:
         super().__init__(f"{pos}: {reason}", pos)
         self.reason = reason

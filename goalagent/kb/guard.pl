@@ -379,8 +379,8 @@ limit_message(beliefs(N, Max), Message) :- !,
     format(string(Message), "~D beliefs and goals, more than ~D (--max-beliefs)", [N, Max]).
 limit_message(memory(held(Bytes), Max), Message) :- !,
     MB is -(-Bytes // 1048576), MaxMB is Max // 1048576,
-    format(string(Message), "holds ~D MB in its clauses and their atoms, more than \c
-                             --max-memory ~D MB", [MB, MaxMB]).
+    format(string(Message), "holds ~D MB in its clauses, records and global variables, \c
+                             more than --max-memory ~D MB", [MB, MaxMB]).
 limit_message(memory(call(Bytes), Max), Message) :- !,
     MB is -(-Bytes // 1048576), MaxMB is Max // 1048576,
     format(string(Message), "took ~D MB outside Prolog's stacks in one call, more than \c

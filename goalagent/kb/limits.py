@@ -87,8 +87,8 @@ def limit_text(limit: Term) -> str:
         taken = -(-int(value.args[0]) // 2**20)  # type: ignore[arg-type]  # (rounded up)
         most = int(limit.args[1]) // 2**20  # type: ignore[arg-type]
         if value.name == "held":
-            return (f"{taken:,} MB in its clauses and their atoms, more than --max-memory "
-                    f"{most:,} MB")
+            return (f"{taken:,} MB in its clauses, records and global variables, more than "
+                    f"--max-memory {most:,} MB")
         return (f"{taken:,} MB outside Prolog's stacks in one call, more than --max-memory "
                 f"{most:,} MB")
     return format_term(limit)

@@ -14,9 +14,12 @@
 
     An agent's held bytes: SWI's own size of every predicate of its two modules (clauses,
     their code and indexes: knowledge, beliefs, goals, percepts, mailbox, compiled
-    conditions) and the text of the atoms those clauses hold (an atom costs its text once
-    in the process, but an agent that keeps a 50 MB atom in each of its facts is charged
-    for each). The atoms are only walked when the process's atoms could push it over.
+    conditions), the terms it keeps under its own global variables and recorded keys
+    (confine_keys.pl: nb_setval/2, recordz/2; a 2 MB list kept under a new key each cycle
+    grew the process without end), and the text of the atoms those clauses hold (an atom
+    costs its text once in the process, but an agent that keeps a 50 MB atom in each of
+    its facts is charged for each). The atoms are only walked when the process's atoms
+    could push it over.
 */
 :- module(ga_memory, []).
 
@@ -55,7 +58,8 @@ held(B, Max, AtomSpace, Bytes) :-
     B:'$ga_gm'(G),
     module_bytes(B, InB),
     module_bytes(G, InG),
-    Clauses is InB + InG,
+    keys_bytes(B, InKeys),
+    Clauses is InB + InG + InKeys,
     (   Clauses + AtomSpace =< Max
     ->  Bytes = Clauses
     ;   Clauses > Max
@@ -70,6 +74,20 @@ module_bytes(M, Bytes) :-
                   ( own_predicate(M, Head),
                     predicate_property(M:Head, size(S)) ),
                   Bytes).
+
+%   keys_bytes(+B, -Bytes): the terms under the agent's own global variables and recorded
+%   keys, a word (8 bytes) per cell as SWI-Prolog copies them (term_size/2).
+keys_bytes(B, Bytes) :-
+    aggregate_all(sum(Cells), ( catch(B:'$ga_key'(Family, Key), _, fail),
+                                key_cells(Family, Key, Cells) ), Total),
+    Bytes is Total * 8.
+
+key_cells(global, Key, Cells) :-
+    nb_current(Key, Value),
+    term_size(Value, Cells).
+key_cells(recorded, Key, Cells) :-
+    recorded(Key, Value),
+    term_size(Value, Cells).
 
 own_predicate(M, Head) :-
     current_predicate(_, M:Head),

@@ -304,7 +304,8 @@ forwarder(G, Head) :-
 %   variable names in order of first appearance (= the arguments). Each goal literal becomes
 %   an auxiliary clause Name_I in G, called through the module name stored in B (a clause of
 %   one temporary module may not name another one). Confined = true (the agent's own
-%   conditions): its queries are prepared by confine.pl first.
+%   conditions): its queries are prepared by confine.pl first; sandbox (what the mind
+%   inspector's page writes): prepared so, and in the sandbox whatever the agent's is.
 
 compile(B, G, Name, Text, Confined, Names) :-
     read_text(Text, B, Cond0, Bindings),
@@ -312,6 +313,8 @@ compile(B, G, Name, Text, Confined, Names) :-
     maplist(arg(2), Bindings, Vars),
     (   Confined == true
     ->  ga_confine:prepare_condition(Cond0, B, Cond)
+    ;   Confined == sandbox
+    ->  ga_confine:prepare_sandboxed_condition(Cond0, B, Cond)
     ;   Cond = Cond0                    % the runtime's own query (API, reports)
     ),
     translate(Cond, Name, Body, 0, _, Auxes, []),

@@ -466,9 +466,12 @@ drop_action(B, G, Listen, F) :-
 
 %   A user action: the first actionspec whose head unifies and whose precondition holds
 %   (see declare_actions/2); its precondition's bindings do not flow into the rule. It
-%   must then be closed. With an environment (and not @int) Python sends it there and the
-%   postcondition follows only if it was done; a failing postcondition is then a warning
-%   (the environment did act). Otherwise the postcondition alone is the action.
+%   must then be closed. With an environment (and not @int) Python sends it there; as in
+%   GOAL's runtime (RunState.doPerformAction), an action the environment refuses or fails
+%   is a warning and still counts as performed: its postcondition follows and the rule's
+%   next actions run (an action the environment cannot take at all stops the agent, in
+%   Python). A failing postcondition is then a warning (the environment was asked).
+%   Otherwise the postcondition alone is the action.
 user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     (   ground(Action0) -> Action = Action0 ; copy_term(Action0, Action) ),
     (   B:'$ga_pre'(Action, Post, _, Internal)
@@ -479,12 +482,9 @@ user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
     (   ground(Action) -> true ; throw(ga_open(Action)) ),
     (   Internal == false,
         Env == true
-    ->  '$ga_py'(act(Firing, K, Action), Reply),
-        (   Reply == done
-        ->  catch(update(B, G, insert, Post, _, _, _), E,
-                  ( stops_action(E) -> throw(E) ; problem(action(Firing, K, E)) ))
-        ;   true
-        )
+    ->  '$ga_py'(act(Firing, K, Action), _),
+        catch(update(B, G, insert, Post, _, _, _), E,
+              ( stops_action(E) -> throw(E) ; problem(action(Firing, K, E)) ))
     ;   update(B, G, insert, Post, _, _, _)
     ).
 

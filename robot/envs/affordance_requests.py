@@ -2,8 +2,15 @@
 
 ``AffordanceRequests`` carries out a checked request and returns the percepts it yields:
 random and active learning of one pair (``behaviours.learning``), transfer learning
-(``behaviours.part_learning``: Algorithm 6 on the whole can when a known object is relevant,
-else Algorithm 4 a pair at a time, as the agent asks), and the verified use of an affordance.
+(``behaviours.part_learning``: Algorithm 6 when a known object is relevant, then Algorithm 4
+a pair at a time, as the agent asks), and the verified use of an affordance. Asked about a
+pair, Algorithm 6 runs up to line 23 only: the source's functional pair on the can's
+look-alike part and one try of every other action there. The other parts are the agent's to
+learn a pair at a time, in its own order (rule 6.4): Algorithm 6's one-try checks of the
+other look-alike parts (a body, say) and its fixed-order Algorithm 4 on the novel ones (a
+pedal) made it cost more than the agent learning randomly on cans whose functional part no
+known object has (issue 32). The whole-object form ``learn(Eff, transfer)`` is Algorithm 6
+in full.
 It also keeps the livelock guard: a request already answered since the world last changed
 other than by learning would get the same answer, so it is not run again and the percept
 ``learn_repeated(...)`` (the request's own arguments) says so instead (issue 32).
@@ -17,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from behaviours.learners.known_objects import KnownObjectDatabase
+from behaviours.learners.known_objects import KnownObject, KnownObjectDatabase
 from behaviours.learning import AffordanceBehaviours, AffordanceEvidence, LearningModeUnavailable
 from behaviours.part_learning import PairEpisode, PairReport, learn_by_transfer, relevant_sources
 from behaviours.perception import Perception
@@ -48,7 +55,7 @@ class AffordanceRequests:
         self._transfer_rng = np.random.RandomState(seed)
         self._answered: set[tuple[str, ...]] = set()
         self._pairs: PairEpisode | None = None
-        self._transferred = False
+        self._transferred: KnownObject | None = None
         self._told: set[str] = set()
 
     def world_changed(self) -> None:
@@ -68,7 +75,9 @@ class AffordanceRequests:
             self._once(asked, events,
                        lambda: self._learn_pair_by_transfer(part, action_type, effect))
         else:
-            self._once((effect, mode), events, lambda: self._learn_by_transfer(effect))
+            whole = len(asked) == 2
+            self._once((effect, mode), events,
+                       lambda: self._learn_by_transfer(effect, other_parts=whole))
         return events
 
     def apply(self, part: str, action_type: str) -> list[PerceptLike]:
@@ -107,13 +116,15 @@ class AffordanceRequests:
 
     def _pair_by_pair(self) -> bool:
         """Whether transfer goes on a pair at a time on this can: once Algorithm 6 has had
-        its turn (what it found is the agent's; asked again, it would only transfer from
-        this can itself), and from the start when no known object is relevant to the can
-        (Algorithm 5 finds no source, so Algorithm 6 would be Algorithm 4 on every pair)."""
-        if self._pairs is None and (self._transferred or not relevant_sources(
+        its turn (what it found is the agent's, and the can's entry keeps it; asked again,
+        it would only transfer from this can itself), and from the start when no known
+        object is relevant to the can (Algorithm 5 finds no source, so Algorithm 6 would be
+        Algorithm 4 on every pair)."""
+        if self._pairs is None and (self._transferred is not None or not relevant_sources(
                 self.world, self.perception, self.objects, delta=self.delta)):
             self._pairs = PairEpisode(self.world, self.perception, self.objects,
-                                      delta=self.delta, random_state=self._transfer_rng)
+                                      delta=self.delta, random_state=self._transfer_rng,
+                                      prior=self._transferred)
         return self._pairs is not None
 
     def _learn_pair_by_transfer(self, part: str, action_type: str,
@@ -124,13 +135,15 @@ class AffordanceRequests:
         self._tell_where("known objects", self.objects.path)
         return self._report_pairs([report])
 
-    def _learn_by_transfer(self, effect: str) -> list[PerceptLike]:
-        """Algorithm 6 on this can; afford/model percepts for every pair tried (§5.5.4), and
+    def _learn_by_transfer(self, effect: str, other_parts: bool) -> list[PerceptLike]:
+        """Algorithm 6 on this can (past the source's functional part only if
+        ``other_parts``); afford/model percepts for every pair tried (§5.5.4), and
         ``transferred(Eff, Source)`` (``none``: no known object was relevant, so it was
         Algorithm 4 on every pair)."""
         result = learn_by_transfer(self.world, self.perception, self.objects, delta=self.delta,
-                                   effect_name=effect, random_state=self._transfer_rng)
-        self._transferred = True
+                                   effect_name=effect, random_state=self._transfer_rng,
+                                   other_parts=other_parts)
+        self._transferred = result.known
         self._tell_where("known objects", self.objects.path)
         source = result.learner.source_
         return [*self._report_pairs(result.reports),

@@ -1,7 +1,28 @@
 """Attack programs from the red team of 2026-11-23 evening (issue 14): each hole they found,
 as the smallest program that showed it. Runaway programs run in a child process with a
 timeout (one regression would otherwise hang the suite: SWI-Prolog cannot interrupt a
-cleanup handler while an exception unwinds)."""
+cleanup handler while an exception unwinds).
+
+Issue 24's failures (its "Why", items 1-9) and where each is tested (tests/attacks/ unless
+said):
+1. the inspector: tests/goalagent/inspector/test_inspector_gate.py (Host, Origin, token;
+   binary, deep, long and malformed messages; 20,000 breakpoints; many pages flooding;
+   queries confined and always sandboxed) and test_inspector.py there (a page of another
+   origin in Chromium, DNS rebinding);
+2. phrase/2,3, call_dcg/3 and {}: here (grammar bodies) and
+   tests/goalagent/kb/test_confinement.py;
+3. check and test running agent code: tests/goalagent/test_check_and_test_confined.py;
+4. memory outside Prolog's stacks: test_attacks_limits.py (memory);
+5. limits that ran over (~d of 100,000,000 digits, sig_atomic, prolog_alert_signal, tab,
+   runaway initial goals and goal checks, a sleeping test condition): test_attacks_limits.py,
+   here (process-wide built-ins) and test_check_and_test_confined.py;
+6. process-wide built-ins without the sandbox, shared global variables and flags: here;
+7. one agent's deep fact stopping every save: test_attacks_limits.py (saves);
+8. can files and the object database: test_attacks_io.py;
+9. the smaller items (2 MB one-line program, agentfiles with ..\\.., --port 70000, --trace-file
+   /dev/full, SIGHUP, SIGTERM while starting, a save path that is a link):
+   test_attacks_cli.py.
+"""
 
 from __future__ import annotations
 
@@ -309,14 +330,19 @@ def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(tmp_path: Path):
 
 
 def test_global_variables_flags_and_records_are_each_agent_s_own():
-    # agents read each other's global variables and flags (nb_getval, flag/3): a channel
+    # agents read each other's global variables and flags (nb_getval, flag/3): a channel;
+    # library(gensym) counts in the process's flags, so one agent's gensym/2 and
+    # reset_gensym/0 changed the names another made (attack round of 2026-11-26)
     writer = ("main module [exit=always] { program { if bel(nb_setval(k, secret), "
-              "flag(f, _, 42), recordz(r(1), secret), set_flag(g, 7)) then print(x). } }")
+              "flag(f, _, 42), recordz(r(1), secret), set_flag(g, 7), gensym(n, _), "
+              "gensym(n, _), gensym(m, _)) then print(x). } }")
     reader = """main module [exit=always] { program [order=linearall] {
         if bel(catch(nb_getval(k, V), _, V = none)) then insert(k(V)).
         if bel(flag(f, F, F), get_flag(g, G)) then insert(f(F, G)).
         if bel(findall(R, recorded(r(2), R), Rs)) then insert(r(Rs)).
         if bel(nb_setval(k, mine), nb_getval(k, M)) then insert(own(M)).
+        if bel(gensym(n, N1), gensym(n, N2), reset_gensym(n), gensym(n, N3), gensym(m, M1),
+               reset_gensym, gensym(m, M2)) then insert(names([N1, N2, N3, M1, M2])).
     } }"""
     mas = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
     try:
@@ -325,6 +351,13 @@ def test_global_variables_flags_and_records_are_each_agent_s_own():
         mas.run(max_cycles=1)
         assert reading.query("bel", "k(V), f(F, G), r(R), own(M)") == [
             {"V": Atom("none"), "F": 0, "G": 0, "R": [], "M": Atom("mine")}]
+        assert reading.query("bel", "names(Ns)") == [
+            {"Ns": [Atom("n1"), Atom("n2"), Atom("n1"), Atom("m1"), Atom("m1")]}]
+        writer_again = mas.launch("writer2", parse_agent(
+            "main module [exit=always] { program { if bel(gensym(n, N)) then insert(n(N)). "
+            "} }", "w2.goal"))
+        mas.run(max_cycles=1)
+        assert writer_again.query("bel", "n(N)") == [{"N": Atom("n1")}]
     finally:
         mas.close()
     engine = get_engine()  # and freed with their agents
@@ -347,3 +380,21 @@ def test_an_answer_with_many_variables_converts_in_linear_time():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             timeout=120, cwd=Path(__file__).resolve().parents[2])
     assert result.stdout.strip() == "40000", result.stderr
+
+
+@pytest.mark.parametrize("sandbox", [False, True])
+def test_a_sandboxed_agent_s_print_cannot_drive_the_terminal(sandbox: bool):
+    # attack round of 2026-11-26: print('\e]0;owned\a\e[2J') set the terminal's title and
+    # cleared it from a sandboxed agent; without the sandbox print/1 is the program's output
+    text = ("main module [exit=always] { program { if true then "
+            "print('\\e]0;owned\\a\\e[2Jdone'). } }")
+    output = io.StringIO()
+    agent = Agent(parse_agent(text, "p.goal"), limits=Limits(sandbox=sandbox), output=output)
+    try:
+        agent.run(max_cycles=1)
+    finally:
+        agent.close()
+    if sandbox:
+        assert output.getvalue() == "\\x1b]0;owned\\x07\\x1b[2Jdone\n"
+    else:
+        assert output.getvalue() == "\x1b]0;owned\x07\x1b[2Jdone\n"

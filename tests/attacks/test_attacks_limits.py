@@ -149,15 +149,22 @@ MEMORY = ("--max-memory", "64", "--max-cycles", "300")
      "took {} MB outside Prolog's stacks in one call, more than --max-memory 64 MB"),
     # an atom doubled each cycle, each kept in a fact
     ("if bel(a(A), atom_concat(A, A, B)) then delete(a(A)) + insert(a(B)) + insert(kept(A)).",
-     "holds {} MB in its clauses and their atoms, more than --max-memory 64 MB"),
+     "holds {} MB in its clauses, records and global variables, more than --max-memory 64 MB"),
     # a 200,000-element fact each cycle (2,000,000 ended the process after 76 cycles, and
     # --max-beliefs, which counts clauses, never saw it)
     ("if bel(n(N), M is N + 1, numlist(1, 200000, L)) then delete(n(N)) + insert(n(M)) + "
      "insert(big(M, L)).",
-     "holds {} MB in its clauses and their atoms, more than --max-memory 64 MB"),
+     "holds {} MB in its clauses, records and global variables, more than --max-memory 64 MB"),
     # facts asserted in a loop inside one call
     ("if bel(numlist(1, 100000, L), forall(between(1, 1000, I), assertz(big(I, L)))) "
-     "then print(never).", "holds {} MB in its clauses and their atoms"),
+     "then print(never).", "holds {} MB in its clauses, records and global variables"),
+    # a list kept under a record or a global variable each cycle (attack round of
+    # 2026-11-26: they were not counted, and the process grew without end)
+    ("if bel(n(N), M is N + 1, numlist(1, 300000, L), recordz(k, L)) then delete(n(N)) + "
+     "insert(n(M)).", "holds {} MB in its clauses, records and global variables"),
+    ("if bel(n(N), M is N + 1, numlist(1, 300000, L), (nb_current(k, Old) -> true ; "
+     "Old = []), nb_setval(k, [L|Old])) then delete(n(N)) + insert(n(M)).",
+     "holds {} MB in its clauses, records and global variables"),
     # text written to a string, never stored
     ("if bel(length(C, 100000), maplist(=(0'x), C), atom_codes(A, C), with_output_to("
      "string(S), forall(between(1, 100000, _), write(A))), string_length(S, N)) then print(N).",

@@ -97,12 +97,14 @@ def test_the_trace_shows_every_step() -> None:
         system.run(10)
     finally:
         system.close()
-    tried = next(e for e in events if e.kind is EventKind.RULE_TRIED and len(e.bindings) == 2)
+    tried = next(e for e in events if e.kind is EventKind.RULE_TRIED and len(e.instantiations) == 2)
     assert tried.pos is not None and tried.pos.line == 23 and tried.module == "main"
-    assert tried.bindings == ({"Task": Atom("dishes")}, {"Task": Atom("laundry")})
+    assert tried.instantiations == ({"Task": Atom("dishes")}, {"Task": Atom("laundry")})
+    assert tried.bindings == {}  # a tried rule has no one binding: see instantiations
     assert "[Task=dishes] [Task=laundry]" in tried.text
     fired = [e for e in events if e.kind is EventKind.RULE_FIRED]
-    assert fired[0].bindings == ({"Task": Atom("ironing")},)
+    assert fired[0].bindings == {"Task": Atom("ironing")}
+    assert fired[0].instantiations == ({"Task": Atom("ironing")},)
     assert fired[0].text.endswith("-> drop(done(ironing)) + insert(skipped(ironing))")
     kinds = [e.kind for e in events]
     for kind in (EventKind.GOAL_DROPPED, EventKind.BELIEF_ADDED, EventKind.GOAL_ACHIEVED,

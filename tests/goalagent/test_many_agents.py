@@ -1,14 +1,12 @@
 """What launching many agents of one program shares or puts off (issue 29): agents copy
 the conditions an earlier one compiled (clone_conditions/6) instead of reading and
 confining each text again, and a copy behaves exactly as the agent's own compile would (it
-reads the agent's own beliefs and keys); an agent's random generator is made when first
-drawn from, seeded as it was at launch; Prolog's generator is seeded before anything
+reads the agent's own beliefs and keys); Prolog's generator is seeded before anything
 draws, as if each agent had seeded it when launched."""
 
 from __future__ import annotations
 
 import io
-import random
 
 import pytest
 
@@ -108,19 +106,6 @@ def test_agents_with_directives_compile_their_own(copies: list[bool]) -> None:
         assert copies == []
         system.run(max_cycles=3)
         assert system.agents[1].query("bel", "len(L)") == [{"L": 2}]
-    finally:
-        system.close()
-
-
-def test_an_agent_s_random_numbers_are_those_of_its_seed_when_first_drawn() -> None:
-    program = parse_agent(COUNTER, "counter.goal")
-    system = MultiAgentSystem(output=io.StringIO(), seed=40)
-    try:
-        first, second = system.launch("a", program), system.launch("b", program)
-        system.run(max_cycles=2)
-        assert [second.random.random(), first.random.random()] == [
-            random.Random(41).random(), random.Random(40).random()]
-        assert second.random is second.random  # one generator, drawn on
     finally:
         system.close()
 

@@ -152,9 +152,14 @@ def test_the_reliability_plot_never_lands_in_the_current_directory(tmp_path: Pat
     saved = tmp_path / "out" / "learned.pl"
     beside = goalagent("run", str(program), "--save-beliefs", str(saved), cwd=work)
     assert beside.returncode == 0, beside.stderr
-    assert f"reliability plot: {saved.parent / 'afford-learner.png'}" in beside.stderr
-    assert (saved.parent / "afford-learner.png").is_file()
+    assert f"reliability plot: {saved.parent / 'learned-afford-learner.png'}" in beside.stderr
+    assert (saved.parent / "learned-afford-learner.png").is_file()
     assert list(work.iterdir()) == []
+    other = goalagent("run", str(program), "--save-beliefs", str(saved.with_name("again.pl")),
+                      cwd=work)  # a second run saving in the same folder keeps its own plot
+    assert other.returncode == 0, other.stderr
+    assert {path.name for path in saved.parent.glob("*.png")} == {
+        "learned-afford-learner.png", "again-afford-learner.png"}
 
 
 DEEP = """

@@ -133,15 +133,17 @@ def test_refused_actions_and_warnings_are_traced_with_fresh_variables_as_undersc
     text = console.export_text()
     assert "refuser #1 " in text
     assert "refused adopt(g(1)) not enabled (already a goal) at <string>:4:26" in text
-    assert "fired main" in text and "Y=f(_)" in text and "_G" not in text
+    assert "action print(f(_))" in text and "_G" not in text  # actions without rules
+    assert "fired" not in text and "rule main" not in text
     assert "warning module main, rule at <string>:6:" in text
     assert EventKind.WARNING.value == "warning"
 
 
 def readme_run_commands() -> list[list[str]]:
-    """The ``goalagent run`` commands of the README's "Running agents" block, as written."""
-    readme = (ROOT / "README.md").read_text()
-    block = readme.split("## Running agents", 1)[1].split("```sh\n", 1)[1].split("```", 1)[0]
+    """The ``goalagent run`` commands of the first block of docs/running.md (the README's
+    "Running agents" before the site), as written."""
+    page = (ROOT / "docs" / "running.md").read_text()
+    block = page.split("# Running agents", 1)[1].split("```sh\n", 1)[1].split("```", 1)[0]
     lines = block.replace("\\\n", " ").splitlines()
     return [shlex.split(line, comments=True)[1:] for line in lines
             if shlex.split(line, comments=True)[1:2] == ["run"]]

@@ -1,4 +1,4 @@
-"""The layers, one way, on every import in the tree (README "Architecture").
+"""The layers, one way, on every import in the tree (docs/architecture.md).
 
 ``lint-imports`` (pyproject.toml) checks the same contract in ``make test``; this check reads
 the sources itself with ``ast``, so imports inside functions and ``TYPE_CHECKING`` blocks count

@@ -172,17 +172,37 @@ def test_the_environment_s_repeat_answer_marks_the_question_asked():
     assert io_.sent[0] != "learn(lid,extend_arm,opened,random)"
 
 
-def test_a_transfer_that_found_nothing_starts_a_new_learning_episode():
+def test_a_transfer_that_found_nothing_leaves_the_parts_it_did_not_try_to_learning():
+    """Transfer tried every action on the lid (the look-alike of the known can's functional
+    part) and found nothing: the lid stays explored, and the body is learned pair by pair."""
     explored = [f"explored(lid, {act})" for act in ACTIONS]
     agent, io_ = robot({act: 0.05 for act in ACTIONS}, *explored,
                        "asked(pair(lid, lift_up, opened, transfer))")
     io_.next = [Struct("transferred", (Atom("opened"), Atom("o1")))]
     agent.step()
+    assert len(beliefs(agent, "explored(lid, _)")) == len(ACTIONS)
+    assert beliefs(agent, "transfer_verdicts(opened)") == [{}]
+    agent.step()
+    assert beliefs(agent, "focus(P)") == [{"P": "body"}]
+    assert io_.sent[-1].startswith("learn(body,")
+
+
+def test_exhausted_everywhere_after_a_transfer_learning_starts_over_once_then_gives_up():
+    """Transfer's verdicts rest on single tries: before giving up, one new episode."""
+    explored = [f"explored({part}, {act})" for act in ACTIONS for part in ("lid", "body")]
+    agent, io_ = robot({act: 0.05 for act in ACTIONS}, *explored,
+                       "asked(pair(lid, lift_up, opened, transfer))")
+    io_.next = [Struct("transferred", (Atom("opened"), Atom("o1")))]
+    agent.step()
     assert beliefs(agent, "explored(_, _)") == []
-    assert beliefs(agent, "asked(pair(lid, lift_up, opened, transfer))") == []
-    (learn,) = io_.sent  # learning starts over on the lid (one pair asked so far)
-    assert learn.startswith("learn(lid,")
+    assert beliefs(agent, "transfer_verdicts(_)") == []
+    (learn,) = io_.sent  # learning starts over on the lid: one pair asked so far
+    assert learn.startswith("learn(lid,") and not agent.terminated
     assert len(beliefs(agent, "asked(_)")) == 1
+    for fact in explored:
+        agent.ms.insert(fact)
+    agent.step()
+    assert agent.terminated and "cannot_open(lid)" in agent.output.getvalue()
 
 
 def test_the_pedal_comes_after_the_lid_and_before_the_body():

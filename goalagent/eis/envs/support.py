@@ -17,6 +17,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 
 from goalagent.eis.exceptions import ManagementException
+from goalagent.extras import install_hint
 from goalagent.kb.terms import Atom
 from ondisk import write_atomically
 
@@ -130,7 +131,11 @@ def write_png(target: str | os.PathLike[str], draw: Callable[[object], None]) ->
 
     matplotlib is imported only here, when a picture is asked for (Agg, no display needed).
     """
-    from matplotlib.figure import Figure
+    try:
+        from matplotlib.figure import Figure
+    except ModuleNotFoundError as error:
+        raise ManagementException(f"a picture of the environment {install_hint(error.name)}"
+                                  ) from None
 
     figure = Figure(figsize=(6, 6), dpi=80)
     draw(figure)

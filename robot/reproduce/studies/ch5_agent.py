@@ -264,9 +264,10 @@ AGENT_DEVIATIONS = (*CH5_DEVIATIONS, Deviation(
     "chapter 5 runs Algorithm 6 on the whole can, outside any agent.",
     "agents/garbage_disposal.goal takes transfer's percepts about any part (merged by eq. 6.3), "
     "moves its focus to a part with a reliable affordance, never asks the same question twice "
-    "in a learning episode (asked/1) and gives a part up when every action on it was tried "
-    "(docs/robot.md)."))
-"""What the agent does beyond the thesis's rules to use Algorithm 6's whole-can answers."""
+    "in a learning episode (asked/1) and gives a part up when every action on it was tried; "
+    "its transfer request runs Algorithm 6 up to line 23 (the look-alike of the source's "
+    "functional part) and the agent learns the other parts a pair at a time (docs/robot.md)."))
+"""What the agent does beyond the thesis's rules to use Algorithm 6's answers."""
 
 STUDY = Study(
     name="ch5-agent",
@@ -287,7 +288,9 @@ action it took (its belief updates and prints included). "Algorithm 6 N" is Algo
 on the same can, seed and perception from a copy of the same database (what `ch5-transfer`
 measures): when no known object is relevant (the first can of an order, or a can like none
 before it), that is Algorithm 4 on every part and action. "Random" is the agent with
-`learning=random` on the same can from nothing. A transfer request with no relevant source
-explores the pair asked about as Algorithm 4 does (robot/envs/README.md), which is why the
-first can costs the agent less than Algorithm 6's N. See docs/results/ch5.md.""",
+`learning=random` on the same can from nothing. The agent's first transfer request runs
+Algorithm 6 on the part that looks like the source's functional part (lines 2-23); the other
+parts, and every part when no known object is relevant, are explored a pair at a time as the
+agent asks, as Algorithm 4 explores a pair (robot/envs/README.md), which is why the agent can
+take fewer actions than Algorithm 6's N. See docs/results/ch5.md.""",
 )

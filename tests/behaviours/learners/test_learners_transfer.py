@@ -208,6 +208,23 @@ def test_the_fallback_explores_every_novel_pair_first_without_stop_at_goal():
     assert runs[False].functional_.part == "pedal"
 
 
+def test_other_parts_false_stops_after_the_source_s_functional_part():
+    """Lines 2-23 only: o1's push on the lid, then one try of every other action there; the
+    body (o1's other part) and the novel pedal are left to the caller."""
+    pedal_can = SyntheticCan("pedal", {"lid": LID, "body": BODY, "pedal": PEDAL},
+                             {("lid", "body"), ("lid", "pedal"), ("body", "pedal")},
+                             {("pedal", "sweep_down"): Working(0.5, 3.0)})
+    learner = TransferLearner(database=learned(["o1"]), other_parts=False,
+                              random_state=0).fit(pedal_can)
+    assert (learner.source_, learner.branch_, learner.functional_) == ("o1", "failed", None)
+    assert learner.similar_parts_ == ["lid"]
+    assert {t.part for t in learner.trials_} == {"lid"}
+    assert {t.action for t in learner.trials_} == set(pedal_can.actions)
+    whole = TransferLearner(database=learned(["o1"]), random_state=0).fit(pedal_can)
+    assert [t.theta for t in whole.trials_[:len(learner.trials_)]] == [
+        t.theta for t in learner.trials_]  # the same start as Algorithm 6 in full
+
+
 def test_without_a_source_transfer_is_algorithm_4():
     can = thesis_cans()["o1"]
     learner = TransferLearner(database=learned(["o2"]), random_state=5).fit(can)

@@ -92,7 +92,7 @@ def test_the_trace_shows_the_order_in_which_instantiations_are_tried() -> None:
     a.listen(events.append)
     a.step()
     tried = next(e for e in events if e.kind is EventKind.RULE_TRIED)
-    order = [bindings["X"] for bindings in tried.bindings]
+    order = [bindings["X"] for bindings in tried.instantiations]
     assert sorted(order) == [1, 2, 3, 4, 5]
     assert a.output.getvalue() == f"{order[0]}\n"  # the first of the drawn order fires
     assert " ".join(f"[X={x}]" for x in order) in tried.text

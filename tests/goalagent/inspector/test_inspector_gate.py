@@ -1,8 +1,8 @@
 """Who may drive the mind inspector (issue 24 item 1): only its own page, at its own address,
-with the run's token; what a page sends is bounded; its queries are confined as agent code
-(and sandboxed with --sandbox). The browser's side (a page of another origin, a rebound host
-name) is in tests/goalagent/inspector/test_inspector.py; here a WebSocket client speaks to a
-real run."""
+with the run's token; what a page sends is bounded; its queries and breakpoint conditions are
+confined as agent code, and in the sandbox whether the run is sandboxed or not. The browser's
+side (a page of another origin, a rebound host name) is in
+tests/goalagent/inspector/test_inspector.py; here a WebSocket client speaks to a real run."""
 
 from __future__ import annotations
 
@@ -35,8 +35,9 @@ main module [exit=nogoals] { program {
 class Inspected:
     """A run with --inspect: its process, port and token."""
 
-    def __init__(self, process: subprocess.Popen, url: str) -> None:
+    def __init__(self, process: subprocess.Popen, url: str, cwd: Path) -> None:
         self.process = process
+        self.cwd = cwd
         parts = urlsplit(url)
         self.port = parts.port
         self.token = parts.query.split("=", 1)[1]
@@ -86,7 +87,7 @@ def inspected(request, tmp_path: Path) -> Iterator[Inspected]:
         line = process.stderr.readline()
         match = re.search(r"http://127\.0\.0\.1:\d+/\?token=[\w-]+", line)
         assert match, line
-        yield Inspected(process, match.group(0))
+        yield Inspected(process, match.group(0), tmp_path)
     finally:
         if process.poll() is None:
             process.send_signal(signal.SIGINT)
@@ -159,6 +160,32 @@ def test_a_flood_of_messages_leaves_it_responsive(inspected: Inspected):
         assert errors.count("too many messages: at most 30 a second") >= 1
 
 
+def test_many_pages_flooding_together_get_one_budget(inspected: Inspected):
+    # each socket kept to its own rate, 15 sockets each sending their burst of queries of
+    # 100,000 inferences held the run thread for 35 s (attack round of 2026-11-26): the run
+    # takes BURST messages at once from all its pages together, then RATE a second
+    with contextlib.ExitStack() as stack:
+        sockets = [stack.enter_context(inspected.socket()) for _ in range(6)]
+        started = time.monotonic()
+        for socket in sockets:
+            for _ in range(BURST):
+                socket.send(json.dumps({"op": "query", "agent": "counter",
+                                        "text": "bel(count(X))"}))
+        sent = time.monotonic() - started
+        answers = 0
+        for socket in sockets:
+            while True:
+                try:
+                    message = json.loads(socket.recv(timeout=1))
+                except TimeoutError:
+                    break
+                answers += message["type"] == "answer"
+        assert 0 < answers <= BURST + 30 * sent + 10, (answers, sent)
+        time.sleep(BURST / 30 + 0.5)  # the run's budget refills
+        with inspected.socket() as other:
+            assert _query(other, "bel(count(X))")["answers"] == ["X=0"]
+
+
 @pytest.mark.parametrize("query, says", [
     ("bel(halt)", "whole process"),
     ("bel(ga_kb:assertz(owned))", "qualified with a module"),
@@ -173,16 +200,27 @@ def test_queries_are_confined_as_agent_code(inspected: Inspected, query: str, sa
         assert inspected.process.poll() is None
 
 
-def test_queries_run_in_the_sandbox_of_a_sandboxed_run(inspected: Inspected):
+WRITTEN_BY_A_PAGE = [
+    "bel(shell('touch PWNED'))",
+    "bel(open('PWNED', write, S), close(S))",
+    "bel(G = shell('touch PWNED'), call(G))",             # built when it runs
+    "bel(phrase({shell('touch PWNED')}, []))",            # a grammar body
+    "bel(atom_to_term('shell(\\'touch PWNED\\')', G, _), G)",
+]
+
+
+def test_queries_and_conditions_run_in_the_sandbox_always(inspected: Inspected):
+    # the run's agents may use the shell without --sandbox; what a page writes may not
     with inspected.socket() as socket:
-        reply = _query(socket, "bel(shell('touch PWNED'))")
-        if "--sandbox" in inspected.process.args:
-            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"]
-            reply = _reply(socket, json.dumps({"op": "break", "text": "bel(open(f, write, _))"}))
-            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"]
-        else:  # without the sandbox an agent may use the shell, and so may its queries; then
-            assert reply["type"] == "answer"  # Ctrl-C still ends the paused run (the fixture's
-            # SIGINT: shell/1 left SIGINT restarting the wait for a command, which hung)
+        for text in WRITTEN_BY_A_PAGE:
+            reply = _query(socket, text)
+            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"], \
+                reply
+            reply = _reply(socket, json.dumps({"op": "break", "text": text}))
+            assert reply["type"] == "error" and "not allowed in the sandbox" in reply["text"], \
+                reply
+        assert _query(socket, "bel(count(X), atom_length(abc, L))")["answers"] == ["X=0, L=3"]
+    assert not (inspected.cwd / "PWNED").exists()
 
 
 def _scope(kind: str, host: str, origin: str | None, token: str = "t") -> dict:

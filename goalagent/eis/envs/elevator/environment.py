@@ -37,7 +37,8 @@ from goalagent.eis.terms import Percept
 CONTROLLERS = ("EIS Controller", "GOAL Controller")
 KNOWN_PARAMETERS = {
     "simulation": "which simulation (its description in the Java simulator)",
-    **{f.name: "a simulator setting (Simulator.Keys)" for f in fields(Settings)},
+    **{f.name: f"a simulator setting (Simulator.Keys), default {f.default}"
+       for f in fields(Settings)},
     "controller": "must be the EIS (GOAL) controller",
     "timefactor": "simulated time per round: 100 ms x 2^timefactor",
     "snapshots": "directory for one PNG snapshot per round",

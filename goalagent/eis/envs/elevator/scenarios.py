@@ -3,15 +3,17 @@
 Each of the Java simulator's simulations (selected by its description, the ``simulation`` init
 parameter) as a function filling a ``Building``. The random ones draw with
 ``java.util.Random(randomseed)`` in the Java simulator's order, so a seed gives the riders
-the Java simulator gives.
+the Java simulator gives. Java's ``float`` arithmetic is done as IEEE single precision by
+``_f32``: each operation computed in double and rounded to single gives the single-precision
+result exactly (double has more than twice single's precision), so the standard library
+does what numpy's float32 did and the language needs no numpy.
 """
 
 from __future__ import annotations
 
+import struct
 from collections.abc import Callable
 from dataclasses import dataclass
-
-import numpy as np
 
 from goalagent.eis.envs.elevator.building import Building
 from goalagent.eis.envs.javarandom import JavaRandom
@@ -67,7 +69,7 @@ def _gaussian(random: JavaRandom, deviation: int, single: bool) -> float:
     while True:
         value = random.next_gaussian() / deviation
         if single:
-            value = float(np.float32(value))
+            value = _f32(value)
         if -1.0 <= value <= 1.0:
             return value
 
@@ -80,14 +82,19 @@ def _rush(s: Settings, morning: bool) -> Building:
         for _ in range(s.npeopleperfloor):
             if morning:
                 fraction = (_gaussian(random, s.standarddev, False) + 1) / 2
-                time = int(fraction * (float(np.float32(s.insertiontimehr)) * 3600.0 * 1000.0))
+                time = int(fraction * (_f32(s.insertiontimehr) * 3600.0 * 1000.0))
                 _trip(building, 0, floor, time)
             else:
-                f32 = np.float32
-                fraction = (f32(_gaussian(random, s.standarddev, True)) + f32(1)) / f32(2)
-                time = int(fraction * f32(s.insertiontimehr) * f32(3600) * f32(1000))
+                fraction = _f32(_f32(_gaussian(random, s.standarddev, True) + 1) / 2)
+                hours = _f32(s.insertiontimehr)
+                time = int(_f32(_f32(_f32(fraction * hours) * 3600) * 1000))
                 _trip(building, floor, 0, time)
     return building
+
+
+def _f32(value: float) -> float:
+    """``value`` rounded to IEEE single precision (Java's ``float``)."""
+    return struct.unpack("f", struct.pack("f", value))[0]
 
 
 def _scripted(floors: int | None, cars: int | None, capacity: int,
