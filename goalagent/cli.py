@@ -67,6 +67,9 @@ DEFAULT_MODULE_DEPTH = default_module_depth()  # (as the C stack allows: read on
 MaxModuleDepth = Annotated[int, typer.Option(
     help="How deep module calls may nest before the agent is stopped (default: as deep as "
          "the C stack safely allows).")]
+MaxAgents = Annotated[int | None, typer.Option(
+    min=1, help="How many agents the run may launch (default: as many as 3/4 of the memory "
+                "available holds, 64 KiB each); a .mas2g launching more is refused.")]
 
 
 def _env_params(pairs: list[str]) -> dict[str, ParameterText]:
@@ -169,6 +172,7 @@ def _language_run_options(
     max_memory: MaxMemory = Limits.max_memory,
     sandbox: Sandbox = False,
     max_module_depth: MaxModuleDepth = DEFAULT_MODULE_DEPTH,
+    max_agents: MaxAgents = None,
 ) -> None:
     """The language's own ``run`` options (its signature is the start of ``run``'s)."""
 
@@ -223,7 +227,8 @@ def _run(values: dict[str, Any], extensions: Sequence[Extension]) -> None:
                      values["max_beliefs"], values["sandbox"], values["max_module_depth"],
                      values["max_memory"])
     options = dict(seed=values["seed"], listeners=[printer] if printer is not None else [],
-                   warn=lambda message: err_console.print(message, markup=False), limits=limits)
+                   warn=lambda message: err_console.print(message, markup=False), limits=limits,
+                   max_agents=values["max_agents"])
     if path.suffix in (".mod2g", ".act2g", ".pl", ".test2g"):
         raise user_error(f"{path}: a {path.suffix} file does not run on its own: run the "
                          ".mas2g that uses it" + (", or goalagent test for a test file"

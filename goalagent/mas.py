@@ -29,6 +29,7 @@ from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
+from goalagent.mas_capacity import agent_capacity, capacity_message, check_launches
 from goalagent.parser import (
     GoalSyntaxError,
     load_agents,
@@ -149,6 +150,8 @@ class MultiAgentSystem:
         listeners: told every event of every agent (``--trace``, the inspector).
         limits: each agent's bounds (default ``Limits()``), unless its agent file sets its
             own.
+        max_agents: how many agents it may hold (``--max-agents``; None: as many as the
+            memory available holds, goalagent.mas_capacity); a launch past it is refused.
 
     Attributes:
         agents: the agents launched so far, in launch order (``system.agents[0]`` is the
@@ -168,8 +171,11 @@ class MultiAgentSystem:
         warn: Callable[[str], None] | None = None,
         listeners: Sequence[Listener] = (),
         limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> None:
         self.environment = environment
+        self._max_agents = max_agents  # (None: measured when first asked)
+        self._capacity_by_hand = max_agents is not None
         self.limits = limits or Limits()  # each agent's, unless its agent file says more
         self._agent_limits: dict[str, Limits] = {}  # agent file name -> its agents' limits
         self.seed = seed
@@ -180,6 +186,7 @@ class MultiAgentSystem:
         self.postman = LocalPostman()
         self._directory = AgentDirectory()  # agent/1 of every member, stored once
         self.agents: list[Agent] = []
+        self._names: set[str] = set()  # the agents' names: a launch checks one in O(1)
         self.current: Agent | None = None  # the agent whose cycle is running
         self.interrupted = False  # a signal stopped the run
         self.failures: dict[str, str] = {}
@@ -200,6 +207,7 @@ class MultiAgentSystem:
         warn: Callable[[str], None] | None = None,
         listeners: Sequence[Listener] = (),
         limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> MultiAgentSystem:
         """Parse a ``.mas2g`` file (any GOAL version), start its environment and launch its
         agents (GOAL 4/5 agent files or GOAL 6+ agent definitions).
@@ -216,6 +224,8 @@ class MultiAgentSystem:
             warn: called with each warning or failure line (default: printed on stderr).
             listeners: told every event of every agent.
             limits: each agent's bounds (default ``Limits()``).
+            max_agents: how many agents it may hold (None: what the memory available holds);
+                a file launching more is refused before any agent is built.
 
         Returns:
             The system, its environment started, before any agent's first cycle.
@@ -236,8 +246,9 @@ class MultiAgentSystem:
         if environment is not None:
             environment.home = Path(path).parent
         system = cls(environment, seed=seed, output=output, tracer=tracer, warn=warn,
-                     listeners=listeners, limits=limits)
+                     listeners=listeners, limits=limits, max_agents=max_agents)
         system._programs.update(programs)
+        check_launches(mas, numbers, *system.capacity())
         for agentfile in mas.agentfiles:
             if agentfile.limits:
                 system._agent_limits[agentfile.name] = system._limits_for(dict(agentfile.limits))
@@ -272,6 +283,7 @@ class MultiAgentSystem:
         warn: Callable[[str], None] | None = None,
         listeners: Sequence[Listener] = (),
         limits: Limits | None = None,
+        max_agents: int | None = None,
     ) -> MultiAgentSystem:
         """A system of the one agent in a ``.goal`` file, on ``environment`` if given (as
         ``goalagent run FILE --env NAME`` makes it).
@@ -288,6 +300,7 @@ class MultiAgentSystem:
             warn: called with each warning or failure line (default: printed on stderr).
             listeners: told every event of every agent.
             limits: each agent's bounds (default ``Limits()``).
+            max_agents: how many agents it may hold (None: what the memory available holds).
 
         Returns:
             The system; its agent is ``system.agents[0]``.
@@ -295,7 +308,8 @@ class MultiAgentSystem:
         program = parse_agent_file(path)
         return cls._of_one(program, ast.Pos(str(path), 1, 1), Path(path).parent, environment,
                            env_params, dict(seed=seed, output=output, tracer=tracer,
-                                            warn=warn, listeners=listeners, limits=limits))
+                                            warn=warn, listeners=listeners, limits=limits,
+                                            max_agents=max_agents))
 
     @classmethod
     def for_agent_text(
@@ -351,6 +365,14 @@ class MultiAgentSystem:
         system._start_environment(dict(env_params or {}))
         return system
 
+    def capacity(self) -> tuple[int, bool]:
+        """How many agents this system may hold (``max_agents``, or what the memory available
+        when first asked allows: goalagent.mas_capacity), and whether it was set by hand."""
+        if self._max_agents is None:
+            self._max_agents = agent_capacity()
+            self._capacity_by_hand = False
+        return self._max_agents, self._capacity_by_hand
+
     def _limits_for(self, options: dict[str, object]) -> Limits:
         """The run's limits with an agent file's own (a sandbox stays a sandbox)."""
         options["sandbox"] = bool(options.get("sandbox")) or self.limits.sandbox
@@ -361,7 +383,11 @@ class MultiAgentSystem:
         """Create an agent (bounded by ``limits``, default the system's), register it for
         messages and (if any) with the environment. A name already taken is made unique as
         GOAL's runtime does, numbering the later ones: the first of ``name2``, ``name3``, ...
-        that is free (as entity launches number theirs)."""
+        that is free (as entity launches number theirs). One more agent than the system
+        may hold (``capacity``) is an AgentError."""
+        limit, by_hand = self.capacity()
+        if len(self.agents) >= limit:
+            raise AgentError(capacity_message(len(self.agents) + 1, limit, by_hand=by_hand))
         name = self._unique_name(name)
         io = None
         if self.environment is not None:
@@ -376,12 +402,13 @@ class MultiAgentSystem:
         for listener in self.listeners:
             agent.listen(listener)
         self.agents.append(agent)
+        self._names.add(name)
         self._directory.add(name)
         agent.ms.join(name, self._directory)
         return agent
 
     def _unique_name(self, name: str) -> str:
-        taken = {agent.name for agent in self.agents}
+        taken = self._names
         if name not in taken:
             return name
         return next(f"{name}{n}" for n in range(2, len(taken) + 3) if f"{name}{n}" not in taken)
@@ -425,7 +452,7 @@ class MultiAgentSystem:
                 launched = self._launched_per_rule.get(index, 0)
                 self._launched_per_rule[index] = launched + 1
                 name = entity if rule.agent_name == "*" else rule.agent_name
-                if any(agent.name == name for agent in self.agents):
+                if name in self._names:
                     name = f"{name}{launched + 1}"
                 self.launch(name, self._programs[rule.agentfile], entity,
                             limits=self._agent_limits.get(rule.agentfile))

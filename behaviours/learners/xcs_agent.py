@@ -37,14 +37,13 @@ from sklearn.utils.validation import check_scalar
 
 from . import xcs_persistence
 from .tags import with_domain
-from .xcs_choice import best_action, explore_action
+from .xcs_choice import best_action, explore_action, prediction_array
 from .xcs_discovery import action_set_subsumption, match_set, run_ga
 from .xcs_inputs import check_reward, permitted_actions, state_bits
 from .xcs_params import CONSTRAINTS, Settings, make_generator
 from .xcs_population import (
     FITNESS,
     NUMEROSITY,
-    PREDICTION,
     TIME_STAMP,
     Classifier,
     Population,
@@ -199,7 +198,8 @@ class XCS(BaseEstimator):
         values: list[float] = []  # eq. 3.8 for the permitted actions, all advocated now
         best_value = 0.0  # max PA of eq. 7.2 over the considered actions
         if not explore or previous is not None:  # (a single explore step needs none)
-            prediction = self._prediction_array(match, actions)
+            prediction = prediction_array(self.population_, match, actions,
+                                              self._settings.n_actions)
             values = (prediction if allowed is None else prediction[permitted]).tolist()
             best_value = max(values if covered is permitted
                              else prediction[covered].tolist())
@@ -250,7 +250,8 @@ class XCS(BaseEstimator):
             return np.full(self._settings.n_actions, np.nan)
         words, _ = self._encode(state)
         match = self.population_.match(words)
-        return self._prediction_array(match, self.population_.action[match])
+        return prediction_array(self.population_, match, self.population_.action[match],
+                                self._settings.n_actions)
 
     def classifiers(self) -> list[Classifier]:
         """Every macro-classifier as a `Classifier` record."""
@@ -324,18 +325,6 @@ class XCS(BaseEstimator):
                 self._states.clear()
             self._states[key] = encoded
         return encoded
-
-    def _prediction_array(self, match: np.ndarray, actions: np.ndarray) -> np.ndarray:
-        """Eq. 3.8: fitness-weighted mean prediction per action (NaN where none advocates;
-        fitness is always > 0, so a zero weight means no advocate)."""
-        population, n = self.population_, self._settings.n_actions
-        stats = population.stats.take(match, axis=1)
-        fitness = stats[FITNESS]
-        weights = np.bincount(actions, weights=fitness, minlength=n)
-        weighted = np.bincount(actions, weights=fitness * stats[PREDICTION], minlength=n)
-        if _all(weights):
-            return weighted / weights
-        return np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
 
     # -- reinforcement component ---------------------------------------------------------------
 

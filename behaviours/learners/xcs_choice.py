@@ -1,12 +1,30 @@
-"""How XCS chooses an action (thesis App. A): greedily by eq. 3.9 when it exploits, at random
-among the permitted actions when it explores, or, with consistent actions, keeping the
-previous action while its action set [A]-1 still matches."""
+"""How XCS chooses an action (thesis App. A): the prediction array of eq. 3.8 over the match
+set, then greedily by eq. 3.9 when it exploits, at random among the permitted actions when
+it explores, or, with consistent actions, keeping the previous action while its action set
+[A]-1 still matches."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .xcs_population import Population
+from .xcs_population import FITNESS, PREDICTION, Population
+
+_all = np.logical_and.reduce
+"""The ufunc reduction itself: ndarray.all adds a Python-level call per use."""
+
+
+def prediction_array(population: Population, match: np.ndarray, actions: np.ndarray,
+                     n: int) -> np.ndarray:
+    """Eq. 3.8: fitness-weighted mean prediction per action of the match set ``match``
+    (``actions``: its classifiers' actions, ``n`` the number of actions), NaN where none
+    advocates (fitness is always > 0, so a zero weight means no advocate)."""
+    stats = population.stats.take(match, axis=1)
+    fitness = stats[FITNESS]
+    weights = np.bincount(actions, weights=fitness, minlength=n)
+    weighted = np.bincount(actions, weights=fitness * stats[PREDICTION], minlength=n)
+    if _all(weights):
+        return weighted / weights
+    return np.divide(weighted, weights, out=np.full(n, np.nan), where=weights > 0)
 
 
 def best_action(values: list[float], permitted: np.ndarray, rng: np.random.Generator) -> int:

@@ -82,11 +82,9 @@ def send(agent: Agent, firing: Firing, index: int, once: bool, mood: str, receiv
         agent.warn(warning_text(Problem(ProblemKind.RECEIVER_UNBOUND, text, firing, index),
                                 agent.program))
         return False
-    everyone = agent.postman.agents() if agent.postman is not None else [agent.name]
-    if receiver == "allother":
-        receivers = [name for name in everyone if name != agent.name]
-    elif receiver == "all":
-        receivers = list(everyone)
+    if receiver in ("all", "allother"):  # (only a broadcast lists every agent)
+        everyone = agent.postman.agents() if agent.postman is not None else [agent.name]
+        receivers = [name for name in everyone if receiver == "all" or name != agent.name]
     else:
         receivers = [str(receiver)]
     fresh = [name for name in receivers if agent.ms.add_sent(name, mood, content) or not once]

@@ -68,7 +68,7 @@ class Conditions(PrologModules):
         an agent's condition is confined (confine.pl: checked, dynamic calls guarded), a
         ``trusted`` one (the runtime's own queries: the API, reports) is not, a
         ``sandboxed`` one (the mind inspector's) is confined in the sandbox."""
-        text = ", ".join(_literal_text(literal) for literal in condition) or "true"
+        text = _text(condition)
         if sandboxed:
             key, mode = f"sandbox\0{text}", Atom("sandbox")
         elif trusted:
@@ -90,6 +90,26 @@ class Conditions(PrologModules):
         compiled = CompiledCondition(self, name, tuple(str(item) for item in names), text)
         self._compiled[key] = compiled
         return compiled
+
+    def copy_conditions(self, like: Conditions, conditions: Iterable[ast.Condition]) -> bool:
+        """Copies the (confined) ``conditions`` ``like`` has compiled into this agent in one
+        call, as :meth:`compile` would make them here: ``like`` is an agent of the same
+        program loaded alike (no directives, the same limits), so only the module names
+        differ (clone_conditions/6 in mentalstate_load.pl). False, and nothing copied, when
+        ``like`` is closed, lacks one of them, or one names something of its own."""
+        originals = [like._compiled.get(_text(condition)) for condition in conditions]
+        if like.closed or None in originals:
+            return False
+        (from_b, from_g), (to_b, to_g) = like.modules, self.modules
+        names = [Atom(original.clause) for original in originals]  # type: ignore[union-attr]
+        cloned = self._call("clone_conditions", from_b, from_g, to_b, to_g, names, None)[5]
+        if cloned != TRUE:
+            return False
+        for original in originals:
+            assert original is not None
+            self._compiled[original.text] = CompiledCondition(self, original.clause,
+                                                              original.names, original.text)
+        return True
 
     def solutions(self, cond: CompiledCondition, bindings: Mapping[str, Term] | None = None,
                   *, limit: int | None = None) -> list[dict[str, Term]]:
@@ -149,6 +169,11 @@ class Conditions(PrologModules):
         """Frees both Prolog modules and forgets the compiled conditions."""
         self._compiled.clear()
         super().close()
+
+
+def _text(condition: ast.Condition) -> str:
+    """A condition's Prolog text (the key an agent's own condition is compiled under)."""
+    return ", ".join(_literal_text(literal) for literal in condition) or "true"
 
 
 def _literal_text(literal: ast.Literal) -> str:

@@ -44,6 +44,18 @@ _MEMORY = Path(__file__).with_name("memory.pl")  # what an agent's memory holds
 _SIZES = Path(__file__).with_name("sizes.pl")  # what one built-in call may make
 
 
+# What launching an agent calls that runs none of its code (so draws no random number):
+# its modules made, its limits, its conditions compiled or copied, its declarations, its
+# directory; loading and adopting (load/6, adopt_checked/6) give a pending seed themselves
+# when they run agent code (PrologModules, GoalBases).
+_RUN_NO_AGENT_CODE = (
+    ("new_agent", 2, "ga_kb"), ("set_limits", 3, "ga_guard"), ("compile", 6, "ga_kb"),
+    ("clone_conditions", 6, "ga_kb"), ("declare", 4, "ga_kb"), ("declare_actions", 2, "ga_kb"),
+    ("directory_add", 2, "ga_kb"), ("join_directory", 3, "ga_kb"), ("load", 6, "ga_kb"),
+    ("adopt_checked", 6, "ga_kb"),
+)
+
+
 class Engine(PrologCalls):
     """The process's SWI-Prolog: one per process (see :func:`get_engine`), one thread at a time."""
 
@@ -61,6 +73,8 @@ class Engine(PrologCalls):
             )
             if loaded is None:
                 raise KBError(f"could not load {support}")
+        for name, arity, module in _RUN_NO_AGENT_CODE:
+            self.runs_no_agent_code(name, arity, module)
 
     def check_clause(self, text: str) -> tuple[str, ...]:
         """Checks one clause (no final '.') with SWI's reader; returns its variable names."""
@@ -100,10 +114,6 @@ class Engine(PrologCalls):
     def format(self, term: Term) -> str:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""
         return format_term(term)
-
-    def seed_random(self, seed: int) -> None:
-        """Seeds Prolog's random generator (random/1, random_member/2, ...) for repeatable runs."""
-        self.call("set_random", Struct("seed", (int(seed),)), module="system")
 
     def write(self, term: Term, *, quoted: bool = False) -> str:
         """``term`` as SWI's write/1 (or writeq/1) shows it: operators, lists, no quotes

@@ -8,8 +8,8 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from goalagent import ast
-from goalagent.kb.prolog_modules import PrologModules
-from goalagent.kb.terms import Struct, Term
+from goalagent.kb.prolog_modules import TRUE, PrologModules
+from goalagent.kb.terms import Atom, Struct, Term
 
 __all__ = ["GoalBases"]
 
@@ -30,7 +30,12 @@ class GoalBases(PrologModules):
         Checking whether it is believed is bounded by --max-inferences; one that passes a
         limit or raises an error adopts the goal (see :meth:`take_unchecked`)."""
         term = self._term(formula, bindings)
-        result = self._call("adopt_checked", self._b, self._g, term, None)[3]
+        seed = self._engine.pending_seed  # given by Prolog if the check runs agent code
+        _, _, _, _, result, seeded = self._call(
+            "adopt_checked", self._b, self._g, term, Atom("none") if seed is None else seed,
+            None, None)
+        if seeded == TRUE:
+            self._engine.pending_seed = None
         if isinstance(result, Struct):  # unchecked(Message)
             self._unchecked.append((_conjuncts(term), str(result.args[0])))
             return True

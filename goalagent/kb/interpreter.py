@@ -34,10 +34,10 @@ _TRUE, _FALSE = Atom("true"), Atom("false")
 
 # Clause names of compiled rules and passes, shared by all agents: key -> name.
 _shared_clauses: dict[tuple, str] = {}
-# Per program object (while it lives): its directives and its modules' compiled passes, so
-# that the agents launched from one program (bench/agents.py: 10,000) compile only their
-# conditions.
-_compiled_programs: dict[int, tuple[weakref.ref, str, dict[int, ModuleCode]]] = {}
+# Per program object (while it lives): its directives, its modules' compiled passes and the
+# first agent's mental state, so that the agents launched from one program (bench/agents.py:
+# 10,000) compile only their conditions, copied from that agent's.
+_compiled_programs: dict[int, tuple[weakref.ref, str, dict[int, ModuleCode], weakref.ref]] = {}
 
 
 def listall_variables(rule: ast.Rule, given: Sequence[str] = ()) -> tuple[str, ...]:
@@ -142,15 +142,22 @@ class CompiledProgram:
         compiled = _compiled_programs.get(id(program))
         if compiled is not None and compiled[0]() is program and compiled[1] == self._directives:
             self._codes = compiled[2]  # the rule and pass clauses exist: only the conditions
-            for module in program.modules:  # are this agent's own
-                for rule in ast.iter_rules(module.rules):
+            like = compiled[3]()  # are this agent's own: copied from an earlier agent's
+            if like is None or like.closed or like.limits != state.limits or self._directives:
+                like = None  # (loaded alike: directives may make each agent's state its own)
+                if not self._directives:  # the next agents copy this one's
+                    _compiled_programs[id(program)] = (*compiled[:3], weakref.ref(state))
+            rules = [rule for module in program.modules for rule in ast.iter_rules(module.rules)]
+            if like is None or not state.copy_conditions(like, [r.condition for r in rules]):
+                for rule in rules:
                     self._compile_condition(rule)
             return
         for module in program.modules:
             self._codes[id(module)] = self._compile_module(module)
         key = id(program)
         forget = lambda _: _compiled_programs.pop(key, None)  # noqa: E731 - when it dies
-        _compiled_programs[key] = (weakref.ref(program, forget), self._directives, self._codes)
+        _compiled_programs[key] = (weakref.ref(program, forget), self._directives, self._codes,
+                                   weakref.ref(state))
 
     def add_module(self, module: ast.Module) -> None:
         """Compiles a module made outside the program (a test step's actions, run as a

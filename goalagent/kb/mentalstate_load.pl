@@ -41,19 +41,28 @@ destroy(B, G) :-
 load(B, G, Items, Sandbox, RunsCode, Result) :-
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
-    program_heads(Items, B, Own),
-    load_(Items, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
+    maplist(read_item(B), Items, Read),
+    program_heads(Read, Own),
+    load_(Items, Read, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
 
-%   program_heads(+Items, +B, -Own): the Name/Arity of every clause, grammar rule and
+%   read_item(+B, +Item, -Read): the item's text read before anything is loaded, t(Term),
+%   or unread when it does not read yet (its operators come with a directive); load_/8
+%   uses the term while no directive has run (nothing else changes how a text reads).
+read_item(B, Item, Read) :-
+    arg(1, Item, Text),
+    (   catch(read_text(Text, B, Term, _), _, fail)
+    ->  Read = t(Term)
+    ;   Read = unread
+    ).
+
+%   program_heads(+Read, -Own): the Name/Arity of every clause, grammar rule and
 %   dynamic declaration of the program, read before any is loaded: a clause may call a
 %   predicate of the agent's own that is written further on and named like a built-in
 %   confine.pl refuses (told/0, append/1). A text that only reads once its directives
 %   have run (its operators) is left out; it is read, and reported, when it is loaded.
-program_heads(Items, B, Own) :-
+program_heads(Read, Own) :-
     findall(Name/Arity,
-            ( member(Item, Items),
-              arg(1, Item, Text),
-              catch(read_text(Text, B, Term, _), _, fail),
+            ( member(t(Term), Read),
               term_head(Term, Name, Arity) ),
             Own0),
     sort(Own0, Own).
@@ -84,18 +93,27 @@ declared(Specs, Name, Arity) :-
     ;   Specs = Name//Arity0, integer(Arity0), Arity is Arity0 + 2
     ).
 
-load_([], _, _, _, _, _, ok).
-load_([Item|Items], I, B, G, Ctx, RunsCode, Result) :-
+load_([], _, _, _, _, _, _, ok).
+load_([Item|Items], [Read|Reads], I, B, G, Ctx, RunsCode, Result) :-
     Item =.. [Kind, Text],
-    (   catch(( read_text(Text, B, Term, _),     % after earlier directives (operators)
+    (   catch(( read_once(Read, Text, B, Term),  % after earlier directives (operators)
                 load_term(Term, Kind, B, G, Ctx, RunsCode) ), E, true)
     ->  (   var(E)
         ->  I1 is I + 1,
-            load_(Items, I1, B, G, Ctx, RunsCode, Result)
+            (   Term = (:- _)                   % a directive may change how texts read
+            ->  maplist(=(unread), Reads0),
+                same_length(Reads, Reads0)
+            ;   Reads0 = Reads
+            ),
+            load_(Items, Reads0, I1, B, G, Ctx, RunsCode, Result)
         ;   load_error(E, I, Text, Result)
         )
     ;   Result = error(I, "directive failed")
     ).
+
+read_once(t(Term), _, _, Term) :- !.
+read_once(unread, Text, B, Term) :-
+    read_text(Text, B, Term, _).
 
 load_error(error(syntax_error(What), Context), I, Text, error(I, Msg)) :- !,
     syntax_message(What, Msg0),
@@ -303,6 +321,58 @@ compile(B, G, Name, Text, Confined, Names) :-
     forall(member(Aux, Auxes), assertz(G:Aux)),
     Head =.. [Name|Vars],
     assertz(B:(Head :- Body)).
+
+%!  clone_conditions(+FromB, +FromG, +ToB, +ToG, +Names, -Cloned) is det.
+%   Copies the clauses compile/6 made of the conditions Names for the agent of FromB/FromG
+%   (and their goal clauses Name_I) to the agent of ToB/ToG, the two module names renamed:
+%   what compile/6 makes for another agent of the same program loaded alike, without
+%   reading and confining the texts again (launching 10,000 copies of an agent reads each
+%   condition once). Cloned = false, and nothing is copied, when a clause names anything
+%   else of the first agent's (an own global variable or flag key: confine_keys.pl).
+
+clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
+    findall(FromB-Clause, ( member(Name, Names), module_clause(FromB, Name, Clause) ), Own),
+    findall(FromG-Clause, ( member(Name, Names), goal_clause(FromG, Name, 0, Clause) ), Goals),
+    append(Own, Goals, Clauses),
+    sub_atom(FromB, 5, _, 0, Secret),               % ga_b_<secret>, ga_g_<secret>
+    length(Names, Count),
+    (   length(Own, Count),                         % one clause per condition
+        \+ ( sub_term(Text, Clauses), ( atom(Text) ; string(Text) ),
+             Text \== FromB, Text \== FromG, sub_atom(Text, _, _, _, Secret) )
+    ->  Map = [FromB-ToB, FromG-ToG],
+        forall(member(M0-Clause0, Clauses),
+               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
+        Cloned = true
+    ;   Cloned = false
+    ).
+
+module_clause(M, Name, (Head :- Body)) :-
+    current_predicate(M:Name/Arity),
+    functor(Head, Name, Arity),
+    clause(M:Head, Body).
+
+goal_clause(G, Name, I, Clause) :-
+    format(atom(Aux), '~w_~w', [Name, I]),
+    current_predicate(G:Aux/_),
+    (   module_clause(G, Aux, Clause)
+    ;   I1 is I + 1,
+        goal_clause(G, Name, I1, Clause)
+    ).
+
+renamed(Term0, Map, Term) :-
+    (   atom(Term0), memberchk(Term0-Term1, Map)
+    ->  Term = Term1
+    ;   compound(Term0)
+    ->  compound_name_arguments(Term0, F, Args0),
+        renamed_list(Args0, Map, Args),
+        compound_name_arguments(Term, F, Args)
+    ;   Term = Term0
+    ).
+
+renamed_list([], _, []).
+renamed_list([A0|As0], Map, [A|As]) :-
+    renamed(A0, Map, A),
+    renamed_list(As0, Map, As).
 
 translate((A0, B0), Name, (A, B), N0, N, Aux0, Aux) :- !,
     translate(A0, Name, A, N0, N1, Aux0, Aux1),

@@ -261,19 +261,27 @@ add_unless_there(B, G, Facts, Result) :-
         Result = adopted
     ).
 
-%!  adopt_checked(+B, +G, +Formula, -Result) is det.
+%!  adopt_checked(+B, +G, +Formula, +Seed, -Result, -Seeded) is det.
 %   adopt/4 for Python (an agent's goals section, the API): checking whether the goal is
 %   believed is bounded by the agent's --max-inferences, and a check that passes a limit
 %   or raises an error is not a belief -- the goal is adopted all the same (as a rule whose
-%   condition does is not applicable), Result = unchecked(Message) saying why.
-adopt_checked(B, G, Formula, Result) :-
+%   condition does is not applicable), Result = unchecked(Message) saying why. Seed: the
+%   random seed Python holds back (an integer, or none), given to set_random/1 before a
+%   check that may run agent code (Seeded = true); a check of facts alone runs none.
+adopt_checked(B, G, Formula, Seed, Result, Seeded) :-
     conjuncts(Formula, Facts),
     must_be_facts(Facts, "adopt"),
     declare_goal(B, G, Facts),
     B:'$ga_limits'(Max, _),
     (   Facts == []
-    ->  Result = believed
-    ;   catch(bounded_believed(Facts, B, Max, Believed), E, true),
+    ->  Result = believed,
+        Seeded = false
+    ;   (   ( Seed == none ; facts_only(Facts, B) )
+        ->  Seeded = false
+        ;   set_random(seed(Seed)),
+            Seeded = true
+        ),
+        catch(bounded_believed(Facts, B, Max, Believed), E, true),
         (   var(E)
         ->  true
         ;   goal_check_message(E, Max, Message),
@@ -287,6 +295,13 @@ adopt_checked(B, G, Formula, Result) :-
             )
         )
     ).
+
+%   facts_only(+Facts, +B): each of Facts is looked up among facts of B (a dynamic
+%   predicate without rules), so checking them runs no code of the agent's.
+facts_only(Facts, B) :-
+    forall(member(Fact, Facts),
+           ( predicate_property(B:Fact, dynamic),
+             predicate_property(B:Fact, number_of_rules(0)) )).
 
 bounded_believed(Facts, B, Max, Believed) :-
     (   call_with_inference_limit(\+ \+ all_believed(Facts, B), Max, Outcome)

@@ -89,6 +89,8 @@ class PrologModules:
                           self.limits.max_beliefs, module="ga_guard")
         self._watchdog.time_limit = self.limits.max_query_seconds  # its directives run
         self._watchdog.running = self._memory
+        if self._directives and self.limits.runs_code:  # (they may draw random numbers)
+            self._engine.give_seed()
         result = self._call("load", self._b, self._g, items, TRUE if self.limits.sandbox
                             else FALSE, TRUE if self.limits.runs_code else FALSE, None)[5]
         if isinstance(result, Struct) and result.name == "error":
@@ -113,6 +115,11 @@ class PrologModules:
     def modules(self) -> tuple[Atom, Atom]:
         """The names of the belief and the goal module."""
         return self._b, self._g
+
+    @property
+    def closed(self) -> bool:
+        """Whether the modules were freed (:meth:`close`)."""
+        return self._closed
 
     @property
     def directives(self) -> str:

@@ -36,7 +36,15 @@ from gymnasium import spaces
 
 from behaviours.blob_grid import make_grid_perception
 from behaviours.object_state import make_object_perception
-from behaviours.xcs_tasks import NavigationTask, SearchTask, StackingTask, StepResult, Task, View
+from behaviours.xcs_tasks import (
+    NAVIGATION_STARTS,
+    NavigationTask,
+    SearchTask,
+    StackingTask,
+    StepResult,
+    Task,
+    View,
+)
 from behaviours.xcs_trials import N_STEP, SEARCH_STEPS
 from robot.gym.checks import choice, ready_to_step, reset_options, valid_action, whole
 from robot.gym.rendering import OVERVIEW, Frames, WorldRendering, scene_cameras
@@ -157,17 +165,31 @@ class NavigationEnv(XcsTaskEnv):
     n_bits = 8
     overview = CameraView((0.45, -0.05, 0.40), 1.7, -15.0, -40.0)
 
-    def __init__(self, *, exchange_after: int | None = 10, **common: Any):
-        """The boxes swap places from trial ``exchange_after`` on (None: never)."""
+    def __init__(self, *, exchange_after: int | None = 10, start: str = "right_lane",
+                 **common: Any):
+        """The boxes swap places from trial ``exchange_after`` on (None: never); each trial
+        starts in the right-most lane or (``start="anywhere"``, §3.5.7) in a lane drawn from
+        the experiment's seed and the trial, as ``NavigationTask`` draws it."""
         self.exchange_after = NEVER if exchange_after is None else whole(
             "exchange_after", exchange_after, 0)
+        self.start = choice("start", start, NAVIGATION_STARTS)
+        self.lane_seed = 0
         super().__init__(**common)
 
     def make_task(self) -> Task:
         """A fresh navigation world, perceived as eq. 3.12 says."""
         return NavigationTask(NavigationWorld(),
                               make_object_perception(self.perception, "navigation"),
-                              exchange_after=self.exchange_after)
+                              exchange_after=self.exchange_after, start=self.start,
+                              seed=self.lane_seed)
+
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[Any, dict[str, Any]]:
+        """As ``XcsTaskEnv.reset``; a ``seed`` also seeds the start lanes of its experiment."""
+        if seed is not None:
+            self.lane_seed = int(seed)
+            self.task.seed = self.lane_seed  # type: ignore[attr-defined]
+        return super().reset(seed=seed, options=options)
 
 
 class StackingEnv(XcsTaskEnv):

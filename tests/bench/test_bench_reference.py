@@ -83,3 +83,8 @@ def test_scale_measurement_on_a_small_population() -> None:
 def test_small_populations_run_more_cycles() -> None:
     assert agents.cycles_for(10, 20) == agents.MIN_AGENT_CYCLES // 10
     assert agents.cycles_for(10_000, 20) == 20
+
+
+def test_messaging_measurement_checks_every_ping_arrives() -> None:
+    result = agents.measure(3, 4, messaging=True)  # raises unless each heard its neighbour
+    assert (result.agents, result.cycles) == (3, 4)

@@ -146,3 +146,18 @@ def test_launching_many_agents_is_linear() -> None:
     assert len(mas.agents[-1].query("bel", "agent(A)")) == 400
     mas.close()
     assert elapsed < 5.0, f"launching 400 agents took {elapsed:.1f} s"
+
+
+def test_a_message_to_one_agent_reaches_only_it_among_many(tmp_path: Path) -> None:
+    mas = system(tmp_path, """
+        agentfiles { "pinger.goal" [name = p, number = 5]. }
+        launchpolicy { launch p : p. }
+    """, pinger="""
+init module { beliefs { sent_once(no). } }
+main module { program {
+    if bel(me(p1), sent_once(no)) then p3.send(ping) + delete(sent_once(no)).
+} }
+""")
+    mas.run(max_cycles=2)
+    heard = {agent.name: agent.query("bel", "received(S, ping)") for agent in mas.agents}
+    assert heard == {"p1": [], "p2": [], "p3": [{"S": "p1"}], "p4": [], "p5": []}

@@ -180,9 +180,14 @@ def cell_label(values: dict) -> str:
     return ", ".join(f"{key} = {format_value(value)}" for key, value in values.items())
 
 
+HOLDS = ("supported", "not contradicted")
+"""Verdicts under which a claim holds: a directed one's test rejects in its favour, or a claim
+of sameness is not rejected."""
+
+
 def verdict_summary(document: SweepDocument, index: int) -> str:
     """Which cells make claim ``index`` hold (supported, or not contradicted for a claim of
-    sameness) and which contradict it, each with p and r."""
+    sameness) and which do not, each with p and r; the holding cells first."""
     groups: dict[str, list[str]] = {}
     for cell in document.cells:
         comparison = cell.summary.comparisons[index]
@@ -193,9 +198,25 @@ def verdict_summary(document: SweepDocument, index: int) -> str:
                 shown += f", r = {comparison.effect_size:+.2f}"
             shown += ")"
         groups.setdefault(comparison.verdict, []).append(shown)
-    parts = [f"{verdict} in {len(cells)} of {len(document.cells)} cells: {'; '.join(cells)}"
-             for verdict, cells in sorted(groups.items())]
+    order = sorted(groups, key=lambda verdict: (verdict not in HOLDS, verdict))
+    parts = [f"{verdict} in {len(groups[verdict])} of {len(document.cells)} cells: "
+             f"{'; '.join(groups[verdict])}" for verdict in order]
     return "By cell: " + ". ".join(parts) + "."
+
+
+def verdicts_text(document: SweepDocument) -> list[str]:
+    """The sweep's verdict: for each claim, the cells that make it hold and those that do not,
+    from the paired tests below."""
+    claims = document.cells[0].summary.comparisons
+    if not claims:
+        return []
+    lines = ["## Verdicts: which settings make each claim hold", "",
+             "A claim holds in a cell when its paired test supports it (a claim of sameness: "
+             "when the test does not contradict it); p is the test's, r the rank-biserial "
+             "effect size (tables under *Claims per cell*).", ""]
+    for index, claim in enumerate(claims):
+        lines += [f"{index + 1}. {claim.claim}. {verdict_summary(document, index)}", ""]
+    return lines
 
 
 def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
@@ -205,7 +226,14 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
     seeds = [record.seed for record in document.cells[0].seeds]
     lines = [f"# {study.name}: sweep over {', '.join(keys)}", "", study.description, "",
              f"Produced by `{document.command}` ({len(document.cells)} cells, {len(seeds)} "
-             f"seeds each: {seed_ranges(seeds)}).", "", "## Headline metrics per cell", ""]
+             f"seeds each: {seed_ranges(seeds)}).", ""]
+    if len(seeds) < study.default_seeds:
+        full = document.command.replace(f"--seeds {len(seeds)}",
+                                        f"--seeds {study.default_seeds}")
+        lines += [f"**Reduced size**: {len(seeds)} seeds per cell, against the study's "
+                  f"{study.default_seeds}, to fit the shared machine; the full sweep is "
+                  f"`{full}`.", ""]
+    lines += ["## Headline metrics per cell", ""]
     rows = []
     for cell in document.cells:
         by_key = {row.key: row for row in cell.summary.metrics}
@@ -215,6 +243,7 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
     labels = [next(r.label for r in document.cells[0].summary.metrics if r.key == m)
               for m in headline]
     lines += [markdown_table([*keys, *labels], rows), "", STATISTICS_NOTE, ""]
+    lines += verdicts_text(document)
     lines += ["## Claims per cell", ""]
     claims = document.cells[0].summary.comparisons
     if not claims:
@@ -231,7 +260,7 @@ def sweep_page(study: Study, document: SweepDocument, headline: Sequence[str],
                           "—" if comparison.effect_size is None
                           else f"{comparison.effect_size:+.2f}"])
         lines += [markdown_table([*keys, "verdict", "mean difference", "95% CI", "p", "r"],
-                                 table), "", verdict_summary(document, index), ""]
+                                 table), ""]
     for name in plot_files:
         lines += [f"![{name}]({name})", ""]
     all_seeds = [record for cell in document.cells for record in cell.seeds]

@@ -29,7 +29,7 @@ from robot.reproduce.framework import (
     Study,
     in_turn,
 )
-from robot.reproduce.studies.common.tasks import TaskConfig
+from robot.reproduce.studies.common.tasks import NavigationConfig
 from robot.reproduce.studies.common.xcs import Rate, xcs_keywords
 
 TASKS = ("navigation", "stacking")
@@ -38,7 +38,7 @@ METHODS = ("affordance_xcs", "standard_xcs", "q_learning", "dqn")
 BASELINES = ("q_learning", "dqn")
 
 
-class Config(TaskConfig):
+class Config(NavigationConfig):
     """§3.5.7's experiment in both tasks; Table 7.1's XCS; the baselines' own settings."""
 
     perception: Literal["truth", "camera"] = "truth"
@@ -97,7 +97,8 @@ def run(config: Config, seed: int, progress: Progress) -> Result:
                            config.dqn_buffer, config.dqn_target_update, config.dqn_hidden)
     runs: dict[str, dict[str, Trials]] = {task: {} for task in TASKS}
     for task, method in in_turn(product(TASKS, METHODS), progress):
-        change = {"exchange_after": trials // 2} if task == "navigation" else {}
+        change = ({"exchange_after": trials // 2, "start": config.start}
+                  if task == "navigation" else {})
         make_env = functools.partial(gymnasium.make, ENV_IDS[task], n_step=config.n_step,
                                      perception=config.perception, **change)
         records: list[TrialRecord]

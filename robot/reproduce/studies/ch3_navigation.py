@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from itertools import product
-from typing import Annotated, Literal
+from typing import Annotated
 
 from pydantic import Field
 
@@ -20,7 +20,6 @@ from robot.reproduce.framework import (
     Metric,
     Panel,
     Progress,
-    Reading,
     Reference,
     SeedResult,
     Series,
@@ -30,7 +29,7 @@ from robot.reproduce.framework import (
 )
 from robot.reproduce.studies.common.tasks import (
     MODES,
-    TaskConfig,
+    NavigationConfig,
     TaskRun,
     experienced_rules,
     experiment,
@@ -48,18 +47,11 @@ MOVABLE, FIXED, PUSH = "1001", "1100", "010"
 "1111", "1100", "1011" as seen whole or in part), action 010 (push d_walk ahead)."""
 
 
-class Config(TaskConfig):
+class Config(NavigationConfig):
     """§3.5.7's navigation experiment with Table 7.1's XCS."""
 
     rules_listed: Annotated[int, Field(ge=1)] = 21
     """Rules in the Table 3.2-style listing (Table 3.2 lists 21)."""
-    start: Annotated[Literal["anywhere", "right_lane"], Reading(
-        "§3.5.7: \"The NAO was allowed to start from anywhere on one side of the area\"; "
-        "§3.5.8 reckons the chance after the exchange for a start facing the unmovable "
-        "box.")] = "anywhere"
-    """Where each trial starts: `anywhere` draws one of the four lanes (0.15 m apart, each
-    facing a box) per trial from the seed; `right_lane` starts every trial in the right-most
-    lane, facing the right box (this code's earlier setting)."""
 
 
 class Methods(SeedResult):

@@ -224,6 +224,7 @@ STUDY = Study(
     config=ScaledExplorationConfig, result=Exploration, run=run, metrics=metrics, claims=claims,
     figures=figures, notes=notes(TRUTH), listings=variant_listing,
     quick={"scale": 0.05}, default_seeds=10, deviations=CH4_DEVIATIONS,
-    headline=("lid-1d.active.converged", "lid-1d.random.converged",
-              "lid-1d.active.converged_at", "lid-1d.random.converged_at"),
+    headline=tuple(f"{configuration}.{method}.{metric}"
+                   for configuration in CONFIGURATIONS
+                   for metric in ("converged", "converged_at") for method in METHODS),
 )

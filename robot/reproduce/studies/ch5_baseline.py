@@ -155,7 +155,8 @@ STUDY = Study(
     config=PartLearningConfig, result=Result, run=run, metrics=metrics, claims=claims,
     figures=figures, listings=listings, default_seeds=5, deviations=CH5_DEVIATIONS,
     quick={"cans": ("o1",), "perceptions": ("truth",)},
-    headline=("truth.o1.n_without", "truth.o2.n_without", "truth.o5.n_without"),
+    headline=("truth.o2.n_without", "truth.o5.n_without", "truth.o2.found", "truth.o4.found",
+              "truth.o5.found", "truth.o5.moving_nonfunctional"),
     notes="""\
 **Setup**: Algorithm 4 on each can: every part × action type with random θ in (0, 0.1] m,
 n = 5 samples per pair, a pair stopping after three once its ĝ and ĥ settle (eq. 5.19) and

@@ -142,7 +142,8 @@ STUDY = Study(
     config=Config, result=Result, run=run, metrics=metrics, claims=claims, figures=figures,
     listings=listings, default_seeds=5, deviations=CH5_DEVIATIONS,
     quick={"cans": ("o1", "o3"), "perceptions": ("truth",)},
-    headline=("truth.o2.n_with", "truth.o3.n_with", "truth.o5.n_with", "truth.pedal.n_with"),
+    headline=(*(f"truth.{can}.n_without" for can in THESIS_CANS),
+              *(f"truth.{can}.n_with" for can in THESIS_CANS[1:]), "truth.pedal.n_with"),
     notes="""\
 **Setup**: each seed starts from an empty database and presents the cans in order; each can
 is learned with transfer (Algorithm 5 picks the source by shared `above` relations among the

@@ -73,3 +73,19 @@ def test_algorithm_3_is_identical_through_the_gymnasium_environment():
         assert np.array_equal(getattr(through_gym, field), getattr(history, field)), field
     assert through_gym.states.max() > 0.01  # it did open the lid
     env.close()
+
+
+def test_navigation_trials_start_in_the_same_drawn_lanes_through_the_environment():
+    """``start="anywhere"`` (§3.5.7): the environment draws each trial's lane from the
+    experiment's seed as the task does, so the runs stay identical."""
+    from behaviours.object_state import make_object_perception
+    from behaviours.xcs_tasks import NavigationTask
+    from sim.navigation import NavigationWorld
+
+    env = gymnasium.make("goalagent/Navigation-v0", exchange_after=3, start="anywhere")
+    through_gym = experiment(EnvTask(env, seed=7), "affordance_xcs", 7, 6, 10)
+    task = NavigationTask(NavigationWorld(), make_object_perception("truth", "navigation"),
+                          exchange_after=3, start="anywhere", seed=7)
+    assert len({task.start_lane(trial) for trial in range(6)}) > 1
+    assert through_gym == experiment(task, "affordance_xcs", 7, 6, 10)
+    env.close()

@@ -11,6 +11,7 @@ import pytest
 from robot.reproduce.framework.backends import LocalBackend
 from robot.reproduce.framework.registry import UnknownStudy, find, registered
 from robot.reproduce.framework.runner import reproduce
+from robot.reproduce.framework.settings import apply
 from robot.reproduce.framework.statistics import summarize
 from robot.reproduce.studies import ch4_agent, ch4_exploration, ch4_skills
 from robot.reproduce.studies.common.ch4 import CONFIGURATIONS, METHODS, Exploration
@@ -21,10 +22,12 @@ NAMES = ("appA-params", "appA-search", "ch3-baselines", "ch3-navigation", "ch3-s
          "ch5-baseline", "ch5-transfer", "xcs-maze4", "xcs-mux", "xcs-woods2")
 
 
-def quick(name: str, out: Path, seeds: int = 2):
-    """The study at its quick size: (document, typed results, page, metrics by key)."""
+def quick(name: str, out: Path, seeds: int = 2, settings: tuple[str, ...] = ()):
+    """The study at its quick size, ``settings`` (KEY=VALUE) applied: (document, typed
+    results, page, metrics by key)."""
     study = find(name)
-    outcome = reproduce(study, study.quick_config(), list(range(seeds)), LocalBackend(1), out)
+    config = apply(study, study.quick_config(), list(settings))
+    outcome = reproduce(study, config, list(range(seeds)), LocalBackend(1), out)
     page = (out / f"{name}.md").read_text()
     assert f"# {name}" in page and "## Claims and tests" in page
     assert all(f"]({path.name})" in page for path in outcome.files if path.suffix == ".png")
@@ -237,9 +240,10 @@ def test_ch4_agent_statistics_on_hand_made_seeds():
 
 
 def test_ch5_transfer_learns_o3_from_o1_at_once(tmp_path):
-    """With the thesis's aim (eq. 5.10: the goal itself) o1's θ* leaves o3 just short of the
-    goal, and one step along o1's gradient (Algorithm 6, line 13) opens it."""
-    document, (seed,), page, metrics = quick("ch5-transfer", tmp_path, seeds=1)
+    """Aiming at the goal itself (eq. 5.10 as printed) o1's θ* leaves o3 just short of the
+    one-sided goal, and one step along o1's gradient (Algorithm 6, line 13) opens it."""
+    document, (seed,), page, metrics = quick("ch5-transfer", tmp_path, seeds=1,
+                                             settings=("aim=goal",))
     assert document.config["cans"] == ["o1", "o3"] and document.config["aim"] == "goal"
     o1, o3 = seed.perceptions["truth"]["o1"], seed.perceptions["truth"]["o3"]
     assert (o1.source, o1.n_with, o1.n_without) == (None, 39, 39)

@@ -63,6 +63,18 @@ class TaskConfig(TrialConfig):
         return even_trials(self.trials, self.scale, 4)
 
 
+class NavigationConfig(TaskConfig):
+    """A chapter-3 task config whose navigation trials start where §3.5.7 says."""
+
+    start: Annotated[Literal["anywhere", "right_lane"], Reading(
+        "§3.5.7: \"The NAO was allowed to start from anywhere on one side of the area\"; "
+        "§3.5.8 reckons the chance after the exchange for a start facing the unmovable "
+        "box.")] = "anywhere"
+    """Where each trial starts: `anywhere` draws one of the four lanes (0.15 m apart, each
+    facing a box) per trial from the seed; `right_lane` starts every trial in the right-most
+    lane, facing the right box (this code's earlier setting)."""
+
+
 class TaskRun(SeedResult):
     """One experiment, trial by trial, with the learned table and rules."""
 

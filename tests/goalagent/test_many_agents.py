@@ -1,0 +1,155 @@
+"""What launching many agents of one program shares or puts off (issue 29): agents copy
+the conditions an earlier one compiled (clone_conditions/6) instead of reading and
+confining each text again, and a copy behaves exactly as the agent's own compile would (it
+reads the agent's own beliefs and keys); Prolog's generator is seeded before anything
+draws, as if each agent had seeded it when launched."""
+
+from __future__ import annotations
+
+import io
+
+import pytest
+
+from goalagent.kb.conditions import Conditions
+from goalagent.kb.engine import get_engine
+from goalagent.kb.terms import Atom, Struct
+from goalagent.mas import MultiAgentSystem
+from goalagent.parser import parse_agent
+
+COUNTER = """
+init module { beliefs { n(0). } }
+main module { program [order=linearall] {
+    if bel(n(N), N < 2, M is N + 1) then delete(n(N)) + insert(n(M)).
+    if bel(me(Me), n(1), atom_length(Me, L)) then insert(len(L)).
+} }
+"""
+
+KEYS = """
+main module { program [order=linearall] {
+    if bel(me(Me), not(nb_current(k, _)), nb_setval(k, Me)) then insert(set).
+    if bel(set, nb_getval(k, V)) then insert(got(V)).
+} }
+"""
+
+
+@pytest.fixture
+def copies(monkeypatch: pytest.MonkeyPatch) -> list[bool]:
+    """What each copy_conditions call answered (True: copied)."""
+    answers: list[bool] = []
+    copy = Conditions.copy_conditions
+
+    def spy(self: Conditions, like: Conditions, conditions: object) -> bool:
+        answers.append(copy(self, like, conditions))  # type: ignore[arg-type]
+        return answers[-1]
+
+    monkeypatch.setattr(Conditions, "copy_conditions", spy)
+    return answers
+
+
+def test_copied_conditions_read_each_agent_s_own_beliefs(copies: list[bool]) -> None:
+    program = parse_agent(COUNTER, "counter.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        for name in ("a", "bb", "ccc"):
+            system.launch(name, program)
+        assert copies == [True, True]
+        first = system.agents[0]
+        first.ms.delete("n(0)")
+        first.ms.insert("n(2)")  # the first agent's beliefs are not the others'
+        system.run(max_cycles=3)
+        assert [agent.query("bel", "n(N)") for agent in system.agents] == [
+            [{"N": 2}], [{"N": 2}], [{"N": 2}]]
+        assert [agent.query("bel", "len(L)") for agent in system.agents] == [
+            [], [{"L": 2}], [{"L": 3}]]
+    finally:
+        system.close()
+
+
+def test_a_condition_naming_an_own_key_is_compiled_by_each_agent(copies: list[bool]) -> None:
+    program = parse_agent(KEYS, "keys.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        for name in ("a", "b", "c"):
+            system.launch(name, program)
+        assert copies == [False, False]  # the first agent's key is in its clause
+        system.run(max_cycles=2)
+        assert [agent.query("bel", "got(V)") for agent in system.agents] == [
+            [{"V": Atom(name)}] for name in ("a", "b", "c")]
+    finally:
+        system.close()
+
+
+def test_once_the_agent_copied_from_is_closed_the_next_compiles_and_is_copied(
+        copies: list[bool]) -> None:
+    program = parse_agent(COUNTER, "counter.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        system.launch("a", program).close()
+        system.agents.clear()
+        later = [system.launch(name, program) for name in ("bb", "ccc")]
+        assert copies == [True]  # bb compiled its own (a was closed); ccc copied bb's
+        for agent in later:
+            agent.step()
+            agent.step()
+        assert [agent.query("bel", "len(L)") for agent in later] == [[{"L": 2}], [{"L": 3}]]
+    finally:
+        system.close()
+
+
+def test_agents_with_directives_compile_their_own(copies: list[bool]) -> None:
+    program = parse_agent(COUNTER.replace(
+        "beliefs { n(0). }", "knowledge { :- dynamic(seen/1). } beliefs { n(0). }"), "d.goal")
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        system.launch("a", program)
+        system.launch("bb", program)
+        assert copies == []
+        system.run(max_cycles=3)
+        assert system.agents[1].query("bel", "len(L)") == [{"L": 2}]
+    finally:
+        system.close()
+
+
+DRAWS = """
+init module { knowledge { KNOWLEDGE } beliefs { n(0). first(0). } goals { GOAL } }
+main module { program {
+    if bel(n(0), random_between(1, 1000000, X)) then insert(drew(X)) + delete(n(0)).
+} }
+"""
+
+LUCKY = "lucky(X) :- random_between(1, 1000000, Y), Y =:= X."
+DRAWING_DIRECTIVE = ":- dynamic(first/1). :- random_between(1, 1000000, Y), assertz(first(Y))."
+
+
+def _draws(knowledge: str, goal: str, agents: int, *, eager: bool,
+           monkeypatch: pytest.MonkeyPatch) -> list[list[dict[str, object]]]:
+    """What each of ``agents`` agents of the DRAWS program drew (first/1 and drew/1) in
+    its first two cycles, seeds 5, 6, ...; ``eager``: Prolog seeded at each launch, as
+    before seeds were held back."""
+    engine = get_engine()
+    if eager:
+        monkeypatch.setattr(engine, "seed_random", lambda seed: engine.call(
+            "set_random", Struct("seed", (seed,)), module="system"))
+    program = parse_agent(DRAWS.replace("KNOWLEDGE", knowledge).replace("GOAL", goal),
+                          "draws.goal")
+    system = MultiAgentSystem(output=io.StringIO(), seed=5)
+    try:
+        for index in range(agents):
+            system.launch(f"a{index}", program)
+        system.run(max_cycles=2)
+        return [agent.query("bel", "drew(X) ; first(X), X > 0") for agent in system.agents]
+    finally:
+        system.close()
+        monkeypatch.undo()
+
+
+@pytest.mark.parametrize(("knowledge", "goal"), [
+    ("", "g(1)."),  # nothing draws before the first cycle: it draws from the last seed
+    (LUCKY, "lucky(3)."),  # checking the goal runs a knowledge rule that draws
+    (DRAWING_DIRECTIVE, ""),  # a directive draws while the agent loads
+], ids=["cycles", "goal-check", "directive"])
+def test_prolog_draws_the_numbers_it_drew_when_each_launch_seeded_it(
+        knowledge: str, goal: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    held_back = _draws(knowledge, goal, 3, eager=False, monkeypatch=monkeypatch)
+    assert all(drawn for drawn in held_back)
+    assert held_back == _draws(knowledge, goal, 3, eager=True, monkeypatch=monkeypatch)
