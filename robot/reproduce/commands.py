@@ -282,7 +282,9 @@ def _tally(tally) -> None:
     if tally.cached or tally.computed:
         err_console.print(f"seeds run: {tally.computed}, from the cache: {tally.cached}"
                           + (f" ({tally.recomputed_corrupt} corrupt entries run again)"
-                             if tally.recomputed_corrupt else ""), markup=False)
+                             if tally.recomputed_corrupt else "")
+                          + (f" ({tally.recomputed_stale} made by changed code run again)"
+                             if tally.recomputed_stale else ""), markup=False)
 
 
 def _wrote(files: list[Path]) -> None:

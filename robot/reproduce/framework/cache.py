@@ -1,7 +1,9 @@
 """Finished (config, seed) results on disk, one file each, written atomically as soon as the
 seed finishes: a reproduction or sweep that is interrupted (Ctrl-C, a killed process, a lost
 node) resumes from them and never runs a finished seed again. An entry that cannot be read
-back as the study's result is reported with its path and run again, never used."""
+back as the study's result is reported with its path and run again, never used; an entry
+made by other code (``code_fingerprint``: any change to the code's files since) is stale and
+run again."""
 
 from __future__ import annotations
 
@@ -12,7 +14,7 @@ from pathlib import Path
 from pydantic import ValidationError
 
 from ondisk import write_atomically
-from robot.reproduce.framework.provenance import Provenance
+from robot.reproduce.framework.provenance import Provenance, code_fingerprint
 from robot.reproduce.framework.tasks import SCHEMA_VERSION, Finished, Task
 
 
@@ -30,6 +32,10 @@ def default_folder() -> Path:
     return Path(base) / "goalagent" / "reproduce"
 
 
+class StaleEntry(ValueError):
+    """A cache entry of this config and seed made by code that has changed since."""
+
+
 class Cache:
     """The entries under ``folder``: ``STUDY/KEY-seedN.json``."""
 
@@ -41,7 +47,7 @@ class Cache:
 
     def load(self, task: Task) -> Finished | None:
         """The task's finished result, None if there is none; CorruptEntry if the entry does
-        not hold it."""
+        not hold it, StaleEntry if other code made it."""
         path = self.path(task)
         try:
             text = path.read_text(encoding="utf-8")
@@ -68,6 +74,8 @@ class Cache:
             if isinstance(error, CorruptEntry):
                 raise
             raise CorruptEntry(path, f"{type(error).__name__}: {error}") from None
+        if entry.get("code") != code_fingerprint():
+            raise StaleEntry(path)
         return Finished(task, result, seconds, provenance)
 
     def store(self, finished: Finished) -> Path:
@@ -76,7 +84,8 @@ class Cache:
         path = self.path(task)
         path.parent.mkdir(parents=True, exist_ok=True)
         entry = {"schema_version": SCHEMA_VERSION, "study": task.study.name, "seed": task.seed,
-                 "key": task.key, "config": task.config.model_dump(mode="json"),
+                 "key": task.key, "code": code_fingerprint(),
+                 "config": task.config.model_dump(mode="json"),
                  "seconds": finished.seconds,
                  "provenance": finished.provenance.model_dump(mode="json"),
                  "result": finished.result.model_dump(mode="json")}

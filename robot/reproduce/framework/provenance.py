@@ -5,6 +5,7 @@ the process that ran the seed (a Ray worker on another node reports its own)."""
 from __future__ import annotations
 
 import functools
+import hashlib
 import platform
 import shutil
 import subprocess
@@ -16,6 +17,25 @@ from pydantic import BaseModel, ConfigDict
 ROOT = Path(__file__).resolve().parents[3]
 CODE = ("goalagent", "behaviours", "sim", "robot", "agents", "pyproject.toml")
 """What makes a commit ``+dirty`` when changed: the code, not the pages a run writes."""
+
+
+@functools.cache
+def code_fingerprint() -> str:
+    """A hash of the code's files (``CODE`` under ``ROOT``, compiled files aside): a cached
+    seed made by other code is not this code's result, whether or not the change was
+    committed (the git commit does not see uncommitted edits)."""
+    digest = hashlib.sha256()
+    for name in CODE:
+        top = ROOT / name
+        if top.is_file():
+            files = [top]
+        else:
+            files = sorted(path for path in top.rglob("*")
+                           if path.is_file() and "__pycache__" not in path.parts)
+        for path in files:
+            digest.update(path.relative_to(ROOT).as_posix().encode() + b"\0")
+            digest.update(path.read_bytes() + b"\0")
+    return digest.hexdigest()
 
 
 class Provenance(BaseModel):

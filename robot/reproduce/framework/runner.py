@@ -18,7 +18,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, Ti
 from ondisk import write_atomically
 from robot.reproduce.framework import documents
 from robot.reproduce.framework.backends import Backend
-from robot.reproduce.framework.cache import Cache, CorruptEntry
+from robot.reproduce.framework.cache import Cache, CorruptEntry, StaleEntry
 from robot.reproduce.framework.documents import DocumentError, ReproductionDocument, SeedRecord
 from robot.reproduce.framework.pages import reproduction_page
 from robot.reproduce.framework.plots import Figure, render_figure
@@ -36,6 +36,7 @@ class Tally:
     computed: int = 0
     cached: int = 0
     recomputed_corrupt: int = 0
+    recomputed_stale: int = 0
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,7 @@ def run_tasks(tasks: Sequence[Task], backend: Backend, cache: Cache | None,
     """Every task's finished result, in task order: from the cache (unless ``fresh``) or run
     on ``backend``, each cached as it finishes. A corrupt cache entry is reported and run."""
     found: dict[int, Finished] = {}
-    corrupt = 0
+    corrupt = stale = 0
     for index, task in enumerate(tasks):
         if cache is None or fresh:
             break
@@ -85,9 +86,15 @@ def run_tasks(tasks: Sequence[Task], backend: Backend, cache: Cache | None,
             if console is not None:
                 console.print(f"warning: {escape(str(error))}; running seed {task.seed} again")
             continue
+        except StaleEntry:
+            stale += 1
+            continue
         if hit is not None:
             found[index] = hit
     missing = [index for index in range(len(tasks)) if index not in found]
+    if console is not None and stale:
+        console.print(f"{stale} cached seed{'s' if stale > 1 else ''} of this config came from "
+                      "code that has changed since: running again", markup=False)
     if console is not None and cache is not None and found:
         console.print(f"{len(found)} of {len(tasks)} seeds from the cache {cache.folder}",
                       markup=False)
@@ -101,7 +108,7 @@ def run_tasks(tasks: Sequence[Task], backend: Backend, cache: Cache | None,
         if missing:
             backend.run([tasks[index] for index in missing], show, finished)
     tally = Tally(computed=len(missing), cached=len(tasks) - len(missing),
-                  recomputed_corrupt=corrupt)
+                  recomputed_corrupt=corrupt, recomputed_stale=stale)
     return [found[index] for index in range(len(tasks))], tally
 
 

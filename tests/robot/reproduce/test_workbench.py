@@ -309,6 +309,27 @@ def test_a_corrupt_cache_entry_is_reported_with_its_path_and_run_again(tmp_path)
     assert json.loads(entries[0].read_text())["result"]["value"] == 1.0  # repaired
 
 
+def test_a_seed_cached_by_other_code_is_run_again(tmp_path):
+    """Each entry carries the fingerprint of the code's files; an entry written by code
+    that has changed since (here: another fingerprint, as an edit to a study would give)
+    is not this code's result."""
+    log, cache = tmp_path / "ran.txt", tmp_path / "cache"
+    first = run_toy(tmp_path / "a", cache=cache, log=str(log))
+    seed1 = sorted((cache / "toy-run").glob("*-seed1.json"))[0]
+    entry = json.loads(seed1.read_text())
+    assert re.fullmatch(r"[0-9a-f]{64}", entry["code"])
+    seed1.write_text(json.dumps({**entry, "code": "0" * 64}))
+    console = Console(record=True, width=300)
+    again = reproduce(TOY, ToyConfig(log=str(log)), [0, 1, 2], LocalBackend(1), tmp_path / "b",
+                      cache=Cache(cache), console=console)
+    assert "1 cached seed of this config came from code that has changed since" in (
+        console.export_text())
+    assert log.read_text().split() == ["0", "1", "2", "1"]
+    assert (again.tally.computed, again.tally.cached, again.tally.recomputed_stale) == (1, 2, 1)
+    assert without_seconds(again.document) == without_seconds(first.document)
+    assert json.loads(seed1.read_text())["code"] == entry["code"]  # rewritten by this code
+
+
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_a_failing_seed_is_named_and_the_seeds_before_it_stay_cached(tmp_path, jobs):
     log, cache = tmp_path / "ran.txt", tmp_path / "cache"
