@@ -14,22 +14,19 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from goalagent import ast
-from goalagent.agent import ActionFailed, Agent, AgentError, Listener, LocalPostman, Tracer
-from goalagent.eis.exceptions import ActException, ActExceptionKind, EnvironmentInterfaceException
+from goalagent.agent import Agent, AgentError, Listener, LocalPostman, Tracer
+from goalagent.eis.exceptions import EnvironmentInterfaceException
 from goalagent.eis.interface import Environment, EnvironmentState
-from goalagent.eis.registry import load_environment
 from goalagent.eis.terms import (
     Parameter,
-    Percept,
-    action_from_term,
     from_term,
-    percept_to_term,
 )
 from goalagent.kb.engine import KBError, PrologSyntaxError, get_engine
 from goalagent.kb.identity import AgentDirectory
 from goalagent.kb.limits import Limits
-from goalagent.kb.terms import Atom, Struct, Term, Var
+from goalagent.kb.terms import Atom, Term, Var
 from goalagent.mas_capacity import agent_capacity, capacity_message, check_launches
+from goalagent.mas_environment import EntityIO, EntityLaunches, make_environment
 from goalagent.parser import (
     GoalSyntaxError,
     load_agents,
@@ -37,45 +34,6 @@ from goalagent.parser import (
     parse_agent_file,
     parse_mas_file,
 )
-
-_CANNOT_TAKE = frozenset({ActExceptionKind.UNKNOWN_ACTION, ActExceptionKind.WRONG_PARAMETERS,
-                          ActExceptionKind.NOT_REGISTERED, ActExceptionKind.WRONG_ENTITY,
-                          ActExceptionKind.NO_ENTITIES})
-"""Why an environment cannot take an action at all: GOAL's runtime stops the agent then
-(``RunState.doPerformAction``); a refusal or failure is a warning and the agent goes on."""
-
-
-class EntityIO:
-    """Connects one agent to its entities in an EIS environment (``agent.AgentIO``): the
-    percepts of a cycle are those of its entities plus any the environment pushed since."""
-
-    def __init__(self, environment: Environment, agent: str) -> None:
-        self.environment = environment
-        self.agent = agent
-        self._pushed: list[Percept] = []
-        environment.attach_agent_listener(agent, self)
-
-    def handle_percept(self, agent: str, percept: Percept) -> None:
-        """EIS agent listener: keep a pushed percept for the agent's next cycle."""
-        self._pushed.append(percept)
-
-    def percepts(self) -> list[Term]:
-        pushed, self._pushed = self._pushed, []
-        if not self.environment.associated_entities(self.agent):
-            return [percept_to_term(p) for p in pushed]
-        try:
-            per_entity = self.environment.get_all_percepts(self.agent)
-        except EnvironmentInterfaceException as err:
-            raise ActionFailed(str(err)) from err
-        current = [p for percepts in per_entity.values() for p in percepts]
-        return [percept_to_term(p) for p in current + pushed]
-
-    def act(self, action: Struct | Atom) -> None:
-        try:
-            self.environment.perform_action(self.agent, action_from_term(action))
-        except EnvironmentInterfaceException as err:
-            fatal = isinstance(err, ActException) and err.kind in _CANNOT_TAKE
-            raise ActionFailed(str(err), fatal=fatal) from err
 
 
 @dataclass(frozen=True)
@@ -132,7 +90,7 @@ def read_parameter(value: Term | ParameterText, *, path: bool) -> Term:
     return parse_parameter(value.text)
 
 
-class MultiAgentSystem:
+class MultiAgentSystem(EntityLaunches):
     """Agents, their environment and the message routing between them.
 
     Made from a ``.mas2g`` file (:meth:`from_mas_file`), or from one agent file or text on
@@ -241,7 +199,7 @@ class MultiAgentSystem:
         params: dict[str, Term | ParameterText] = {
             key: get_engine().parse_term(value.text) for key, value in mas.env_init}
         params.update(env_params or {})
-        environment = (_make_environment(mas.environment, mas.env_pos or mas.pos)
+        environment = (make_environment(mas.environment, mas.env_pos or mas.pos)
                        if mas.environment else None)
         if environment is not None:
             environment.home = Path(path).parent
@@ -357,7 +315,7 @@ class MultiAgentSystem:
                 options: dict[str, Any]) -> MultiAgentSystem:
         """The system of one program on ``environment`` (files it names looked for in
         ``home``)."""
-        env = _make_environment(environment, pos) if environment else None
+        env = make_environment(environment, pos) if environment else None
         if env is not None:
             env.home = home
         system = cls(env, **options)
@@ -426,52 +384,6 @@ class MultiAgentSystem:
         for entity in self.environment.free_entities():
             self.handle_new_entity(entity, self.environment.entity_type(entity))
 
-    # ------------------------------------------------------------------ EIS listener
-    def handle_new_entity(self, entity: str, type: str) -> None:
-        """Launch rules ``when [type=T, max=N]@env do launch ...`` / ``when type = T launch
-        a, b.`` (the first rule whose entity condition fits and that may still launch: all
-        its agents on this entity) and plain agents waiting for a body: the first agent
-        without an entity gets this one."""
-        environment = self.environment
-        if environment is None or entity not in environment.free_entities():
-            return
-        groups: dict[int, list[int]] = {}
-        for index, rule in enumerate(self._entity_launches):
-            groups.setdefault(rule.group, []).append(index)
-        for indices in groups.values():
-            first = self._entity_launches[indices[0]]
-            if first.entity_type not in (None, type) or first.entity_name not in (None, entity):
-                continue
-            ready = [index for index in indices
-                     if (most := self._entity_launches[index].max) is None
-                     or self._launched_per_rule.get(index, 0) < most]
-            if not ready:
-                continue
-            for index in ready:
-                rule = self._entity_launches[index]
-                launched = self._launched_per_rule.get(index, 0)
-                self._launched_per_rule[index] = launched + 1
-                name = entity if rule.agent_name == "*" else rule.agent_name
-                if name in self._names:
-                    name = f"{name}{launched + 1}"
-                self.launch(name, self._programs[rule.agentfile], entity,
-                            limits=self._agent_limits.get(rule.agentfile))
-            return
-        for agent in self.agents:
-            if not environment.associated_entities(agent.name):
-                environment.associate_entity(agent.name, entity)
-                return
-
-    def handle_state_change(self, state: EnvironmentState) -> None:
-        """Environment state changes need no action from the scheduler."""
-
-    def handle_free_entity(self, entity: str, agents: list[str]) -> None:
-        """An entity freed by its agents waits for an agent to ask for it: nothing to do."""
-
-    def handle_deleted_entity(self, entity: str, agents: list[str]) -> None:
-        """An entity that left takes its percepts with it: nothing to do (its agents run on
-        without a body, as in GOAL)."""
-
     # ------------------------------------------------------------------ running
     def run(self, max_cycles: int | None = None,
             after_cycle: Callable[[Agent], None] | None = None) -> list[AgentSummary]:
@@ -530,9 +442,3 @@ class MultiAgentSystem:
             agent.close()
         self._directory.close()
 
-
-def _make_environment(spec: str, pos: ast.Pos) -> Environment:
-    try:
-        return load_environment(spec)()
-    except EnvironmentInterfaceException as err:
-        raise GoalSyntaxError.at(pos, str(err)) from None
