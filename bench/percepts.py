@@ -4,9 +4,9 @@ One step: the agent's percepts of a blocksworld of ten blocks (20 percepts, writ
 shorthand) and of a BW4T robot (``Percept.of`` through EIS2Java's filters), taken the way a
 multi-agent run takes them (``goalagent.mas_environment.EntityIO``: environment -> EIS
 ``Percept`` -> the agent's terms), and one blocksworld ``move`` action the other way (agent
-term -> EIS ``Action`` -> the environment's method). Counted as instructions.py counts a cycle: a run of
-``--steps`` steps minus a run of none, under ``valgrind --tool=callgrind`` (load does not
-matter). ``--wall``: best-of-5 wall time instead (no valgrind; swings with the load).
+term -> EIS ``Action`` -> the environment's method). Counted as instructions.py counts a cycle:
+a run of ``--steps`` steps minus a run of none, under ``valgrind --tool=callgrind`` (load does
+not matter). ``--wall``: best-of-5 wall time instead (no valgrind; swings with the load).
 
     .venv/bin/python bench/percepts.py [--steps N] [--wall]
 """
