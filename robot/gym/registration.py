@@ -12,6 +12,7 @@ first, as for any world.
 
 from __future__ import annotations
 
+import functools
 import importlib
 from typing import Any
 
@@ -33,24 +34,11 @@ def _make(env_id: str, **kwargs: Any) -> Any:
     return getattr(importlib.import_module(module_name), class_name)(**kwargs)
 
 
-def make_navigation(**kwargs: Any) -> Any:
-    """``goalagent/Navigation-v0``."""
-    return _make("goalagent/Navigation-v0", **kwargs)
-
-
-def make_stacking(**kwargs: Any) -> Any:
-    """``goalagent/Stacking-v0``."""
-    return _make("goalagent/Stacking-v0", **kwargs)
-
-
-def make_head_search(**kwargs: Any) -> Any:
-    """``goalagent/HeadSearch-v0``."""
-    return _make("goalagent/HeadSearch-v0", **kwargs)
-
-
-def make_can_opening(**kwargs: Any) -> Any:
-    """``goalagent/CanOpening-v0``."""
-    return _make("goalagent/CanOpening-v0", **kwargs)
+make_navigation = functools.partial(_make, "goalagent/Navigation-v0")
+make_stacking = functools.partial(_make, "goalagent/Stacking-v0")
+make_head_search = functools.partial(_make, "goalagent/HeadSearch-v0")
+make_can_opening = functools.partial(_make, "goalagent/CanOpening-v0")
+"""The entry points: each builds its id's class (``_make``)."""
 
 
 ENV_IDS: dict[str, str] = {
