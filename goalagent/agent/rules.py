@@ -17,6 +17,7 @@ from goalagent.agent.problems import warning_text
 from goalagent.agent.reports import RunRecord, Span
 from goalagent.kb.interpreter import CompiledProgram, RunOutcome
 from goalagent.kb.interpreter_requests import Firing, Problem, Step
+from goalagent.kb.mentalstate import PlanPredicate
 from goalagent.kb.terms import Term
 
 if TYPE_CHECKING:
@@ -37,7 +38,7 @@ class _CyclePlans(dict):
         self._agent = agent
         self._code = code
 
-    def __missing__(self, key: tuple[bool, bool]) -> Term | None:
+    def __missing__(self, key: tuple[bool, bool]) -> Term | PlanPredicate | None:
         first, listen = key
         program = self._agent.program
         names = ("init", "event", "main") if first else ("event", "main")
@@ -89,7 +90,7 @@ class RuleApplication:
         self._code.add_module(module)
         return self.run_modules([(module, {})], count_last=True)
 
-    def run_plan(self, plan: Term) -> RunOutcome:
+    def run_plan(self, plan: Term | PlanPredicate) -> RunOutcome:
         """Runs a plan (see ``CompiledProgram.plan``; ``cycle_plans`` has the cycles') in
         one interpreter call; the report gets its spans, the agent its action count."""
         agent = self._agent

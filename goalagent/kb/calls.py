@@ -49,7 +49,7 @@ from goalagent.kb.clib import (
     term_t,
     text_of,
 )
-from goalagent.kb.conversion import Kept, Record, TermConversion
+from goalagent.kb.conversion import Record, TermConversion
 from goalagent.kb.errors import Interrupted, KBError, PrologRuntimeError
 from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
 
@@ -71,6 +71,10 @@ class PrologCalls(TermConversion):
         if PL_thread_self() == -1:  # made in another thread than SWI's first one
             self._attach_thread()
         self._preds: dict[tuple[str, int, str], int] = {}
+        # Two term references outside any frame, for the outputs of call_once's plans (made
+        # once: a term reference each cycle is a C call); they belong to this thread.
+        self._outputs = PL_new_term_refs(2)
+        self._outputs_thread = self._thread
         self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
         self._python_errors: list[BaseException] = []  # raised inside foreign predicates
         # The main thread's current stretch in Prolog (a query, or Prolog again after a
@@ -102,6 +106,13 @@ class PrologCalls(TermConversion):
             self._preds[key] = handle
         return handle
 
+    def own_predicate(self, name: str, arity: int, module: str) -> int:
+        """A predicate handle for ``module:name/arity`` in an agent's module (not cached:
+        it dies with the agent)."""
+        if get_ident() != self._thread:
+            self._attach_thread()
+        return PL_predicate(name.encode(), arity, module.encode())
+
     def forget_atom(self, name: str) -> None:
         """Drops ``name`` from the atom cache (e.g. a destroyed module) so Prolog can GC it."""
         handle = self._atoms.pop(name, None)
@@ -127,10 +138,13 @@ class PrologCalls(TermConversion):
         return result
 
     def call_once(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term]],
-                  number: int, keep: int) -> tuple[int, Record]:
+                  number: int, keep: int) -> tuple[int, int]:
         """One call of a deterministic ``pred`` (the rule interpreter's, once per cycle):
-        the integer output ``number`` and output ``keep`` kept as a :class:`Record`. As
-        :meth:`solve`, with nothing else converted (a few C calls fewer per cycle)."""
+        the integer output ``number`` and output ``keep`` recorded (the handle of a
+        ``PL_record``, which the caller owns: a :class:`Record` frees it). As
+        :meth:`solve`, with nothing else converted. A predicate with only its two outputs
+        (a plan, see rules.pl's define_plan/3) called outside any other query takes
+        its arguments from term references made once: four C calls in all."""
         if get_ident() != self._thread:
             self._attach_thread()
         if self.pending_seed is not None:
@@ -138,16 +152,16 @@ class PrologCalls(TermConversion):
         fid = PL_open_foreign_frame()
         outer_since = self._enter()
         try:
-            base = PL_new_term_refs(arity)
-            for index, value in inputs:
-                if type(value) is Kept:
-                    PL_recorded(value.handle, base + index)
-                else:
+            if inputs or self.depth > 1 or self._outputs_thread != self._thread:
+                base = PL_new_term_refs(arity)
+                for index, value in inputs:
                     self._put_term(base + index, value, {})
+            else:  # (bound inside the frame: discarding it unbinds them)
+                base = self._outputs
             if PL_call_predicate(None, Q_PASS, pred, base):
                 if not PL_get_int64(base + number, INT_REF):
                     raise KBError("internal: the interpreter's outcome is not a number")
-                return INT_BUF.value, Record(self, PL_record(base + keep))
+                return INT_BUF.value, PL_record(base + keep)
             exception = PL_exception(0)
             if not exception:
                 raise KBError("internal: the interpreter failed")

@@ -60,7 +60,6 @@ from goalagent.kb.clib import (
     PL_put_term,
     PL_put_term_from_chars,
     PL_put_variable,
-    PL_recorded,
     PL_register_atom,
     PL_term_type,
     integer_bits,
@@ -106,28 +105,13 @@ class Record:
             self._engine._dead_records.append(self._handle)
 
 
-class Kept:
-    """A Prolog term recorded once (``PL_record``) and put into calls without converting it
-    again: the same input of many calls (e.g. the module passes of a cycle)."""
-
-    __slots__ = ("_engine", "handle")
-
-    def __init__(self, engine: TermConversion, handle: int) -> None:
-        self._engine = engine
-        self.handle = handle
-
-    def __del__(self) -> None:
-        """Frees the record at the engine's next call (from the thread that runs Prolog)."""
-        self._engine._dead_records.append(self.handle)
-
-
 ATOM_CACHE_MAX = 200_000  # cached atoms stay registered (never GC'd): keep this bounded
 VAR_MARK = "$ga_var"  # parse/2 marks named variables as '$ga_var'(Name)
 
 
 class TermConversion:
     """Puts Python terms into term refs and gets them back, with atom and functor handles
-    cached; ``Kept`` terms (recorded once) are put by their record."""
+    cached."""
 
     def __init__(self) -> None:
         self._atoms: dict[str, int] = {}
@@ -139,9 +123,8 @@ class TermConversion:
         self._counter = 0
         self._putters: dict[type, Callable[[int, Any, dict[str, int]], None]] = {
             Atom: self._put_atom, Struct: self._put_compound, int: self._put_integer,
-            list: self._put_list, tuple: self._put_list, Kept: self._put_kept,
-            Var: self._put_variable, float: self._put_float, bool: self._put_bool,
-            str: self._put_string}
+            list: self._put_list, tuple: self._put_list, Var: self._put_variable,
+            float: self._put_float, bool: self._put_bool, str: self._put_string}
         self._getters: dict[int, Callable[[int, list[tuple[int, Var]], bool], Term]] = {
             PL_ATOM: self._get_atom, PL_TERM: self._get_compound, PL_INTEGER: self._get_integer,
             PL_LIST_PAIR: self._get_list, PL_NIL: self._get_nil, PL_STRING: self._get_string,
@@ -211,9 +194,6 @@ class TermConversion:
             for item in reversed(value):
                 putters.get(type(item), other)(head, item, shared)
                 PL_cons_list(t, head, t)
-
-    def _put_kept(self, t: int, value: Kept, shared: dict[str, int]) -> None:
-        PL_recorded(value.handle, t)
 
     def _put_variable(self, t: int, value: Var, shared: dict[str, int]) -> None:
         existing = shared.get(value.name) if value.name != "_" else None

@@ -15,19 +15,12 @@ import threading
 from pathlib import Path
 
 from goalagent.kb.calls import PrologCalls
-from goalagent.kb.clib import (
-    PL_discard_foreign_frame,
-    PL_new_term_ref,
-    PL_open_foreign_frame,
-    PL_record,
-)
-from goalagent.kb.conversion import Kept, Record
+from goalagent.kb.conversion import Record
 from goalagent.kb.errors import KBError, PrologRuntimeError, PrologSyntaxError
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
 __all__ = [
     "Engine",
-    "Kept",
     "Record",
     "KBError",
     "PrologRuntimeError",
@@ -52,7 +45,7 @@ _RUN_NO_AGENT_CODE = (
     ("new_agent", 2, "ga_kb"), ("set_limits", 3, "ga_guard"), ("compile", 6, "ga_kb"),
     ("clone_conditions", 6, "ga_kb"), ("declare", 4, "ga_kb"), ("declare_actions", 2, "ga_kb"),
     ("directory_add", 2, "ga_kb"), ("join_directory", 3, "ga_kb"), ("load", 6, "ga_kb"),
-    ("adopt_checked", 6, "ga_kb"),
+    ("adopt_checked", 6, "ga_kb"), ("define_plan", 3, "ga_kb"),
 )
 
 
@@ -100,16 +93,6 @@ class Engine(PrologCalls):
             if len(self._parsed) < _PARSE_CACHE_MAX:
                 self._parsed[text] = cached
         return cached
-
-    def keep(self, term: Term) -> Kept:
-        """``term`` recorded in Prolog, to be given to calls as it is (see :class:`Kept`)."""
-        fid = PL_open_foreign_frame()
-        try:
-            t = PL_new_term_ref()
-            self._put_term(t, term, {})
-            return Kept(self, PL_record(t))
-        finally:
-            PL_discard_foreign_frame(fid)
 
     def format(self, term: Term) -> str:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""

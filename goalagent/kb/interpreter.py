@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from goalagent import ast
 from goalagent.kb.conditions import CompiledCondition
-from goalagent.kb.engine import Engine, KBError, Kept, Record
+from goalagent.kb.engine import Engine, KBError, Record
 from goalagent.kb.interpreter_requests import (
     MOODS,
     Answerer,
@@ -24,7 +24,7 @@ from goalagent.kb.interpreter_requests import (
     answering,
     define_requests,
 )
-from goalagent.kb.mentalstate import MentalState
+from goalagent.kb.mentalstate import MentalState, PlanPredicate
 from goalagent.kb.rule_registry import RULES, RuleInfo, register_rule
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
@@ -74,19 +74,19 @@ class JournalEntry:
         return dict(zip(self.rule.names, self.values, strict=False))
 
 
-class RunOutcome:
+class RunOutcome(Record):
     """What one :meth:`CompiledProgram.run` did: ``actions`` performed (all passes),
     ``last_actions`` of the last pass (when counted), whether the last pass ``exited``
     (exit-module), and its journal: the firings in the order they completed, kept in
-    Prolog (a :class:`Record`) until someone reads them (:meth:`entries`): most cycles
-    nobody does."""
+    Prolog (this object is the journal's :class:`Record`) until someone reads them
+    (:meth:`entries`): most cycles nobody does."""
 
-    __slots__ = ("_outcome", "actions", "_record", "_entries")
+    __slots__ = ("_outcome", "actions", "_entries")
 
-    def __init__(self, outcome: int, record: Record) -> None:
+    def __init__(self, outcome: int, engine: Engine, journal: int) -> None:
+        Record.__init__(self, engine, journal)
         self._outcome = outcome
         self.actions = outcome >> 32
-        self._record = record
         self._entries: list[JournalEntry] | None = None
 
     @property
@@ -101,7 +101,7 @@ class RunOutcome:
         """The journal's entries (converted once)."""
         if self._entries is None:
             self._entries = []
-            for entry in self._record.value():  # type: ignore[union-attr]
+            for entry in self.value():  # type: ignore[union-attr]
                 rule_id, values, done, terms = entry.args
                 self._entries.append(JournalEntry(RULES[int(rule_id)], tuple(values),
                                                   int(done), tuple(terms)))
@@ -135,7 +135,7 @@ class CompiledProgram:
         self._modules = {(m.name, m.arity): index for index, m in enumerate(program.modules)}
         self._directives = state.directives
         self._codes: dict[int, ModuleCode] = {}
-        self._kept: dict[tuple, Kept] = {}  # plans, recorded
+        self._plans: dict[tuple, PlanPredicate] = {}  # plans defined in the agent's module
         self._answerer: Answerer | None = None
         define_requests(self._engine)
         state.declare_actions(program.actionspecs)
@@ -269,12 +269,13 @@ class CompiledProgram:
     # ------------------------------------------------------------------ running
 
     def plan(self, modules: Sequence[tuple[ast.Module, Mapping[str, Term]]], *,
-             environment: bool, listen: bool, count_last: bool = False) -> Term:
+             environment: bool, listen: bool, count_last: bool = False
+             ) -> Term | PlanPredicate:
         """What :meth:`run` runs: ``modules`` (each with the values of its module's
         parameters) in turn, for an agent with or without an environment and listeners
-        (``count_last``: count the last module's actions). Recorded in Prolog once when no
-        module has parameters (a cycle's modules are the same every cycle), so a run puts
-        it in one C call."""
+        (``count_last``: count the last module's actions). Defined as a predicate of the
+        agent's once when no module has parameters (a cycle's modules are the same every
+        cycle), so a run puts nothing into the call."""
         flags = (_TRUE if environment else _FALSE, _TRUE if listen else _FALSE,
                  _TRUE if count_last else _FALSE)
         codes = [(self._codes[id(module)], values) for module, values in modules]
@@ -284,13 +285,13 @@ class CompiledProgram:
                 Struct("p", (code.clause, [values.get(name) for name in code.given]))
                 for code, values in codes]))
         key = (tuple(code.clause for code, _ in codes), flags)
-        kept = self._kept.get(key)
-        if kept is None:
-            kept = self._kept[key] = self._engine.keep(Struct("r", (*modules, *flags, [
-                Struct("p", (clause, [])) for clause in key[0]])))
-        return kept
+        defined = self._plans.get(key)
+        if defined is None:
+            defined = self._plans[key] = self._state.define_plan(Struct("r", (
+                *modules, *flags, [Struct("p", (clause, [])) for clause in key[0]])))
+        return defined
 
-    def run(self, plan: Term, requests: Requests) -> RunOutcome:
+    def run(self, plan: Term | PlanPredicate, requests: Requests) -> RunOutcome:
         """Runs a plan (see :meth:`plan`) in one Prolog call, answering the interpreter's
         requests with ``requests``."""
         answerer = self._answerer
@@ -301,4 +302,4 @@ class CompiledProgram:
             outcome, journal = self._state.run(plan)
         finally:
             answering.pop()
-        return RunOutcome(outcome, journal)
+        return RunOutcome(outcome, self._engine, journal)

@@ -22,7 +22,7 @@ from typing import Any
 from goalagent import ast
 from goalagent.kb.beliefbase import BeliefBase
 from goalagent.kb.conditions import Conditions
-from goalagent.kb.engine import KBError, PrologRuntimeError, Record
+from goalagent.kb.engine import KBError, PrologRuntimeError
 from goalagent.kb.goalbases import GoalBases
 from goalagent.kb.identity import Identity
 from goalagent.kb.limits import refused_precondition, stopping_error
@@ -31,7 +31,17 @@ from goalagent.kb.percepts_and_mail import PerceptsAndMail
 from goalagent.kb.prolog_modules import FALSE, TRUE
 from goalagent.kb.terms import Atom, Struct, Term, format_term
 
-__all__ = ["MentalState"]
+__all__ = ["MentalState", "PlanPredicate"]
+
+
+class PlanPredicate:
+    """A plan of module passes defined as a predicate of the agent's belief module
+    (:meth:`MentalState.define_plan`), called with no input."""
+
+    __slots__ = ("handle",)
+
+    def __init__(self, handle: int) -> None:
+        self.handle = handle
 
 
 class MentalState(Conditions, BeliefBase, GoalBases, PerceptsAndMail, Identity):
@@ -39,6 +49,7 @@ class MentalState(Conditions, BeliefBase, GoalBases, PerceptsAndMail, Identity):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._run_pred: int | None = None  # rules.pl's run/3, looked up on the first run
+        self._plans = 0  # plans defined (define_plan)
         super().__init__(*args, **kwargs)
 
     def __enter__(self) -> MentalState:
@@ -64,18 +75,30 @@ class MentalState(Conditions, BeliefBase, GoalBases, PerceptsAndMail, Identity):
         except PrologRuntimeError as error:
             raise refused_precondition(error, specs) from None
 
-    def run(self, plan: Term) -> tuple[int, Record]:
-        """Runs a plan of module passes in one call of the rule interpreter (run/3 in
-        rules.pl; see goalagent.kb.interpreter): its outcome (one integer) and journal,
-        kept in Prolog."""
+    def define_plan(self, plan: Term) -> PlanPredicate:
+        """``plan`` (a term for run/3) as a predicate of the belief module, which
+        :meth:`run` calls without putting the plan into the call each time."""
+        name = f"$ga_plan{self._plans}"
+        self._plans += 1
+        self._call("define_plan", self._b, Atom(name), plan)
+        return PlanPredicate(self._engine.own_predicate(name, 2, str(self._b)))
+
+    def run(self, plan: Term | PlanPredicate) -> tuple[int, int]:
+        """Runs a plan of module passes (a term, or defined by :meth:`define_plan`) in one
+        call of the rule interpreter (run/3 in rules.pl; see goalagent.kb.interpreter):
+        its outcome (one integer) and the handle of its journal, recorded in Prolog (the
+        caller frees it: see ``Record``)."""
         if self._closed:
             raise KBError(f"the mental state of {self.agent_name} is closed")
-        if self._run_pred is None:
-            self._run_pred = self._engine.predicate("run", 3, "ga_kb")
         watch = self._watchdog
         watch.time_limit, watch.running = self.limits.max_query_seconds, self._memory
         try:
-            outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
+            if type(plan) is PlanPredicate:
+                outcome, journal = self._engine.call_once(plan.handle, 2, (), 0, 1)
+            else:
+                if self._run_pred is None:
+                    self._run_pred = self._engine.predicate("run", 3, "ga_kb")
+                outcome, journal = self._engine.call_once(self._run_pred, 3, ((0, plan),), 1, 2)
         except PrologRuntimeError as error:
             raise stopping_error(error) from None
         if watch.generation != self._generation:  # a memory alarm since its last account

@@ -72,6 +72,13 @@ run_passes([p(Pass, Given)|Passes], Ctx, J0, Status, Last) :-
     ;   run_passes(Passes, Ctx, J1, Status, Last)
     ).
 
+%!  define_plan(+B, +Name, +Call) is det.
+%   B:Name(Outcome, Journal) runs Call (see run/3): a cycle's plan, the same every cycle,
+%   called by its predicate with only its two outputs (no input to put each cycle).
+define_plan(B, Name, Call) :-
+    Head =.. [Name, Outcome, Journal],
+    assertz(B:(Head :- ga_kb:run(Call, Outcome, Journal))).
+
 journal_actions([], N, N).
 journal_actions([f(_, _, Done, _)|J], N0, N) :-
     N1 is N0 + Done,
