@@ -1,6 +1,9 @@
 """One GOAL agent: its reasoning cycle and everything around the one rule interpreter.
 
-- ``cycle``: ``Agent`` -- percepts and messages, the modules of a cycle, exit options.
+- ``cycle``: ``Agent`` -- loading a program, the modules of a cycle, exit options.
+- ``view``: ``AgentView``, the base of ``Agent`` -- what others see of an agent: queries,
+  beliefs and goals, its listeners, warnings and log lines.
+- ``perception``: a cycle's percepts and messages; ``idleness``: the idle-agent warning.
 - ``rules``: rule application -- modules run on the interpreter (``goalagent.kb``), whose
   requests it answers.
 - ``actions``: environment actions (the ``AgentIO`` seam) and print/log.

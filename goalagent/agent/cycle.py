@@ -9,7 +9,6 @@ are in docs/goal-language.md. Environments and other agents are reached through
 
 from __future__ import annotations
 
-import dataclasses
 import random
 import sys
 from collections.abc import Callable
@@ -17,47 +16,30 @@ from pathlib import Path
 from typing import TextIO
 
 from goalagent import ast
-from goalagent.agent.actions import ActionFailed, AgentIO
+from goalagent.agent.actions import AgentIO
 from goalagent.agent.checks import update_formulas, validate_program
 from goalagent.agent.errors import AgentError
-from goalagent.agent.events import (
-    Event,
-    Listener,
-    Tracer,
-    goal_event,
-    message_event,
-    percepts_event,
-    plain_variables,
-    readable,
-)
+from goalagent.agent.events import Tracer, goal_event, plain_variables
+from goalagent.agent.idleness import IDLE_WARNING_CYCLES, note_idleness
 from goalagent.agent.messages import Postman
 from goalagent.agent.modules import Focus, leave_focus
-from goalagent.agent.problems import (
-    cause_traceback,
-    goal_origin,
-    goal_text,
-    module_of,
-    warning_text,
-)
+from goalagent.agent.perception import perceive
+from goalagent.agent.problems import goal_origin, goal_text, module_of
 from goalagent.agent.reports import CycleReport, RunResult
 from goalagent.agent.rules import RuleApplication
-from goalagent.agent.timers import Timer, due_percepts
-from goalagent.events import EventKind, ProblemKind
+from goalagent.agent.timers import Timer
+from goalagent.agent.view import AgentView
+from goalagent.events import EventKind
 from goalagent.kb.engine import KBError, get_engine
-from goalagent.kb.interpreter_requests import Problem
 from goalagent.kb.limits import Limits
 from goalagent.kb.mentalstate import MentalState
-from goalagent.kb.terms import Term, format_term
+from goalagent.kb.terms import Term
 from goalagent.parser import parse_agent, parse_agent_file
 
 Bindings = dict[str, Term]
 
 
-IDLE_WARNING_CYCLES = 100
-"""An agent with goals left that has done nothing for this many cycles is warned about once."""
-
-
-class Agent:
+class Agent(AgentView):
     """A GOAL agent: its program, its mental state in SWI-Prolog and its reasoning cycle.
 
     Made from a file or a text (:meth:`from_file`, :meth:`from_string`), it runs a cycle at
@@ -103,26 +85,19 @@ class Agent:
         limits: Limits | None = None,
     ) -> None:
         self.program = program
-        self.name = name or program.name
+        super().__init__(name or program.name, tracer=tracer, warn=warn)
         self.io = io
         self.postman = postman
         self.random = random.Random(seed)
         get_engine().seed_random(seed)  # Prolog's random/1, random_float, roulette choices
         self.output = output or sys.stdout
-        self.listeners: list[Listener] = []
-        if tracer is not None:
-            self.listen(lambda event: tracer(event.agent, event.kind, event.text))
-        self._warn = warn or (lambda message: print(message, file=sys.stderr))
-        self.cycle = 0
         self.terminated = False
         self.total_actions = 0
         self.last_report: CycleReport | None = None
-        self.report = CycleReport(0)  # the cycle in progress (the last one between cycles)
         self.focus: list[Focus] = []  # user modules the agent stays in, innermost last
         self.timers: dict[str, Timer] = {}  # GOAL 7's running timers, by name
         self.idle_warning = idle_warning
         self.idle_cycles = 0  # cycles in a row without action, new percept or message
-        self._warned: dict[str, int] = {}  # each warning given: how often
         self.initialized_apart = False  # the init module ran on its own (initialize())
         validate_program(program)
         try:
@@ -248,7 +223,7 @@ class Agent:
         self.cycle += 1
         self.report = CycleReport(self.cycle)
         if self.io is not None or self.postman is not None or self.timers:
-            self._perceive()  # (without them, no percepts and no messages: nothing to do)
+            perceive(self)  # (without them, no percepts and no messages: nothing to do)
         if self.focus:
             focus = self.focus[-1]
             modules: list[tuple[ast.Module, Bindings]] = (
@@ -273,7 +248,7 @@ class Agent:
                 self.terminated = True  # nothing left to do without a main module
         if self.ms.goals_unchecked:
             self._blind_commitment()
-        self._note_idleness()
+        note_idleness(self)
         self.last_report = self.report
         return self.report
 
@@ -285,7 +260,7 @@ class Agent:
         self.initialized_apart = True
         self.report = CycleReport(0)
         if self.io is not None or self.postman is not None:
-            self._perceive()
+            perceive(self)
         init = self.program.module("init")
         if init is not None:
             self._rules.run_modules([(init, {})])
@@ -302,7 +277,7 @@ class Agent:
         self.cycle += 1
         self.report = CycleReport(self.cycle)
         if self.io is not None or self.postman is not None or self.timers:
-            self._perceive()
+            perceive(self)
         rule = ast.Rule("if", (ast.MentalLiteral("true", None, pos),), pos, actions=actions)
         self._rules.run_once(ast.Module("do", "user", pos, rules=(rule,), order="linear"))
         self._blind_commitment()
@@ -322,101 +297,7 @@ class Agent:
             self.step()
         return RunResult(self.cycle, self.terminated, self.total_actions, self.goals())
 
-    def query(self, op: str, text: str, *, confined: bool = False, sandboxed: bool = False,
-              limit: int | None = None) -> list[Bindings]:
-        """The answers of a mental-state query, as Python values.
-
-        Args:
-            op: ``bel``, ``goal``, ``a-goal``, ``goal-a`` or ``percept``.
-            text: the query in Prolog (``count(X)``, ``on(X, Y), X \\= a``).
-            confined: check it as the agent's own code is, in its sandbox if it has one (a
-                query a user typed in the debugger); False: the query is trusted.
-            sandboxed: check it so, and in the sandbox whether the agent has one or not
-                (a query or condition a web page sent the mind inspector).
-            limit: at most this many answers (the first ones); None: all of them.
-
-        Returns:
-            One mapping per answer, from each variable of ``text`` to its value (``Atom``
-            for an atom, ``str`` for a string, ``Struct`` for a compound, numbers and lists
-            as themselves); ``[]`` when there is none, ``[{}]`` for a yes without variables.
-
-        Raises:
-            KBError: the query is not valid Prolog or raised an error.
-        """
-        return self.ms.query(op, text, trusted=not (confined or sandboxed),
-                             sandboxed=sandboxed, limit=limit)
-
-    def beliefs(self) -> list[Term]:
-        """The agent's beliefs (its belief base's facts), in order."""
-        return self.ms.beliefs()
-
-    def goals(self) -> list[list[Term]]:
-        """The agent's goals, each as the list of its facts (``on(a,b), on(b,c)`` is one goal
-        of two facts)."""
-        return self.ms.goals()
-
-    def close(self) -> None:
-        """Free the agent's Prolog module."""
-        self.ms.close()
-
-    def listen(self, listener: Listener) -> None:
-        """Tell ``listener`` every event from now on (the trace, an inspector)."""
-        self.listeners.append(listener)
-
-    def tell(self, event: Event) -> None:
-        """Tell the listeners an event (stamped with the current cycle; fresh variables in its
-        text shown as ``_``)."""
-        event = dataclasses.replace(readable(event), cycle=self.cycle)
-        for listener in self.listeners:
-            listener(event)
-
-    def warn(self, message: str) -> None:
-        """A warning: kept in the cycle report, shown (``warning: agent NAME: ...``) and
-        told to the listeners. A warning given before is shown again once, saying so, and
-        then no more (a rule failing every cycle would otherwise fill the screen). Prolog's
-        variable numbers are left out of it (``f(_)``), so a repeat reads the same."""
-        message = plain_variables(message)
-        self.report.warnings.append(message)
-        seen = self._warned.get(message, 0)
-        self._warned[message] = seen + 1
-        if seen == 0:
-            self._warn(f"warning: agent {self.name}: {message}")
-        elif seen == 1:
-            self._warn(f"warning: agent {self.name}: again in cycle {self.cycle} (not shown "
-                       f"again): {message}")
-        if self.listeners:
-            self.tell(Event(EventKind.WARNING, self.name, message))
-
-    def log(self, message: str) -> None:
-        """A line where warnings go (``log/1``), not a warning."""
-        self._warn(message)
-
     # ------------------------------------------------------------------ cycle parts
-    def _perceive(self) -> None:
-        percepts: list[Term] = []
-        if self.io is not None:
-            try:
-                percepts = self.io.percepts()
-            except ActionFailed as err:
-                self.warn(warning_text(Problem(ProblemKind.PERCEPTS_UNAVAILABLE, str(err)),
-                                       self.program))
-                shown = cause_traceback(err)
-                if shown is not None:
-                    self.log(shown)
-        if self.timers:
-            percepts = percepts + due_percepts(self)
-        self.ms.set_percepts(percepts)
-        self.report.percepts = percepts
-        if percepts and self.listeners:
-            self.tell(percepts_event(self.name, percepts))
-        if self.postman is not None:
-            messages = self.postman.collect(self.name)
-            self.ms.receive(messages, replace=self.program.messages_for_one_cycle)
-            if self.listeners:
-                for sender, mood, content in messages:
-                    self.tell(message_event(self.name, sender, mood, content))
-            self.report.messages = messages
-
     def _check_main_exit(self, exit_option: str) -> None:
         """The main module's exit option (nogoals, noaction, always) after its pass."""
         if exit_option == "nogoals" and not self.ms.goals():
@@ -425,25 +306,6 @@ class Agent:
             self.terminated = True
         elif exit_option == "always":
             self.terminated = True
-
-    def _note_idleness(self) -> None:
-        """Count cycles in which nothing happened; say once when there have been
-        ``idle_warning`` of them in a row while goals are left (an agent that would
-        otherwise run on without a word)."""
-        report, last = self.report, self.last_report
-        if (report.acted or report.messages or self.terminated or last is None
-                or report.percepts != last.percepts):
-            self.idle_cycles = 0
-            return
-        self.idle_cycles += 1
-        if self.idle_cycles == self.idle_warning:
-            goals = self.goals()
-            if goals:
-                first = ", ".join(format_term(fact) for fact in goals[0])
-                self.warn(f"has done nothing for {self.idle_cycles} cycles (no action, no new "
-                          f"percept or message) and has {len(goals)} goal(s) left, e.g. "
-                          f"{first}: no rule applies to them; it runs on until --max-cycles "
-                          "or Ctrl-C")
 
     def _blind_commitment(self) -> None:
         for goal in self.ms.blind_commitment():

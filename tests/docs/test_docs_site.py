@@ -42,6 +42,20 @@ def test_the_api_reference_is_generated_from_the_docstrings(site: Path) -> None:
     assert "the agents launched so far" in api  # MultiAgentSystem.agents, from its docstring
 
 
+def test_the_api_reference_shows_every_public_method_of_agent(site: Path) -> None:
+    """Including those ``Agent`` inherits from ``AgentView`` (mkdocstrings leaves inherited
+    members out unless told)."""
+    from goalagent.agent import Agent
+    from goalagent.agent.view import AgentView
+
+    api = (site / "api" / "index.html").read_text()
+    public = [name for name in dir(Agent) if not name.startswith("_")
+              and callable(getattr(Agent, name))]
+    assert "query" in public and "query" in vars(AgentView)
+    for name in public:
+        assert f'id="goalagent.agent.Agent.{name}"' in api, name
+
+
 def test_the_environment_reference_lists_every_environment(site: Path) -> None:
     shipped = subprocess.run(  # (not this process's: a sample registers an environment)
         [sys.executable, "-c", "from goalagent.eis import known_environments; "
