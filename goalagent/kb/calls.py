@@ -144,7 +144,8 @@ class PrologCalls(TermConversion):
         ``PL_record``, which the caller owns: a :class:`Record` frees it). As
         :meth:`solve`, with nothing else converted. A predicate with only its two outputs
         (a plan, see rules.pl's define_plan/3) called outside any other query takes
-        its arguments from term references made once: four C calls in all."""
+        its arguments from term references made once: five C calls in all (with the
+        record's erasure later, six a cycle; eight before plans were predicates)."""
         if get_ident() != self._thread:
             self._attach_thread()
         if self.pending_seed is not None:
