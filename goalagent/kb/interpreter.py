@@ -102,9 +102,10 @@ class RunOutcome(Record):
         if self._entries is None:
             self._entries = []
             for entry in self.value():  # type: ignore[union-attr]
-                rule_id, values, done, terms = entry.args
-                self._entries.append(JournalEntry(RULES[int(rule_id)], tuple(values),
-                                                  int(done), tuple(terms)))
+                rule_id, bound, done, terms = entry.args
+                values = bound.args if isinstance(bound, Struct) else ()  # (v/0: the atom v)
+                self._entries.append(JournalEntry(RULES[int(rule_id)], values, int(done),
+                                                  tuple(terms)))
         return self._entries
 
 

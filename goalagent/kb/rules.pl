@@ -18,11 +18,12 @@
 
     Ctx = ctx(B, G, Env, Listen, Journal): the agent's belief and goal modules, whether it
     has an environment (its user actions go there unless @int), whether it has listeners,
-    and the head of the call's journal: per completed firing f(RuleId, Values, Done, Terms)
-    in order, Values being the bindings the rule's actions see (as listed when it was
-    compiled), Done the number of actions performed, Terms the closed forms of the user
-    actions whose arguments only their precondition binds. Python reads the journal only
-    when someone asks what fired.
+    and the head of the call's journal: per completed firing f(RuleId, Bound, Done, Terms)
+    in order, Bound being v(V1, ..., Vn), the values of the bindings the rule's actions see
+    (as listed when it was compiled; a compound, which the journal's record copies in
+    fewer cells than a list), Done the number of actions performed, Terms the closed forms
+    of the user actions whose arguments only their precondition binds. Python reads the
+    journal only when someone asks what fired.
 */
 
 %!  run(+Call, -Outcome, -Journal) is det.
@@ -352,9 +353,10 @@ fire_clauses(_, Fire, (AttemptHead :- Try), [Last, Next]) :-
 attempt_clause(rules(Pass, InnerGiven), _, Id, Values, (Head :- Body)) :- !,
     Head = attempt(Values, Ctx, J0, J, Status),
     Inner =.. [Pass, Ctx, InnerGiven, J0, J1, Status],
+    Bound =.. [v|Values],
     Body = ( Inner,
              (   Status == fired
-             ->  J1 = [f(Id, Values, 0, [])|J],
+             ->  J1 = [f(Id, Bound, 0, [])|J],
                  ( arg(4, Ctx, true) -> ga_kb:tell(fired(Id, Values, 0, [])) ; true )
              ;   Status == exit
              ->  J = J1
@@ -363,10 +365,11 @@ attempt_clause(actions(Actions), CB, Id, Values, (Head :- Body)) :-
     Head = attempt(Values, Ctx, J0, J, Status),
     Vars = v(Ctx, B, G, Listen, CB),
     perform_code(Actions, 0, f(Id, Values), Vars, Done, Terms, Status, Perform),
+    Bound =.. [v|Values],
     Body = ( Ctx = ctx(B, G, _, Listen, _),
              Perform,
              Done > 0,
-             J0 = [f(Id, Values, Done, Terms)|J],
+             J0 = [f(Id, Bound, Done, Terms)|J],
              ( Listen == true -> ga_kb:tell(fired(Id, Values, Done, Terms)) ; true ) ).
 
 %   perform_code(+Actions, +K, +Firing, +Vars, -Done, -Terms, -Status, -Code): the code
