@@ -88,6 +88,11 @@ class PrologCalls(TermConversion):
         # A stop a signal asked for while queries were open: raised when they are all closed
         # (raising inside a callback would leave Prolog in between; see kb.watchdog).
         self.pending_stop: BaseException | None = None
+        # Calls into SWI-Prolog in progress, from their first C call (opening a frame) to
+        # their last (discarding it): a signal's stop raised in between would leave a query
+        # open or a frame undiscarded, and the next query then runs on a broken engine. The
+        # run's signal handler leaves its stop in pending_stop while this is not 0.
+        self.guarded = 0
         # A seed for Prolog's random generator not given to it yet (see seed_random):
         # given before the next call of a predicate not in _seedless, the predicates that
         # run no agent code (so draw no random number).
@@ -150,29 +155,33 @@ class PrologCalls(TermConversion):
             self._attach_thread()
         if self.pending_seed is not None:
             self.give_seed()
-        fid = PL_open_foreign_frame()
-        outer_since = self._enter()
+        self.guarded += 1
         try:
-            if inputs or self.depth > 1 or self._outputs_thread != self._thread:
-                base = PL_new_term_refs(arity)
-                for index, value in inputs:
-                    self._put_term(base + index, value, {})
-            else:  # (bound inside the frame: discarding it unbinds them)
-                base = self._outputs
-            if PL_call_predicate(None, Q_PASS, pred, base):
-                if not PL_get_int64(base + number, INT_REF):
-                    raise KBError("internal: the interpreter's outcome is not a number")
-                return INT_BUF.value, PL_record(base + keep)
-            exception = PL_exception(0)
-            if not exception:
-                raise KBError("internal: the interpreter failed")
-            record = PL_record(exception)
-            PL_clear_exception()
-            raise self._error_from(record)
+            fid = PL_open_foreign_frame()
+            outer_since = self._enter()
+            try:
+                if inputs or self.depth > 1 or self._outputs_thread != self._thread:
+                    base = PL_new_term_refs(arity)
+                    for index, value in inputs:
+                        self._put_term(base + index, value, {})
+                else:  # (bound inside the frame: discarding it unbinds them)
+                    base = self._outputs
+                if PL_call_predicate(None, Q_PASS, pred, base):
+                    if not PL_get_int64(base + number, INT_REF):
+                        raise KBError("internal: the interpreter's outcome is not a number")
+                    return INT_BUF.value, PL_record(base + keep)
+                exception = PL_exception(0)
+                if not exception:
+                    raise KBError("internal: the interpreter failed")
+                record = PL_record(exception)
+                PL_clear_exception()
+                raise self._error_from(record)
+            finally:
+                self._leave(outer_since)
+                PL_discard_foreign_frame(fid)
+                self._release()
         finally:
-            self._leave(outer_since)
-            PL_discard_foreign_frame(fid)
-            self._release()
+            self.guarded -= 1
             self._stop_if_asked()
 
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
@@ -188,6 +197,17 @@ class PrologCalls(TermConversion):
             self.give_seed()
         if outputs is None:
             outputs = range(arity)
+        self.guarded += 1
+        try:
+            return self._solve(pred, arity, inputs, limit, marks, outputs, keep)
+        finally:
+            self.guarded -= 1
+            self._stop_if_asked()
+
+    def _solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
+               limit: int | None, marks: bool, outputs: Sequence[int],
+               keep: int | None) -> list[list[Term]]:
+        """:meth:`solve`'s query, within its guard (see :attr:`guarded`)."""
         fid = PL_open_foreign_frame()
         try:
             base = PL_new_term_refs(arity) if arity else PL_new_term_ref()
@@ -229,7 +249,6 @@ class PrologCalls(TermConversion):
         finally:
             PL_discard_foreign_frame(fid)
             self._release()
-            self._stop_if_asked()
 
     # ------------------------------------------------------------------ the random seed
 
@@ -278,7 +297,7 @@ class PrologCalls(TermConversion):
 
     def _stop_if_asked(self) -> None:
         """A signal that came while Prolog ran: once back in Python, the stop it asked for."""
-        if self.pending_stop is not None and self.depth == 0:
+        if self.pending_stop is not None and self.depth == 0 and self.guarded == 0:
             stop, self.pending_stop = self.pending_stop, None
             raise stop
 
@@ -315,13 +334,18 @@ class PrologCalls(TermConversion):
         """The Python value of a recorded term (the record stays)."""
         if get_ident() != self._thread:
             self._attach_thread()
-        fid = PL_open_foreign_frame()
+        self.guarded += 1
         try:
-            t = PL_new_term_ref()
-            PL_recorded(record, t)
-            return self._get_term(t, {}, False)
+            fid = PL_open_foreign_frame()
+            try:
+                t = PL_new_term_ref()
+                PL_recorded(record, t)
+                return self._get_term(t, {}, False)
+            finally:
+                PL_discard_foreign_frame(fid)
         finally:
-            PL_discard_foreign_frame(fid)
+            self.guarded -= 1
+            self._stop_if_asked()
 
     def _runtime_error(self, record: int) -> PrologRuntimeError:
         """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""

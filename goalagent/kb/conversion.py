@@ -95,14 +95,20 @@ class Record:
         """The term as a Python value (converted once, then the record is freed)."""
         if self._handle is not None:
             self._value = self._engine._recorded(self._handle)
-            PL_erase(self._handle)
-            self._handle = None
+            # Forgotten before it is erased: a signal's stop between the two leaves the
+            # record unfreed, never erased twice (by __del__: SWI-Prolog aborts on that).
+            handle, self._handle = self._handle, None
+            PL_erase(handle)
         return self._value
 
     def __del__(self) -> None:
         """Frees the record at the engine's next call (from the thread that runs Prolog)."""
-        if self._handle is not None:
-            self._engine._dead_records.append(self._handle)
+        try:
+            handle = self._handle  # (set after _engine)
+        except AttributeError:  # a signal's stop inside __init__: nothing to free
+            return
+        if handle is not None:
+            self._engine._dead_records.append(handle)
 
 
 ATOM_CACHE_MAX = 200_000  # cached atoms stay registered (never GC'd): keep this bounded
