@@ -16,9 +16,10 @@
     their instantiations, firings, refused actions, belief and goal changes. The same code
     runs either way; listening only adds the telling.
 
-    Ctx = ctx(B, G, Env, Listen, Journal): the agent's belief and goal modules, whether it
-    has an environment (its user actions go there unless @int), whether it has listeners,
-    and the head of the call's journal: per completed firing f(RuleId, Bound, Done, Terms)
+    Ctx = ctx(B, G, Env, Listen, Journal, Pending): the agent's belief and goal modules,
+    whether it has an environment (its user actions go there unless @int), whether it has
+    listeners, the head of the call's journal, and whether goals may need the full check
+    after the next update (see check_code/4). The journal: per completed firing f(RuleId, Bound, Done, Terms)
     in order, Bound being v(V1, ..., Vn), the values of the bindings the rule's actions see
     (as listed when it was compiled; a compound, which the journal's record copies in
     fewer cells than a list), Done the number of actions performed, Terms the closed forms
@@ -48,7 +49,8 @@ run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     B:'$ga_limits'(MaxInferences, MaxBeliefs),
     b_setval('$ga_max_inferences', MaxInferences),
     nb_setval('$ga_aborted_rule', none),
-    Ctx = ctx(B, G, Env, Listen, Journal),
+    nb_getval(B, Pending),
+    Ctx = ctx(B, G, Env, Listen, Journal, Pending),
     call_with_inference_limit(run_passes(Passes, Ctx, Journal, Status, Last), MaxInferences,
                               Result),
     (   Result == inference_limit_exceeded   % between rules: the call ends there
@@ -260,7 +262,7 @@ rule_clause(listall(Collected, ListName), Bindings, CondNames, CondVars, Id, Con
     ;   instances_code(Entry, B:Cond, Id, Entries, Ok, Collect0),
         Collect = ( Collect0, list_to_set(Entries, List) )
     ),
-    Body = ( Ctx = ctx(B, _, _, Listen, _),
+    Body = ( Ctx = ctx(B, _, _, Listen, _, _),
              b_setval('$ga_rule', Id),
              Collect,
              ( Ok == true -> Instances = [Values] ; Instances = [] ),
@@ -276,7 +278,7 @@ rule_clause(Kind, _, _, _, Id, Cond, Values, Given, Name, Fire, (Head :- Body)) 
     ;   Order = true,
         Instances = Instances0
     ),
-    Body = ( Ctx = ctx(B, _, _, Listen, _),
+    Body = ( Ctx = ctx(B, _, _, Listen, _, _),
              b_setval('$ga_rule', Id),
              Collect,
              Order,
@@ -366,7 +368,7 @@ attempt_clause(actions(Actions), CB, Id, Values, (Head :- Body)) :-
     Vars = v(Ctx, B, G, Listen, CB),
     perform_code(Actions, 0, f(Id, Values), Vars, Done, Terms, Status, Perform),
     Bound =.. [v|Values],
-    Body = ( Ctx = ctx(B, G, _, Listen, _),
+    Body = ( Ctx = ctx(B, G, _, Listen, _, _),
              Perform,
              Done > 0,
              J0 = [f(Id, Bound, Done, Terms)|J],
@@ -389,18 +391,47 @@ perform_code([Action|Actions], K, Firing, Vars, Done, Terms, Status, Code) :-
         ->  Record = ( Terms = [Term|Terms1] )
         ;   Record = ( Terms = Terms1 )
         ),
-        (   Outcome == called
-        ->  Then = ( Record, Rest )
-        ;   arg(2, Vars, B),
-            arg(3, Vars, G),
-            Then = ( ( nb_getval(B, true) -> ga_kb:check_goals(B, G, _) ; true ),
-                     Record, Rest )
-        )
+        check_code(Action, Outcome, Vars, Check),
+        Then = ( Check, Record, Rest )
     ),
     Code = (   Call
            ->  Then
            ;   Done = K, Terms = [], Status = fired
            ).
+
+%   check_code(+Action, +Outcome, +Vars, -Code): what follows Action for the goals that
+%   percepts, messages or a new goal base may have achieved: the first action after they
+%   came checks every goal (the recheck flag, a global variable named after the belief
+%   module, see recheck/1). Only Python sets the flag (between cycles, or in an action that
+%   asks Python for something, a module call included), so Ctx's Pending holds it as it
+%   was at the call's start and as it is after each such action, and after an update
+%   (insert, delete, adopt, drop) one inline test of Pending, no call, says whether to look:
+%   most actions pay nothing. A module call runs its own check; after it, Pending is
+%   brought up to date.
+check_code(_, called, v(Ctx, B, _, _, _), ga_kb:recheck_after_call(Ctx, B)) :- !.
+check_code(Action, _, v(Ctx, B, G, _, _), Code) :-
+    (   asks_python(Action)
+    ->  Code = ( nb_getval(B, true) -> ga_kb:check_goals(B, G, _) ; true )
+    ;   Code = ( Ctx = ctx(_, _, _, _, _, Pending),
+                 (   Pending == true -> ga_kb:recheck_goals(Ctx, B, G) ; true ) )
+    ).
+
+asks_python(do(_, _)).
+asks_python(print(_)).
+asks_python(log(_)).
+asks_python(send(_, _, _, _)).
+asks_python(goal7(_, _)).
+
+%   recheck_goals(+Ctx, +B, +G): the full check, the flag and Ctx's Pending cleared
+%   (nb_setarg/3: a clear undone by backtracking would only cost one more look).
+recheck_goals(Ctx, B, G) :-
+    check_goals(B, G, _),
+    nb_setarg(6, Ctx, false).
+
+%   recheck_after_call(+Ctx, +B): Ctx's Pending set when a module call left the flag set
+%   (not undone by backtracking: the flag is not either).
+recheck_after_call(Ctx, B) :-
+    (   nb_getval(B, true) -> nb_setarg(6, Ctx, true) ; true ).
 
 %   action_goal(+Action, +K, +Firing, +Vars, -Goal, -Outcome): the goal that performs
 %   Action (safe(Goal): one that reports its own problems, so needs no catch/3); Outcome:
@@ -482,7 +513,7 @@ drop_action(B, G, Listen, F) :-
 %   next actions run (an action the environment cannot take at all stops the agent, in
 %   Python). A failing postcondition is then a warning (the environment was asked).
 %   Otherwise the postcondition alone is the action.
-user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _), Action) :-
+user_action(Action0, K, Firing, ctx(B, G, Env, Listen, _, _), Action) :-
     (   ground(Action0) -> Action = Action0 ; copy_term(Action0, Action) ),
     (   B:'$ga_pre'(Action, Post, _, Internal)
     ->  true
@@ -530,7 +561,7 @@ action_error(E, K, Firing) :-
 %   journal_position(+Ctx, +K, -Entries, -Position): how many firings the call's journal
 %   holds so far, and the place of the current action (the K-th of the firing in
 %   progress) in the sequence of actions performed in the call.
-journal_position(ctx(_, _, _, _, Journal), K, Entries, Position) :-
+journal_position(ctx(_, _, _, _, Journal, _), K, Entries, Position) :-
     journal_position(Journal, 0, Entries, K, Position).
 
 journal_position(J, Entries, Entries, Position, Position) :-
