@@ -19,6 +19,8 @@ from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import pytest
+
 if TYPE_CHECKING:
     import click
     import typer
@@ -28,6 +30,13 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parents[1]
 """The repository's root: the child processes' default working directory."""
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The modules marked ``heavy`` (a minute or so each: a cluster, reproductions, a process
+    per test) first, the rest in their order: ``make test`` hands whole files to its two
+    workers in this order, and a heavy file handed out last would leave one worker idle."""
+    items.sort(key=lambda item: item.get_closest_marker("heavy") is None)
 
 
 def _child(command: list[str], cwd: Path, timeout: float, env: dict[str, str] | None,

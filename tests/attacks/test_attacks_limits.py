@@ -21,6 +21,8 @@ from goalagent.mas import MultiAgentSystem
 from tests.attack_agent import load_agent
 from tests.measured import ROOT, Measured, goalagent_measured
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 COUNTER = """
 init module { beliefs { n(0). } goals { n(5). } }
 main module [exit=nogoals] { program {

@@ -24,6 +24,8 @@ from websockets.sync.client import ClientConnection, connect
 
 from goalagent.inspector.gate import BURST, Gate
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 AGENT = """
 init module { beliefs { count(0). } goals { count(3). } }
 main module [exit=nogoals] { program {
