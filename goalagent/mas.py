@@ -354,9 +354,14 @@ class MultiAgentSystem(EntityLaunches):
                 self.environment.associate_entity(name, entity)
             io = EntityIO(self.environment, name)
         self.postman.register(name)
-        agent = Agent(program, name=name, io=io, postman=self.postman,
-                      seed=self.seed + len(self.agents), output=self.output,
-                      tracer=self.tracer, warn=self.warn, limits=limits or self.limits)
+        try:
+            agent = Agent(program, name=name, io=io, postman=self.postman,
+                          seed=self.seed + len(self.agents), output=self.output,
+                          tracer=self.tracer, warn=self.warn, limits=limits or self.limits)
+        except BaseException:  # no member: the environment forgets it (it waits for no body)
+            if self.environment is not None:
+                self.environment.unregister_agent(name)
+            raise
         for listener in self.listeners:
             agent.listen(listener)
         self.agents.append(agent)
