@@ -45,6 +45,64 @@ load(B, G, Items, Sandbox, RunsCode, Result) :-
     program_heads(Read, Own),
     load_(Items, Read, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
 
+:- dynamic(('$ga_image'/4, '$ga_loaded'/2)).
+
+%!  load_imaged(+Id, +B, +G, +Items, +Sandbox, +RunsCode, -Result) is det.
+%   As load/6 for a program without directives whose items, sandbox and RunsCode are those
+%   of every load under the image number Id: the first such load records the clauses it
+%   read and confined (the image: '$ga_image'/4), the next add them without reading or
+%   confining the texts again (their module names renamed), which is what load/6 does to
+%   them (launching 10,000 copies of an agent reads its knowledge and beliefs once). A
+%   program whose clauses name anything else of the first agent's (confine_keys.pl) or
+%   that does not load makes no image.
+
+load_imaged(Id, B, G, _, Sandbox, _, ok) :-
+    '$ga_image'(Id, FromB, FromG, Loaded0),
+    !,
+    (   Sandbox == true -> ga_confine:load_sandbox ; true ),
+    assertz(B:'$ga_confine'(Sandbox)),
+    (   FromB == none
+    ->  Loaded = Loaded0
+    ;   renamed(Loaded0, [FromB-B, FromG-G], Loaded)
+    ),
+    forall(member(Loading, Loaded), add_loaded(Loading, B, G)).
+load_imaged(Id, B, G, Items, Sandbox, RunsCode, Result) :-
+    retractall('$ga_loaded'(_, _)),
+    nb_setval('$ga_recording', true),
+    call_cleanup(load(B, G, Items, Sandbox, RunsCode, Result),
+                 nb_setval('$ga_recording', false)),
+    findall(Kind-Clause, retract('$ga_loaded'(Kind, Clause)), Clauses),
+    foldl(image_entry, Clauses, Loaded, [], _),
+    sub_atom(B, 5, _, 0, Secret),                   % ga_b_<secret>, ga_g_<secret>
+    (   Result == ok,
+        \+ ( sub_term(Text, Loaded), ( atom(Text) ; string(Text) ),
+             Text \== B, Text \== G, sub_atom(Text, _, _, _, Secret) )
+    ->  (   sub_term(Text, Loaded), ( Text == B ; Text == G )
+        ->  assertz('$ga_image'(Id, B, G, Loaded))
+        ;   assertz('$ga_image'(Id, none, none, Loaded))
+        )
+    ;   true
+    ).
+
+%   image_entry(+Kind-Clause, -Entry, +Seen0, -Seen): the first clause of a predicate of
+%   its kind is added as load_term/6 adds it (first/2); the later ones find the predicate
+%   made the agent's own and declared, so only their clauses are added (more/2).
+image_entry(Kind-Clause, Entry, Seen0, Seen) :-
+    clause_head(Clause, Head),
+    functor(Head, Name, Arity),
+    (   memberchk(Kind-Name/Arity, Seen0)
+    ->  Entry = more(Kind, Clause),
+        Seen = Seen0
+    ;   Entry = first(Kind, Clause),
+        Seen = [Kind-Name/Arity|Seen0]
+    ).
+
+add_loaded(first(Kind, Clause), B, G) :-
+    add_clause(Kind, Clause, B, G).
+add_loaded(more(Kind, Clause), B, G) :-
+    assertz(B:Clause),
+    (   Kind == k -> assertz(G:Clause) ; true ).
+
 %   read_item(+B, +Item, -Read): the item's text read before anything is loaded, t(Term),
 %   or unread when it does not read yet (its operators come with a directive); load_/8
 %   uses the term while no directive has run (nothing else changes how a text reads).
@@ -131,6 +189,15 @@ load_term((Head --> Body), Kind, B, G, Ctx, RunsCode) :- !,
     load_term(Clause, Kind, B, G, Ctx, RunsCode).
 load_term(Clause0, Kind, B, G, Ctx, _) :-
     ga_confine:prepare_clause(Clause0, Ctx, Clause),
+    add_clause(Kind, Clause, B, G),
+    (   nb_current('$ga_recording', true)       % for load_imaged/7
+    ->  assertz('$ga_loaded'(Kind, Clause))
+    ;   true
+    ).
+
+%   add_clause(+Kind, +Clause, +B, +G): a prepared knowledge (k) or belief (b) clause
+%   added to the agent: what loading it does once it is read and confined.
+add_clause(Kind, Clause, B, G) :-
     clause_head(Clause, Head),
     make_own(B, Head),
     assertz(B:Clause),

@@ -53,6 +53,23 @@ def instantiate(text: ast.PrologText | str, bindings: Mapping[str, Term],
     return substitute((engine or get_engine()).parsed(text_of(text)), bindings)
 
 
+_IMAGES: dict[tuple[object, ...], int] = {}
+"""The image numbers of the programs loaded so far (load_imaged/7 in mentalstate_load.pl):
+by their knowledge and belief texts and the limits that change how they load."""
+_MAX_IMAGES = 1000  # programs loaded later load each agent from their texts
+
+
+def _image_number(clauses: Sequence[tuple[str, ast.PrologText | str]],
+                  limits: Limits) -> int | None:
+    """The number of the image of loading ``clauses`` under ``limits`` (every agent of one
+    program loaded alike shares it); None past :data:`_MAX_IMAGES` programs."""
+    key = (tuple(clauses), limits.sandbox, limits.runs_code)
+    number = _IMAGES.get(key)
+    if number is None and len(_IMAGES) < _MAX_IMAGES:
+        number = _IMAGES[key] = len(_IMAGES)
+    return number
+
+
 class PrologModules:
     """One agent's belief and goal module, loaded with its knowledge and beliefs."""
 
@@ -91,8 +108,14 @@ class PrologModules:
         self._watchdog.running = self._memory
         if self._directives and self.limits.runs_code:  # (they may draw random numbers)
             self._engine.give_seed()
-        result = self._call("load", self._b, self._g, items, TRUE if self.limits.sandbox
-                            else FALSE, TRUE if self.limits.runs_code else FALSE, None)[5]
+        sandbox = TRUE if self.limits.sandbox else FALSE
+        runs_code = TRUE if self.limits.runs_code else FALSE
+        image = None if self._directives else _image_number(clauses, self.limits)
+        if image is None:
+            result = self._call("load", self._b, self._g, items, sandbox, runs_code, None)[5]
+        else:
+            result = self._call("load_imaged", image, self._b, self._g, items, sandbox,
+                                runs_code, None)[6]
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             kind, text = clauses[int(index)]
