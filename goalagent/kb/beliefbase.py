@@ -9,7 +9,7 @@ from collections.abc import Iterable, Mapping
 from goalagent import ast
 from goalagent.kb.engine import KBError
 from goalagent.kb.facts import FactFile, FactFileError, FactWatch
-from goalagent.kb.prolog_modules import PrologModules, instantiate, text_of
+from goalagent.kb.prolog_modules import PrologModules, image_number, instantiate, text_of
 from goalagent.kb.terms import Atom, Struct, Term
 
 __all__ = ["BeliefBase"]
@@ -28,7 +28,12 @@ class BeliefBase(PrologModules):
         (at the formula) when one is an ISO built-in."""
         formulas = list(formulas)
         terms = [self._engine.parsed(text_of(formula)) for formula in formulas]
-        result = self._call("declare", self._b, self._g, terms, None)[3]
+        image = None if self._image is None else image_number(
+            ("declare", self._image, tuple(formulas)))
+        if image is None:
+            result = self._call("declare", self._b, self._g, terms, None)[3]
+        else:  # after a load from an image: as the first agent's declaration of them did
+            result = self._call("declare_imaged", image, self._b, self._g, terms, None)[4]
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             formula = formulas[int(index)]  # type: ignore[arg-type]

@@ -53,7 +53,7 @@ _RUN_NO_AGENT_CODE = (
     ("new_agent", 2, "ga_kb"), ("set_limits", 3, "ga_guard"), ("compile", 6, "ga_kb"),
     ("clone_conditions", 6, "ga_kb"), ("declare", 4, "ga_kb"), ("declare_actions", 2, "ga_kb"),
     ("directory_add", 2, "ga_kb"), ("join_directory", 3, "ga_kb"), ("load", 6, "ga_kb"),
-    ("load_imaged", 7, "ga_kb"), ("adopt_checked", 6, "ga_kb"),
+    ("load_imaged", 7, "ga_kb"), ("declare_imaged", 5, "ga_kb"), ("adopt_checked", 6, "ga_kb"),
 )
 
 

@@ -24,6 +24,7 @@ new_agent(B, G) :-
 
 %!  destroy(+B, +G) is det.
 destroy(B, G) :-
+    retractall('$ga_conditions'(B, _, _)),
     ga_confine:forget_keys(B),
     nb_delete(B),
     nb_delete(G),
@@ -45,63 +46,97 @@ load(B, G, Items, Sandbox, RunsCode, Result) :-
     program_heads(Read, Own),
     load_(Items, Read, 0, B, G, c(B, Sandbox, Own), RunsCode, Result).
 
-:- dynamic(('$ga_image'/4, '$ga_loaded'/2)).
+:- dynamic(('$ga_image'/4, '$ga_loaded'/1, '$ga_conditions'/3)).
 
 %!  load_imaged(+Id, +B, +G, +Items, +Sandbox, +RunsCode, -Result) is det.
 %   As load/6 for a program without directives whose items, sandbox and RunsCode are those
-%   of every load under the image number Id: the first such load records the clauses it
-%   read and confined (the image: '$ga_image'/4), the next add them without reading or
-%   confining the texts again (their module names renamed), which is what load/6 does to
-%   them (launching 10,000 copies of an agent reads its knowledge and beliefs once). A
-%   program whose clauses name anything else of the first agent's (confine_keys.pl) or
-%   that does not load makes no image.
+%   of every load under the image number Id: the first such load records what it did to
+%   the two modules once the texts were read and confined (the image, '$ga_image'/4: each
+%   clause added, predicate declared dynamic and system predicate redefined, in order),
+%   the next do the same to theirs without reading or confining the texts again
+%   (launching 10,000 copies of an agent reads its knowledge and beliefs once). A program
+%   whose clauses name anything else of the first agent's (confine_keys.pl) or that does
+%   not load makes no image.
 
 load_imaged(Id, B, G, _, Sandbox, _, ok) :-
-    '$ga_image'(Id, FromB, FromG, Loaded0),
+    '$ga_image'(Id, _, _, _),
     !,
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
-    (   FromB == none
-    ->  Loaded = Loaded0
-    ;   renamed(Loaded0, [FromB-B, FromG-G], Loaded)
-    ),
-    forall(member(Loading, Loaded), add_loaded(Loading, B, G)).
+    replay_image(Id, B, G).
 load_imaged(Id, B, G, Items, Sandbox, RunsCode, Result) :-
-    retractall('$ga_loaded'(_, _)),
+    imaged(Id, B, G, load(B, G, Items, Sandbox, RunsCode, Result), Result).
+
+%!  declare_imaged(+Id, +B, +G, +Formulas, -Result) is det.
+%   As declare/4, for agents whose modules hold the same (loaded from one image, Id
+%   numbering the image and the formulas): the first records what it did, the next do
+%   the same without reading the formulas.
+
+declare_imaged(Id, B, G, _, ok) :-
+    '$ga_image'(Id, _, _, _),
+    !,
+    replay_image(Id, B, G).
+declare_imaged(Id, B, G, Formulas, Result) :-
+    imaged(Id, B, G, declare(B, G, Formulas, Result), Result).
+
+%   imaged(+Id, +B, +G, :Goal, ?Result): runs Goal, which sets Result, and keeps what it
+%   did to the modules B and G as image Id when Result is ok and nothing of it names
+%   anything else of that agent's.
+imaged(Id, B, G, Goal, Result) :-
+    retractall('$ga_loaded'(_)),
     nb_setval('$ga_recording', true),
-    call_cleanup(load(B, G, Items, Sandbox, RunsCode, Result),
-                 nb_setval('$ga_recording', false)),
-    findall(Kind-Clause, retract('$ga_loaded'(Kind, Clause)), Clauses),
-    foldl(image_entry, Clauses, Loaded, [], _),
+    call_cleanup(Goal, nb_setval('$ga_recording', false)),
+    findall(Effect, retract('$ga_loaded'(Effect)), Effects0),
+    maplist(module_role(B, G), Effects0, Effects),
     sub_atom(B, 5, _, 0, Secret),                   % ga_b_<secret>, ga_g_<secret>
     (   Result == ok,
-        \+ ( sub_term(Text, Loaded), ( atom(Text) ; string(Text) ),
+        \+ ( sub_term(Text, Effects), ( atom(Text) ; string(Text) ),
              Text \== B, Text \== G, sub_atom(Text, _, _, _, Secret) )
-    ->  (   sub_term(Text, Loaded), ( Text == B ; Text == G )
-        ->  assertz('$ga_image'(Id, B, G, Loaded))
-        ;   assertz('$ga_image'(Id, none, none, Loaded))
+    ->  (   sub_term(Text, Effects), ( Text == B ; Text == G )
+        ->  assertz('$ga_image'(Id, B, G, Effects))
+        ;   assertz('$ga_image'(Id, none, none, Effects))
         )
     ;   true
     ).
 
-%   image_entry(+Kind-Clause, -Entry, +Seen0, -Seen): the first clause of a predicate of
-%   its kind is added as load_term/6 adds it (first/2); the later ones find the predicate
-%   made the agent's own and declared, so only their clauses are added (more/2).
-image_entry(Kind-Clause, Entry, Seen0, Seen) :-
-    clause_head(Clause, Head),
-    functor(Head, Name, Arity),
-    (   memberchk(Kind-Name/Arity, Seen0)
-    ->  Entry = more(Kind, Clause),
-        Seen = Seen0
-    ;   Entry = first(Kind, Clause),
-        Seen = [Kind-Name/Arity|Seen0]
+%   replay_image(+Id, +B, +G): does to B and G what image Id records (their module names
+%   in its clauses renamed). A predicate declared dynamic again stays as it is, and one
+%   already the agent's own is not redefined (as ensure_dynamic/2 and make_own/2 leave
+%   them), so declaring from an image is declaring whenever it is done.
+replay_image(Id, B, G) :-
+    '$ga_image'(Id, FromB, FromG, Effects0),
+    (   FromB == none
+    ->  Effects = Effects0
+    ;   renamed(Effects0, [FromB-B, FromG-G], Effects)
+    ),
+    forall(member(Effect, Effects), replay(Effect, B, G)).
+
+%   note_loaded(+Effect): Effect (what load/6 did to a module) recorded for load_imaged/7
+%   while it records.
+note_loaded(Effect) :-
+    (   nb_current('$ga_recording', true)
+    ->  assertz('$ga_loaded'(Effect))
+    ;   true
     ).
 
-add_loaded(first(Kind, Clause), B, G) :-
-    add_clause(Kind, Clause, B, G).
-add_loaded(more(Kind, Clause), B, G) :-
-    assertz(B:Clause),
-    (   Kind == k -> assertz(G:Clause) ; true ).
+%   module_role(+B, +G, +Effect0, -Effect): the effect's module named by its role, b or g.
+module_role(B, G, Effect0, Effect) :-
+    Effect0 =.. [Kind, M0, What],
+    (   M0 == B -> M = b ; M0 == G -> M = g ),
+    Effect =.. [Kind, M, What].
+
+replay(Effect, B, G) :-
+    Effect =.. [Kind, Role, What],
+    (   Role == b -> M = B ; M = G ),
+    replay_(Kind, M, What).
+
+replay_(assert, M, Clause) :- assertz(M:Clause).
+replay_(dynamic, M, PI) :- dynamic(M:PI).
+replay_(redefine, M, Head) :-                   % as make_own/2: not once it is M's own
+    (   predicate_property(M:Head, implementation_module(system))
+    ->  redefine_system_predicate(M:Head)
+    ;   true
+    ).
 
 %   read_item(+B, +Item, -Read): the item's text read before anything is loaded, t(Term),
 %   or unread when it does not read yet (its operators come with a directive); load_/8
@@ -189,28 +224,23 @@ load_term((Head --> Body), Kind, B, G, Ctx, RunsCode) :- !,
     load_term(Clause, Kind, B, G, Ctx, RunsCode).
 load_term(Clause0, Kind, B, G, Ctx, _) :-
     ga_confine:prepare_clause(Clause0, Ctx, Clause),
-    add_clause(Kind, Clause, B, G),
-    (   nb_current('$ga_recording', true)       % for load_imaged/7
-    ->  assertz('$ga_loaded'(Kind, Clause))
-    ;   true
-    ).
-
-%   add_clause(+Kind, +Clause, +B, +G): a prepared knowledge (k) or belief (b) clause
-%   added to the agent: what loading it does once it is read and confined.
-add_clause(Kind, Clause, B, G) :-
     clause_head(Clause, Head),
     make_own(B, Head),
-    assertz(B:Clause),
+    loaded_assertz(B, Clause),
     (   Kind == k
     ->  make_own(G, Head),
-        assertz(G:Clause),
+        loaded_assertz(G, Clause),
         functor(Head, N, A),
         (   B:'$kpred'(N/A)
         ->  true
-        ;   assertz(B:'$kpred'(N/A))
+        ;   loaded_assertz(B, '$kpred'(N/A))
         )
     ;   ensure_dynamic(G, Head)
     ).
+
+loaded_assertz(M, Clause) :-
+    assertz(M:Clause),
+    note_loaded(assert(M, Clause)).
 
 clause_head((Head :- _), Head) :- !.
 clause_head(Head, Head).
@@ -268,7 +298,8 @@ ensure_dynamic(M, Head) :-
     ->  true
     ;   make_own(M, Head),
         functor(Head, N, A),
-        dynamic(M:N/A)
+        dynamic(M:N/A),
+        note_loaded(dynamic(M, N/A))
     ).
 
 %!  make_own(+M, +Head) is det.
@@ -287,7 +318,8 @@ make_own(M, Head) :-
         format(string(Message), "~w/~w is a built-in predicate of ISO Prolog; an agent \c
                                  cannot make it its own (rename it)", [N, A]),
         throw(ga_error(Message))
-    ;   redefine_system_predicate(M:Head)
+    ;   redefine_system_predicate(M:Head),
+        note_loaded(redefine(M, Head))
     ).
 
 %!  declare(+B, +G, +Formulas, -Result) is det.
@@ -398,6 +430,25 @@ compile(B, G, Name, Text, Confined, Names) :-
 %   else of the first agent's (an own global variable or flag key: confine_keys.pl).
 
 clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
+    (   '$ga_conditions'(FromB, Names, Found)
+    ->  true
+    ;   conditions_found(FromB, FromG, Names, Found),
+        assertz('$ga_conditions'(FromB, Names, Found))
+    ),
+    (   Found = found(Clauses)
+    ->  Map = [FromB-ToB, FromG-ToG],
+        forall(member(M0-Clause0, Clauses),
+               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
+        Cloned = true
+    ;   Cloned = false
+    ).
+
+%   conditions_found(+FromB, +FromG, +Names, -Found): found(Clauses) (Module-Clause) that
+%   compile/6 made of the conditions Names for the agent of FromB/FromG, or none when one
+%   is missing or a clause names anything else of that agent's. Kept for the next agents
+%   that copy the same conditions from it ('$ga_conditions'/3, until it is destroyed: the
+%   clauses of a condition's name never change).
+conditions_found(FromB, FromG, Names, Found) :-
     findall(FromB-Clause, ( member(Name, Names), module_clause(FromB, Name, Clause) ), Own),
     findall(FromG-Clause, ( member(Name, Names), goal_clause(FromG, Name, 0, Clause) ), Goals),
     append(Own, Goals, Clauses),
@@ -406,11 +457,8 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
     (   length(Own, Count),                         % one clause per condition
         \+ ( sub_term(Text, Clauses), ( atom(Text) ; string(Text) ),
              Text \== FromB, Text \== FromG, sub_atom(Text, _, _, _, Secret) )
-    ->  Map = [FromB-ToB, FromG-ToG],
-        forall(member(M0-Clause0, Clauses),
-               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
-        Cloned = true
-    ;   Cloned = false
+    ->  Found = found(Clauses)
+    ;   Found = none
     ).
 
 module_clause(M, Name, (Head :- Body)) :-

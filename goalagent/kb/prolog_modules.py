@@ -22,7 +22,7 @@ from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
 from goalagent.kb.watchdog import watchdog
 
-__all__ = ["PrologModules", "instantiate", "substitute", "text_of"]
+__all__ = ["PrologModules", "image_number", "instantiate", "substitute", "text_of"]
 
 TRUE, FALSE = Atom("true"), Atom("false")
 
@@ -54,16 +54,16 @@ def instantiate(text: ast.PrologText | str, bindings: Mapping[str, Term],
 
 
 _IMAGES: dict[tuple[object, ...], int] = {}
-"""The image numbers of the programs loaded so far (load_imaged/7 in mentalstate_load.pl):
-by their knowledge and belief texts and the limits that change how they load."""
-_MAX_IMAGES = 1000  # programs loaded later load each agent from their texts
+"""The numbers of the images kept so far (load_imaged/7 and declare_imaged/5 in
+mentalstate_load.pl): what loading a program's knowledge and beliefs under the limits
+that change how they load, or declaring formulas after such a load, did to an agent's
+modules, which the next agent of the program does to its own without reading the texts."""
+_MAX_IMAGES = 2000  # past it, agents load and declare from their texts
 
 
-def _image_number(clauses: Sequence[tuple[str, ast.PrologText | str]],
-                  limits: Limits) -> int | None:
-    """The number of the image of loading ``clauses`` under ``limits`` (every agent of one
-    program loaded alike shares it); None past :data:`_MAX_IMAGES` programs."""
-    key = (tuple(clauses), limits.sandbox, limits.runs_code)
+def image_number(key: tuple[object, ...]) -> int | None:
+    """The number of the image of ``key`` (what was loaded or declared, and how); None
+    past :data:`_MAX_IMAGES` images."""
     number = _IMAGES.get(key)
     if number is None and len(_IMAGES) < _MAX_IMAGES:
         number = _IMAGES[key] = len(_IMAGES)
@@ -110,7 +110,11 @@ class PrologModules:
             self._engine.give_seed()
         sandbox = TRUE if self.limits.sandbox else FALSE
         runs_code = TRUE if self.limits.runs_code else FALSE
-        image = None if self._directives else _image_number(clauses, self.limits)
+        # The image of this load (None: a program with directives loads from its texts):
+        # the agents of a program loaded from one image hold the same in their modules.
+        self._image = None if self._directives else image_number(
+            ("load", tuple(clauses), self.limits.sandbox, self.limits.runs_code))
+        image = self._image
         if image is None:
             result = self._call("load", self._b, self._g, items, sandbox, runs_code, None)[5]
         else:

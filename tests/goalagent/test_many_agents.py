@@ -1,8 +1,9 @@
 """What launching many agents of one program shares or puts off (issue 29): agents copy
-the conditions an earlier one compiled (clone_conditions/6) instead of reading and
-confining each text again, and a copy behaves exactly as the agent's own compile would (it
-reads the agent's own beliefs and keys); Prolog's generator is seeded before anything
-draws, as if each agent had seeded it when launched."""
+the conditions an earlier one compiled (clone_conditions/6) and do to their modules what
+loading the first one's knowledge and beliefs did (load_imaged/7) instead of reading and
+confining each text again, and a copy behaves exactly as the agent's own compile or load
+would (it reads the agent's own beliefs and keys); Prolog's generator is seeded before
+anything draws, as if each agent had seeded it when launched."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from dataclasses import replace
 import pytest
 
 from goalagent.agent import Agent
+from goalagent.agent.checks import update_formulas
 from goalagent.kb.conditions import Conditions
 from goalagent.kb.engine import get_engine
 from goalagent.kb.terms import Atom, Struct, Term
@@ -74,7 +76,6 @@ def test_a_condition_naming_an_own_key_is_compiled_by_each_agent(copies: list[bo
         for name in ("a", "b", "c"):
             system.launch(name, program)
         assert copies == [False, False]  # the first agent's key is in its clause
-        assert not _imaged("memberchk(first(k, (mine(_) :- _)), Loaded)")
         system.run(max_cycles=2)
         assert [agent.query("bel", "got(V)") for agent in system.agents] == [
             [{"V": Atom(name)}] for name in ("a", "b", "c")]
@@ -226,7 +227,8 @@ def test_agents_loaded_from_the_image_hold_what_loading_the_texts_gives(
         texts_only = system.launch("r", reference, limits=replace(system.limits,
                                                                  sandbox=True))
         assert loads == ["load_imaged"] * 4
-        assert _imaged("length(Loaded, 11), memberchk(first(b, told), Loaded)")
+        assert _imaged("memberchk(assert(b, told), Loaded), memberchk(redefine(g, told), Loaded)"
+                       ", memberchk(dynamic(g, pair/2), Loaded)")
         queries = ["n(N)", "pair(P, V)", "double(4, Y)", "last([1, 2, 3], X)",
                    "phrase(greeting, [hello, world])", "told"]
         assert len(_held(agents[0])) == 5  # (told/0 is knowledge too)
@@ -234,6 +236,8 @@ def test_agents_loaded_from_the_image_hold_what_loading_the_texts_gives(
             assert _held(agent) == _held(agents[0])
             for query in queries:
                 assert agent.query("bel", query) == agents[0].query("bel", query), query
+        assert _imaged("memberchk(dynamic(b, summed/1), Loaded)")  # declared: updated
+        assert agents[1].query("bel", "summed(S)") == []  # (no existence error)
         assert agents[0].query("bel", "double(4, Y)") == [{"Y": 8}]
         assert agents[0].query("bel", "last([1, 2, 3], X)") == [{"X": 3}]
         system.run(max_cycles=1)
@@ -254,9 +258,29 @@ def test_a_knowledge_clause_naming_an_own_key_is_loaded_by_each_agent(
         for name in ("a", "b", "c"):
             system.launch(name, program)
         assert loads == ["load_imaged"] * 3
-        assert not _imaged("memberchk(first(k, (mine(_) :- _)), Loaded)")
+        assert not _imaged("memberchk(assert(_, (mine(_) :- _)), Loaded)")
         system.run(max_cycles=2)
         assert [agent.query("bel", "got(V)") for agent in system.agents] == [
             [{"V": Atom(name)}] for name in ("a", "b", "c")]
+    finally:
+        system.close()
+
+
+SYSTEM_NAMED = """
+main module { program { if true then insert(append(x)). } }
+"""
+
+
+def test_declaring_again_from_the_image_keeps_what_the_agent_believes() -> None:
+    program = parse_agent(SYSTEM_NAMED, "system_named.goal")  # append/1: SWI's, not ISO
+    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    try:
+        first, second = (system.launch(name, program) for name in ("a", "b"))
+        assert _imaged("memberchk(redefine(b, append(_)), Loaded)")
+        second.step()
+        assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
+        second.ms.declare_updates(update_formulas(program))  # as the launch did: replayed
+        assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
+        assert first.query("bel", "append(X)") == []
     finally:
         system.close()
