@@ -56,33 +56,42 @@ load(B, G, Items, Sandbox, RunsCode, Result) :-
 %   the next do the same to theirs without reading or confining the texts again
 %   (launching 10,000 copies of an agent reads its knowledge and beliefs once). A program
 %   whose clauses name anything else of the first agent's (confine_keys.pl) or that does
-%   not load makes no image.
+%   not load makes no image. Result: as load/6's, or imaged when the program is loaded
+%   and its image kept (the next loads need not be handed the Items).
 
-load_imaged(Id, B, G, _, Sandbox, _, ok) :-
+load_imaged(Id, B, G, _, Sandbox, _, imaged) :-
     '$ga_image'(Id, _, _, _),
     !,
     (   Sandbox == true -> ga_confine:load_sandbox ; true ),
     assertz(B:'$ga_confine'(Sandbox)),
     replay_image(Id, B, G).
 load_imaged(Id, B, G, Items, Sandbox, RunsCode, Result) :-
-    imaged(Id, B, G, load(B, G, Items, Sandbox, RunsCode, Result), Result).
+    imaged(Id, B, G, load(B, G, Items, Sandbox, RunsCode, Result0), Result0, Result).
 
 %!  declare_imaged(+Id, +B, +G, +Formulas, -Result) is det.
 %   As declare/4, for agents whose modules hold the same (loaded from one image, Id
 %   numbering the image and the formulas): the first records what it did, the next do
 %   the same without reading the formulas.
 
-declare_imaged(Id, B, G, _, ok) :-
+declare_imaged(Id, B, G, _, imaged) :-
     '$ga_image'(Id, _, _, _),
     !,
     replay_image(Id, B, G).
 declare_imaged(Id, B, G, Formulas, Result) :-
-    imaged(Id, B, G, declare(B, G, Formulas, Result), Result).
+    imaged(Id, B, G, declare(B, G, Formulas, Result0), Result0, Result).
 
-%   imaged(+Id, +B, +G, :Goal, ?Result): runs Goal, which sets Result, and keeps what it
-%   did to the modules B and G as image Id when Result is ok and nothing of it names
-%   anything else of that agent's.
-imaged(Id, B, G, Goal, Result) :-
+%   imaged(+Id, +B, +G, :Goal, ?Result0, -Result): runs Goal, which sets Result0, and
+%   keeps what it did to the modules B and G as image Id when Result0 is ok and nothing
+%   of it names anything else of that agent's: Result is then imaged (the next calls are
+%   handed no texts), else Result0.
+imaged(Id, B, G, Goal, Result0, Result) :-
+    imaged_(Id, B, G, Goal, Result0),
+    (   Result0 == ok, '$ga_image'(Id, _, _, _)
+    ->  Result = imaged
+    ;   Result = Result0
+    ).
+
+imaged_(Id, B, G, Goal, Result) :-
     retractall('$ga_loaded'(_)),
     nb_setval('$ga_recording', true),
     call_cleanup(Goal, nb_setval('$ga_recording', false)),
@@ -435,17 +444,23 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
     ;   conditions_found(FromB, FromG, Names, Found),
         assertz('$ga_conditions'(FromB, Names, Found))
     ),
-    (   Found = found(Clauses)
+    (   Found = found(Clauses, Named)
     ->  Map = [FromB-ToB, FromG-ToG],
         forall(member(M0-Clause0, Clauses),
-               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
+               ( (   Named == true
+                 ->  renamed(Clause0, Map, Clause)
+                 ;   Clause = Clause0
+                 ),
+                 memberchk(M0-M, Map),
+                 assertz(M:Clause) )),
         Cloned = true
     ;   Cloned = false
     ).
 
-%   conditions_found(+FromB, +FromG, +Names, -Found): found(Clauses) (Module-Clause) that
-%   compile/6 made of the conditions Names for the agent of FromB/FromG, or none when one
-%   is missing or a clause names anything else of that agent's. Kept for the next agents
+%   conditions_found(+FromB, +FromG, +Names, -Found): found(Clauses, Named), the clauses
+%   (Module-Clause) that compile/6 made of the conditions Names for the agent of
+%   FromB/FromG and whether any names its modules (to be renamed), or none when one is
+%   missing or a clause names anything else of that agent's. Kept for the next agents
 %   that copy the same conditions from it ('$ga_conditions'/3, until it is destroyed: the
 %   clauses of a condition's name never change).
 conditions_found(FromB, FromG, Names, Found) :-
@@ -457,7 +472,10 @@ conditions_found(FromB, FromG, Names, Found) :-
     (   length(Own, Count),                         % one clause per condition
         \+ ( sub_term(Text, Clauses), ( atom(Text) ; string(Text) ),
              Text \== FromB, Text \== FromG, sub_atom(Text, _, _, _, Secret) )
-    ->  Found = found(Clauses)
+    ->  (   sub_term(Text, Clauses), ( Text == FromB ; Text == FromG )
+        ->  Found = found(Clauses, true)
+        ;   Found = found(Clauses, false)
+        )
     ;   Found = none
     ).
 
