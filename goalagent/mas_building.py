@@ -66,6 +66,7 @@ def read_parameter(value: Term | ParameterText, *, path: bool) -> Term:
         return value.text.strip()
     return parse_parameter(value.text)
 
+
 class SystemBuilding:
     """The ways to make a system (``MultiAgentSystem`` is one): each builds it, launches its
     agents and starts its environment."""

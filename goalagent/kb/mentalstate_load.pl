@@ -99,6 +99,7 @@ imaged_(Id, B, G, Goal, Result) :-
     maplist(module_role(B, G), Effects0, Effects),
     sub_atom(B, 5, _, 0, Secret),                   % ga_b_<secret>, ga_g_<secret>
     (   Result == ok,
+        forall(member(Effect, Effects), ( arg(1, Effect, Role), memberchk(Role, [b, g]) )),
         \+ ( sub_term(Text, Effects), ( atom(Text) ; string(Text) ),
              Text \== B, Text \== G, sub_atom(Text, _, _, _, Secret) )
     ->  (   sub_term(Text, Effects), ( Text == B ; Text == G )
@@ -128,10 +129,11 @@ note_loaded(Effect) :-
     ;   true
     ).
 
-%   module_role(+B, +G, +Effect0, -Effect): the effect's module named by its role, b or g.
+%   module_role(+B, +G, +Effect0, -Effect): the effect's module named by its role, b or g
+%   (any other module, named as it is, keeps the effects from making an image).
 module_role(B, G, Effect0, Effect) :-
     Effect0 =.. [Kind, M0, What],
-    (   M0 == B -> M = b ; M0 == G -> M = g ),
+    (   M0 == B -> M = b ; M0 == G -> M = g ; M = M0 ),
     Effect =.. [Kind, M, What].
 
 replay(Effect, B, G) :-
