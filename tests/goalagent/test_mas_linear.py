@@ -7,7 +7,10 @@ makes it O(N²) and fails the ratio below by a factor of four."""
 from __future__ import annotations
 
 import io
+from _collections_abc import dict_items, dict_keys, dict_values
+from collections.abc import Iterator
 from pathlib import Path
+from typing import TypeVar
 
 import pytest
 
@@ -15,6 +18,8 @@ from goalagent.eis.interface import Environment
 from goalagent.eis.terms import Parameter
 from goalagent.mas import MultiAgentSystem
 
+K = TypeVar("K")
+V = TypeVar("V")
 SMALL, LARGE = 40, 160  # linear work grows 4x from one to the other, quadratic 16x
 
 AGENT = """
@@ -29,22 +34,22 @@ class Visits:
     count = 0
 
 
-class CountingDict(dict):  # type: ignore[type-arg]
+class CountingDict(dict[K, V]):
     """A dict that counts every element a walk over it visits."""
 
-    def __iter__(self):  # type: ignore[no-untyped-def]
+    def __iter__(self) -> Iterator[K]:
         Visits.count += len(self)
         return super().__iter__()
 
-    def items(self):  # type: ignore[no-untyped-def]
+    def items(self) -> dict_items[K, V]:
         Visits.count += len(self)
         return super().items()
 
-    def values(self):  # type: ignore[no-untyped-def]
+    def values(self) -> dict_values[K, V]:
         Visits.count += len(self)
         return super().values()
 
-    def keys(self):  # type: ignore[no-untyped-def]
+    def keys(self) -> dict_keys[K, V]:
         Visits.count += len(self)
         return super().keys()
 
@@ -57,9 +62,9 @@ class CountingEnvironment(Environment):
 
     def __init__(self) -> None:
         super().__init__()
-        self._agents = CountingDict()
-        self._entities = CountingDict()
-        self._holders = CountingDict()
+        self._agents: dict[str, list[str]] = CountingDict()
+        self._entities: dict[str, str] = CountingDict()
+        self._holders: dict[str, dict[str, None]] = CountingDict()
 
     def do_init(self, params: dict[str, Parameter]) -> None:
         self.bots = int(params["bots"].value)  # type: ignore[union-attr,arg-type]
