@@ -56,7 +56,7 @@ def instantiate(text: ast.PrologText | str, bindings: Mapping[str, Term],
 
 _IMAGES: dict[tuple[object, ...], int] = {}
 """The numbers of the images kept so far (load_imaged/7 and declare_imaged/5 in
-mentalstate_load.pl): what loading a program's knowledge and beliefs under the limits
+mentalstate_images.pl): what loading a program's knowledge and beliefs under the limits
 that change how they load, or declaring formulas after such a load, did to an agent's
 modules, which the next agent of the program does to its own without reading the texts."""
 _MAX_IMAGES = 2000  # past it, agents load and declare from their texts
