@@ -42,15 +42,20 @@ class RunStopped(KeyboardInterrupt):
 
 
 @contextlib.contextmanager
-def stop_on_signals() -> Iterator[None]:
+def stop_on_signals() -> Iterator[list[int]]:
     """Within the block SIGINT, SIGTERM and SIGHUP raise :class:`RunStopped` (each time one
     comes), also while Prolog runs (the watchdog aborts the running query:
-    goalagent.kb.watchdog); the previous handlers come back afterwards."""
+    goalagent.kb.watchdog); the previous handlers come back afterwards. Yields the signals
+    received, in order (see :meth:`Run._after`)."""
+    received: list[int] = []
 
     def handler(signum: int, frame: FrameType | None) -> None:
+        received.append(signum)
         engine = get_engine()
-        if engine.depth:  # inside Prolog (or a callback from it): the watchdog aborts the
-            engine.pending_stop = RunStopped(signum)  # query, and the stop comes after it
+        if engine.depth or engine.guarded:  # inside Prolog (or a callback from it): the
+            # watchdog aborts the query; or between a call's first and last C call: the
+            # stop comes when the call has ended (raised here it would leave it half done)
+            engine.pending_stop = RunStopped(signum)
             return
         raise RunStopped(signum)
 
@@ -60,7 +65,7 @@ def stop_on_signals() -> Iterator[None]:
     previous = {signum: signal.signal(signum, handler) for signum in EXIT_CODES}
     try:
         with watchdog().watching_signals(exit_code):
-            yield
+            yield received
     finally:
         for signum, old in previous.items():
             signal.signal(signum, old)
@@ -92,6 +97,7 @@ class Run:
         self.failed_hooks = 0
         self._cycling = list(self.hooks)  # hooks still called after each cycle
         self._last: Agent | None = None  # the agent whose cycle ended last
+        self._signals: list[int] = []  # received while the run goes (see stop_on_signals)
 
     def report(self, line: str) -> None:
         """Say ``line`` on stderr; a terminal that is gone (SIGHUP: writes fail) or a closed
@@ -103,7 +109,7 @@ class Run:
                 status: Callable[[Agent], None] | None = None) -> int:
         """Runs the system and finishes the run; returns the exit code (0, 1 when an agent
         or a hook failed, 130/143 when a signal stopped it)."""
-        with stop_on_signals():
+        with stop_on_signals() as self._signals:
             try:
                 return self._execute(max_cycles, status)
             except (RunStopped, Interrupted) as error:  # a second signal while finishing
@@ -138,7 +144,12 @@ class Run:
         return 1 if failed or self.failed_hooks else 0
 
     def _after(self, agent: Agent, status: Callable[[Agent], None] | None) -> None:
-        """After each cycle: the hooks (one that raises is dropped, said once), the status."""
+        """After each cycle: the hooks (one that raises is dropped, said once), the status.
+        A signal received while the agents run is a stop that should not have got this far:
+        its handler's exception was lost where Python drops exceptions (in ``__del__``, which
+        a handler may interrupt): the stop comes here, one cycle late."""
+        if self._signals:
+            raise RunStopped(self._signals[-1])
         self._last = agent
         for hook in list(self._cycling):
             if not self._call(hook, "after_cycle", agent):

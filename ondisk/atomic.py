@@ -33,8 +33,6 @@ from typing import IO
 _CLOEXEC = getattr(os, "O_CLOEXEC", 0)
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 _DIRECTORY = getattr(os, "O_DIRECTORY", 0)
-_NEW_FILE_MODE = 0o666
-"""The mode a new file is created with before the umask, as ``open()`` does."""
 _NAME_KEPT = 200
 """Characters of the target's name kept in the temporary name (NAME_MAX is 255)."""
 
@@ -91,17 +89,15 @@ class AtomicFile:
                  encoding: str = "utf-8") -> None:
         self.path = check_target(path)
         existing = _existing_mode(self.path)
-        self._temporary, fd = _create_temporary(self.path)
-        try:
-            if existing is not None:
-                os.fchmod(fd, existing)
-            self._stream: IO = (os.fdopen(fd, "wb") if binary else
-                                os.fdopen(fd, "w", encoding=encoding, newline=""))
-        except BaseException:
-            os.close(fd)
-            Path(self._temporary).unlink(missing_ok=True)
-            raise
+        self._temporary, self._stream = _create_temporary(self.path, binary=binary,
+                                                          encoding=encoding)
         self._done = False
+        if existing is not None:
+            try:
+                os.fchmod(self._stream.fileno(), existing)
+            except BaseException:
+                self.discard()
+                raise
 
     def write(self, data: str | bytes) -> int:
         """Append ``data`` to the new content."""
@@ -130,11 +126,12 @@ class AtomicFile:
         if self._done:
             return
         self._done = True
-        Path(self._temporary).unlink(missing_ok=True)  # first: a signal may cut what follows
-        try:
+        # Neither step raises: discarding runs while another exception (a failed write, a
+        # signal's stop) is on its way out, and must not replace it.
+        with contextlib.suppress(OSError):  # first: a signal may cut what follows
+            Path(self._temporary).unlink(missing_ok=True)
+        with contextlib.suppress(OSError):  # a write that failed (disk full) fails again
             self._stream.close()
-        except OSError:
-            pass  # a write that failed (disk full) fails again on close: nothing to keep
 
     def __enter__(self) -> AtomicFile:
         return self
@@ -164,8 +161,8 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     and ``path`` stays as it was."""
     target = check_target(path)
     existing = _existing_mode(target)
-    temporary, fd = _create_temporary(target, suffix=target.suffix)
-    os.close(fd)
+    temporary, created = _create_temporary(target, suffix=target.suffix)
+    created.close()
     try:
         yield Path(temporary)
         fd = os.open(temporary, os.O_RDONLY | _CLOEXEC | _NOFOLLOW)
@@ -191,14 +188,22 @@ def _existing_mode(target: Path) -> int | None:
         return None
 
 
-def _create_temporary(target: Path, suffix: str = ".tmp") -> tuple[str, int]:
-    """A new, empty file beside ``target`` under an unused hidden name ending in ``suffix``:
-    (name, descriptor)."""
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | _CLOEXEC | _NOFOLLOW
+def _create_temporary(target: Path, suffix: str = ".tmp", *, binary: bool = True,
+                      encoding: str = "utf-8") -> tuple[str, IO]:
+    """A new, empty file beside ``target`` under an unused hidden name ending in ``suffix``,
+    open for writing: (name, stream).
+
+    ``open(name, "x")`` makes the file and its stream in one C call (mode 0o666 less the
+    umask, close-on-exec, and no link followed: O_EXCL refuses any existing name). A
+    descriptor from ``os.open`` handed to ``os.fdopen`` by Python code could be closed twice
+    when a signal handler's exception (the run's Ctrl-C) lands between the two: the
+    second close then hits whatever file has taken the number since."""
     while True:
         name = target.parent / f".{target.name[:_NAME_KEPT]}.{secrets.token_hex(4)}{suffix}"
         try:
-            return str(name), os.open(name, flags, _NEW_FILE_MODE)
+            if binary:
+                return str(name), open(name, "xb")  # noqa: SIM115 - the caller closes it
+            return str(name), open(name, "x", encoding=encoding, newline="")  # noqa: SIM115
         except FileExistsError:
             continue
 

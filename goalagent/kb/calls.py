@@ -84,6 +84,11 @@ class PrologCalls(TermConversion):
         # A stop a signal asked for while queries were open: raised when they are all closed
         # (raising inside a callback would leave Prolog in between; see kb.watchdog).
         self.pending_stop: BaseException | None = None
+        # Calls into SWI-Prolog in progress, from their first C call (opening a frame) to
+        # their last (discarding it): a signal's stop raised in between would leave a query
+        # open or a frame undiscarded, and the next query then runs on a broken engine. The
+        # run's signal handler leaves its stop in pending_stop while this is not 0.
+        self.guarded = 0
         # A seed for Prolog's random generator not given to it yet (see seed_random):
         # given before the next call of a predicate not in _seedless, the predicates that
         # run no agent code (so draw no random number).
@@ -135,29 +140,33 @@ class PrologCalls(TermConversion):
             self._attach_thread()
         if self.pending_seed is not None:
             self.give_seed()
-        fid = PL_open_foreign_frame()
-        outer_since = self._enter()
+        self.guarded += 1
         try:
-            base = PL_new_term_refs(arity)
-            for index, value in inputs:
-                if type(value) is Kept:
-                    PL_recorded(value.handle, base + index)
-                else:
-                    self._put_term(base + index, value, {})
-            if PL_call_predicate(None, Q_PASS, pred, base):
-                if not PL_get_int64(base + number, INT_REF):
-                    raise KBError("internal: the interpreter's outcome is not a number")
-                return INT_BUF.value, Record(self, PL_record(base + keep))
-            exception = PL_exception(0)
-            if not exception:
-                raise KBError("internal: the interpreter failed")
-            record = PL_record(exception)
-            PL_clear_exception()
-            raise self._error_from(record)
+            fid = PL_open_foreign_frame()
+            outer_since = self._enter()
+            try:
+                base = PL_new_term_refs(arity)
+                for index, value in inputs:
+                    if type(value) is Kept:
+                        PL_recorded(value.handle, base + index)
+                    else:
+                        self._put_term(base + index, value, {})
+                if PL_call_predicate(None, Q_PASS, pred, base):
+                    if not PL_get_int64(base + number, INT_REF):
+                        raise KBError("internal: the interpreter's outcome is not a number")
+                    return INT_BUF.value, Record(self, PL_record(base + keep))
+                exception = PL_exception(0)
+                if not exception:
+                    raise KBError("internal: the interpreter failed")
+                record = PL_record(exception)
+                PL_clear_exception()
+                raise self._error_from(record)
+            finally:
+                self._leave(outer_since)
+                PL_discard_foreign_frame(fid)
+                self._release()
         finally:
-            self._leave(outer_since)
-            PL_discard_foreign_frame(fid)
-            self._release()
+            self.guarded -= 1
             self._stop_if_asked()
 
     def solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
@@ -173,6 +182,17 @@ class PrologCalls(TermConversion):
             self.give_seed()
         if outputs is None:
             outputs = range(arity)
+        self.guarded += 1
+        try:
+            return self._solve(pred, arity, inputs, limit, marks, outputs, keep)
+        finally:
+            self.guarded -= 1
+            self._stop_if_asked()
+
+    def _solve(self, pred: int, arity: int, inputs: Sequence[tuple[int, Term | None]],
+               limit: int | None, marks: bool, outputs: Sequence[int],
+               keep: int | None) -> list[list[Term]]:
+        """:meth:`solve`'s query, within its guard (see :attr:`guarded`)."""
         fid = PL_open_foreign_frame()
         try:
             base = PL_new_term_refs(arity) if arity else PL_new_term_ref()
@@ -214,7 +234,6 @@ class PrologCalls(TermConversion):
         finally:
             PL_discard_foreign_frame(fid)
             self._release()
-            self._stop_if_asked()
 
     # ------------------------------------------------------------------ the random seed
 
@@ -263,7 +282,7 @@ class PrologCalls(TermConversion):
 
     def _stop_if_asked(self) -> None:
         """A signal that came while Prolog ran: once back in Python, the stop it asked for."""
-        if self.pending_stop is not None and self.depth == 0:
+        if self.pending_stop is not None and self.depth == 0 and self.guarded == 0:
             stop, self.pending_stop = self.pending_stop, None
             raise stop
 
@@ -300,13 +319,18 @@ class PrologCalls(TermConversion):
         """The Python value of a recorded term (the record stays)."""
         if get_ident() != self._thread:
             self._attach_thread()
-        fid = PL_open_foreign_frame()
+        self.guarded += 1
         try:
-            t = PL_new_term_ref()
-            PL_recorded(record, t)
-            return self._get_term(t, {}, False)
+            fid = PL_open_foreign_frame()
+            try:
+                t = PL_new_term_ref()
+                PL_recorded(record, t)
+                return self._get_term(t, {}, False)
+            finally:
+                PL_discard_foreign_frame(fid)
         finally:
-            PL_discard_foreign_frame(fid)
+            self.guarded -= 1
+            self._stop_if_asked()
 
     def _runtime_error(self, record: int) -> PrologRuntimeError:
         """Turns a recorded exception term into a PrologRuntimeError (SWI's message text)."""

@@ -103,13 +103,18 @@ class Engine(PrologCalls):
 
     def keep(self, term: Term) -> Kept:
         """``term`` recorded in Prolog, to be given to calls as it is (see :class:`Kept`)."""
-        fid = PL_open_foreign_frame()
+        self.guarded += 1
         try:
-            t = PL_new_term_ref()
-            self._put_term(t, term, {})
-            return Kept(self, PL_record(t))
+            fid = PL_open_foreign_frame()
+            try:
+                t = PL_new_term_ref()
+                self._put_term(t, term, {})
+                return Kept(self, PL_record(t))
+            finally:
+                PL_discard_foreign_frame(fid)
         finally:
-            PL_discard_foreign_frame(fid)
+            self.guarded -= 1
+            self._stop_if_asked()
 
     def format(self, term: Term) -> str:
         """Prolog text for ``term`` (canonical, reads back as the same term)."""
