@@ -249,8 +249,8 @@ def main() -> int:
         xcsf_target = XCSF_TARGETS[problem_name]
         xcsf_verdict = "met" if against_xcsf >= xcsf_target else "NOT met"
         console.print(f"{problem_name}: goalagent / faster of xcs and scikit-XCS = "
-                      f"{ratio:.2f}× (target >= {TARGET:g}×: {verdict}); "
-                      f"goalagent / xcsf = {against_xcsf:.2f}× "
+                      f"{ratio:.2f}× (target >= {TARGET:g}×: {verdict})", markup=False)
+        console.print(f"{problem_name}: goalagent / xcsf = {against_xcsf:.2f}× "
                       f"(target >= {xcsf_target:g}×: {xcsf_verdict})", markup=False)
     return 0
 
