@@ -1,6 +1,8 @@
 # The README's two commands: `make demo` (set up the package with its robot extra, then the
 # main demo) and `make test` (set up everything the tests use, the import-layer contract of
-# pyproject.toml, then the suite, which builds the documentation site with --strict).
+# pyproject.toml, then the suite, which builds the documentation site with --strict: in two
+# worker processes (pytest-xdist), each test file whole in one, handed out in the order
+# tests/conftest.py gives (the heavy files first), its slowest tests listed).
 export MUJOCO_GL ?= egl
 PY := .venv/bin/python
 
@@ -17,7 +19,7 @@ demo:
 
 test: setup
 	.venv/bin/lint-imports --no-cache
-	$(PY) -m pytest -q -p no:cacheprovider
+	$(PY) -m pytest -q -p no:cacheprovider -n 2 --dist loadfile --no-loadscope-reorder --durations=25
 
 lint:
 	.venv/bin/ruff check .

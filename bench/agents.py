@@ -54,6 +54,7 @@ class ScaleResult:
     agents: int
     cycles: int
     load_seconds: float
+    load_cpu_seconds: float
     run_seconds: float
     run_cpu_seconds: float
     close_seconds: float
@@ -96,22 +97,22 @@ def measure(agents: int, cycles: int, messaging: bool = False) -> ScaleResult:
     Agent(program, name="warmup").close()  # engine, support library and caches in place
     system = MultiAgentSystem(warn=lambda message: None)
     before = rss_kb()
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     for index in range(agents):
         system.launch(f"agent{index}", program)
     population = system.agents
-    loaded = time.perf_counter()
+    loaded, cpu_loaded = time.perf_counter(), time.process_time()
     if messaging:  # each agent's neighbour: the next one, round the ring
         for index, agent in enumerate(population):
             agent.ms.delete("neighbour(nobody)")
             agent.ms.insert("neighbour(N)", {"N": Atom(population[index - 1].name)})
     for agent in population:  # first cycle (init module, first touches) is not timed
         agent.step()
-    run_start, cpu_start = time.perf_counter(), time.process_time()
+    run_start, run_cpu_start = time.perf_counter(), time.process_time()
     for _ in range(cycles):
         for agent in population:
             agent.step()
-    run_end, cpu_end = time.perf_counter(), time.process_time()
+    run_end, run_cpu_end = time.perf_counter(), time.process_time()
     after = rss_kb()
     expected = cycles + 1
     for agent in (population[0], population[-1]):
@@ -126,8 +127,9 @@ def measure(agents: int, cycles: int, messaging: bool = False) -> ScaleResult:
     close_start = time.perf_counter()
     system.close()
     closed = time.perf_counter()
-    return ScaleResult(agents, cycles, loaded - start, run_end - run_start,
-                       cpu_end - cpu_start, closed - close_start, before, after)
+    return ScaleResult(agents, cycles, loaded - start, cpu_loaded - cpu_start,
+                       run_end - run_start, run_cpu_end - run_cpu_start,
+                       closed - close_start, before, after)
 
 
 def run_child(agents: int, cycles: int, messaging: bool) -> ScaleResult:
@@ -145,7 +147,7 @@ def report(results: list[ScaleResult], messaging: bool) -> None:
     kind = "messaging" if messaging else "reference"
     table = Table(title=f"N {kind} agents in one process, round-robin (one child process "
                         "per N)")
-    columns = ("agents", "cycles", "launch s", "load ms/agent", "run s (wall)",
+    columns = ("agents", "cycles", "launch s", "launch CPU ms/agent", "run s (wall)",
                "agent-cycles/CPU s", "rate / at 10", "CPU µs/a-c", "wall µs/a-c", "RSS MiB",
                "KiB/agent", "close ms/agent")
     for column in columns:
@@ -153,14 +155,15 @@ def report(results: list[ScaleResult], messaging: bool) -> None:
     base = next((r.agent_cycle_rate for r in results if r.agents == 10), None)
     for r in results:
         table.add_row(f"{r.agents:,}", str(r.cycles), f"{r.load_seconds:.2f}",
-                      f"{1e3 * r.load_seconds / r.agents:.2f}",
+                      f"{1e3 * r.load_cpu_seconds / r.agents:.2f}",
                       f"{r.run_seconds:.2f}", f"{r.agent_cycle_rate:,.0f}",
                       f"{r.agent_cycle_rate / base:.3f}" if base else "-",
                       f"{1e6 / r.agent_cycle_rate:,.0f}", f"{1e6 / r.wall_rate:,.0f}",
                       f"{r.rss_after_kb / 1024:,.0f}",
                       f"{r.kb_per_agent:,.1f}", f"{1e3 * r.close_seconds / r.agents:.3f}")
     console.print(table)
-    console.print("a-c: one agent's cycle; launch s: wall time to launch all N; rate / at 10: "
+    console.print("a-c: one agent's cycle; launch s: wall time to launch all N (and the CPU "
+                  "time of it per agent); rate / at 10: "
                   "the per-agent rate (CPU) against 10 agents'; RSS: after the timed rounds; "
                   "KiB/agent: RSS growth from loading the agents to the end of the timed "
                   "rounds, per agent.")

@@ -79,9 +79,10 @@ class EntityLaunches:
         """Launch rules ``when [type=T, max=N]@env do launch ...`` / ``when type = T launch
         a, b.`` (the first rule whose entity condition fits and that may still launch: all
         its agents on this entity) and plain agents waiting for a body: the first agent
-        without an entity gets this one."""
+        without an entity gets this one. O(1) in the number of agents and entities (but
+        for the rules), so launching N is O(N)."""
         environment = self.environment
-        if environment is None or entity not in environment.free_entities():
+        if environment is None or not environment.is_free(entity):
             return
         groups: dict[int, list[int]] = {}
         for index, rule in enumerate(self._entity_launches):
@@ -105,10 +106,9 @@ class EntityLaunches:
                 self.launch(name, self._programs[rule.agentfile], entity,
                             limits=self._agent_limits.get(rule.agentfile))
             return
-        for agent in self.agents:
-            if not environment.associated_entities(agent.name):
-                environment.associate_entity(agent.name, entity)
-                return
+        waiting = environment.first_agent_without_entity()  # (the agents in launch order)
+        if waiting is not None:
+            environment.associate_entity(waiting, entity)
 
     def handle_state_change(self, state: EnvironmentState) -> None:
         """Environment state changes need no action from the scheduler."""

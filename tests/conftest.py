@@ -3,8 +3,9 @@
 MuJoCo renders headless (EGL) unless the caller chose a backend. :func:`goalagent` runs the
 command in a child process, as a user does: for what needs a process of its own (its exit
 status and streams as the shell sees them, signals, the interpreter's start-up, anything that
-would change the test process). :func:`cli` runs it in this process through typer's
-``CliRunner``: for argument validation, exit codes and messages, without a Python start-up.
+would change the test process). :func:`cli` runs it in this process through click's
+``CliRunner``, built as the console script builds it: for argument validation, exit codes,
+help and messages, without a Python start-up.
 :func:`python` runs a snippet in a child Python.
 """
 
@@ -18,7 +19,10 @@ from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import pytest
+
 if TYPE_CHECKING:
+    import click
     import typer
     from click.testing import Result
 
@@ -26,6 +30,13 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parents[1]
 """The repository's root: the child processes' default working directory."""
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The modules marked ``heavy`` (a minute or so each: a cluster, reproductions, a process
+    per test) first, the rest in their order: ``make test`` hands whole files to its two
+    workers in this order, and a heavy file handed out last would leave one worker idle."""
+    items.sort(key=lambda item: item.get_closest_marker("heavy") is None)
 
 
 def _child(command: list[str], cwd: Path, timeout: float, env: dict[str, str] | None,
@@ -53,20 +64,24 @@ def python(code: str, *args: str, cwd: Path = ROOT, timeout: float = 120,
 
 
 @cache
-def _installed_app() -> typer.Typer:
-    """The ``goalagent`` app with the installed extensions, made once per session."""
-    from goalagent.cli import create_app
+def _installed_command() -> click.Command:
+    """The ``goalagent`` command as its console script runs it (the installed extensions,
+    readable metavars), made once per session."""
+    from goalagent.cli import command
 
-    return create_app()
+    return command()
 
 
-def cli(*args: str, app: typer.Typer | None = None, input: str | None = None) -> Result:
-    """``goalagent ARGS`` in this process (the installed extensions' commands, or ``app``'s),
-    ``input`` on its stdin; an exception escaping the command fails the calling test, as a
-    traceback would."""
-    from typer.testing import CliRunner
+def cli(*args: str, app: typer.Typer | None = None, input: str | None = None,
+        env: dict[str, str] | None = None) -> Result:
+    """``goalagent ARGS`` in this process (the installed command, or ``app``'s), ``input`` on
+    its stdin, ``env`` added to the environment while it runs; an exception escaping the
+    command fails the calling test, as a traceback would."""
+    import typer.main
+    from click.testing import CliRunner
 
-    result = CliRunner().invoke(app or _installed_app(), list(args), input=input,
-                                catch_exceptions=False)
+    command = typer.main.get_command(app) if app is not None else _installed_command()
+    result = CliRunner().invoke(command, list(args), input=input, env=env,
+                                prog_name="goalagent", catch_exceptions=False)
     assert "Traceback" not in result.stderr, result.stderr
     return result

@@ -1,8 +1,8 @@
 """The ``goalagent`` command in a child process, measured: exit code, output, wall-clock
 seconds, the CPU seconds it used (what a bound on work should check: a loaded machine
-stretches wall-clock time, not CPU time) and peak resident memory (the child reports its own ``VmHWM`` when it exits: not
-``ru_maxrss``, which Linux carries over from the parent a child was forked from, so a child
-of a large pytest process would report the parent's size)."""
+stretches wall-clock time, not CPU time) and peak resident memory (the child reports its own
+``VmHWM`` when it exits: not ``ru_maxrss``, which Linux carries over from the parent a child
+was forked from, so a child of a large pytest process would report the parent's size)."""
 
 from __future__ import annotations
 

@@ -283,9 +283,8 @@ class Environment(EntityRelations):
         """Push ``percept`` to the agents associated with ``entities`` (each agent once)."""
         for entity in entities:
             self._require_entity(entity, EntityException)
-        targets = [
-            agent for agent, ents in self._agents.items() if any(e in ents for e in entities)
-        ]
+        holders = {agent for entity in entities for agent in self._holders[entity]}
+        targets = sorted(holders, key=self._rank.__getitem__)  # in registration order
         if targets:
             self.notify_agents(percept, *targets)
 

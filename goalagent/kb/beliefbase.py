@@ -9,7 +9,14 @@ from collections.abc import Iterable, Mapping
 from goalagent import ast
 from goalagent.kb.engine import KBError
 from goalagent.kb.facts import FactFile, FactFileError, FactWatch
-from goalagent.kb.prolog_modules import PrologModules, instantiate, text_of
+from goalagent.kb.prolog_modules import (
+    PrologModules,
+    image_kept,
+    image_number,
+    instantiate,
+    note_image,
+    text_of,
+)
 from goalagent.kb.terms import Atom, Struct, Term
 
 __all__ = ["BeliefBase"]
@@ -27,8 +34,15 @@ class BeliefBase(PrologModules):
         are the agent's own even where SWI-Prolog has a predicate of that name. A KBError
         (at the formula) when one is an ISO built-in."""
         formulas = list(formulas)
-        terms = [self._engine.parsed(text_of(formula)) for formula in formulas]
-        result = self._call("declare", self._b, self._g, terms, None)[3]
+        image = None if self._image is None else image_number(
+            ("declare", self._image, tuple(formulas)))
+        terms = [] if image_kept(image) else [self._engine.parsed(text_of(formula))
+                                              for formula in formulas]
+        if image is None:
+            result = self._call("declare", self._b, self._g, terms, None)[3]
+        else:  # after a load from an image: as the first agent's declaration of them did
+            result = self._call("declare_imaged", image, self._b, self._g, terms, None)[4]
+            note_image(image, result)
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             formula = formulas[int(index)]  # type: ignore[arg-type]

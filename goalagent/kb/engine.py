@@ -47,12 +47,13 @@ _SIZES = Path(__file__).with_name("sizes.pl")  # what one built-in call may make
 # What launching an agent calls that runs none of its code (so draws no random number):
 # its modules made, its limits, its conditions compiled or copied, its declarations, its
 # directory; loading and adopting (load/6, adopt_checked/6) give a pending seed themselves
-# when they run agent code (PrologModules, GoalBases).
+# when they run agent code (PrologModules, GoalBases; load_imaged/7 loads programs that
+# run none).
 _RUN_NO_AGENT_CODE = (
     ("new_agent", 2, "ga_kb"), ("set_limits", 3, "ga_guard"), ("compile", 6, "ga_kb"),
     ("clone_conditions", 6, "ga_kb"), ("declare", 4, "ga_kb"), ("declare_actions", 2, "ga_kb"),
     ("directory_add", 2, "ga_kb"), ("join_directory", 3, "ga_kb"), ("load", 6, "ga_kb"),
-    ("adopt_checked", 6, "ga_kb"),
+    ("load_imaged", 7, "ga_kb"), ("declare_imaged", 5, "ga_kb"), ("adopt_checked", 6, "ga_kb"),
 )
 
 

@@ -33,6 +33,7 @@
                      nb_setval('$ga_unchecked', none) )).
 
 :- include(mentalstate_load).
+:- include(mentalstate_images).
 :- include(mentalstate_updates).
 :- include(rules).
 

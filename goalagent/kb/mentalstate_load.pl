@@ -24,6 +24,7 @@ new_agent(B, G) :-
 
 %!  destroy(+B, +G) is det.
 destroy(B, G) :-
+    retractall('$ga_conditions'(B, _, _)),
     ga_confine:forget_keys(B),
     nb_delete(B),
     nb_delete(G),
@@ -133,17 +134,21 @@ load_term(Clause0, Kind, B, G, Ctx, _) :-
     ga_confine:prepare_clause(Clause0, Ctx, Clause),
     clause_head(Clause, Head),
     make_own(B, Head),
-    assertz(B:Clause),
+    loaded_assertz(B, Clause),
     (   Kind == k
     ->  make_own(G, Head),
-        assertz(G:Clause),
+        loaded_assertz(G, Clause),
         functor(Head, N, A),
         (   B:'$kpred'(N/A)
         ->  true
-        ;   assertz(B:'$kpred'(N/A))
+        ;   loaded_assertz(B, '$kpred'(N/A))
         )
     ;   ensure_dynamic(G, Head)
     ).
+
+loaded_assertz(M, Clause) :-
+    assertz(M:Clause),
+    note_loaded(assert(M, Clause)).
 
 clause_head((Head :- _), Head) :- !.
 clause_head(Head, Head).
@@ -201,7 +206,8 @@ ensure_dynamic(M, Head) :-
     ->  true
     ;   make_own(M, Head),
         functor(Head, N, A),
-        dynamic(M:N/A)
+        dynamic(M:N/A),
+        note_loaded(dynamic(M, N/A))
     ).
 
 %!  make_own(+M, +Head) is det.
@@ -220,7 +226,8 @@ make_own(M, Head) :-
         format(string(Message), "~w/~w is a built-in predicate of ISO Prolog; an agent \c
                                  cannot make it its own (rename it)", [N, A]),
         throw(ga_error(Message))
-    ;   redefine_system_predicate(M:Head)
+    ;   redefine_system_predicate(M:Head),
+        note_loaded(redefine(M, Head))
     ).
 
 %!  declare(+B, +G, +Formulas, -Result) is det.
@@ -330,7 +337,34 @@ compile(B, G, Name, Text, Confined, Names) :-
 %   condition once). Cloned = false, and nothing is copied, when a clause names anything
 %   else of the first agent's (an own global variable or flag key: confine_keys.pl).
 
+:- dynamic('$ga_conditions'/3).
+
 clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
+    (   '$ga_conditions'(FromB, Names, Found)
+    ->  true
+    ;   conditions_found(FromB, FromG, Names, Found),
+        assertz('$ga_conditions'(FromB, Names, Found))
+    ),
+    (   Found = found(Clauses, Named)
+    ->  Map = [FromB-ToB, FromG-ToG],
+        forall(member(M0-Clause0, Clauses),
+               ( (   Named == true
+                 ->  renamed(Clause0, Map, Clause)
+                 ;   Clause = Clause0
+                 ),
+                 memberchk(M0-M, Map),
+                 assertz(M:Clause) )),
+        Cloned = true
+    ;   Cloned = false
+    ).
+
+%   conditions_found(+FromB, +FromG, +Names, -Found): found(Clauses, Named), the clauses
+%   (Module-Clause) that compile/6 made of the conditions Names for the agent of
+%   FromB/FromG and whether any names its modules (to be renamed), or none when one is
+%   missing or a clause names anything else of that agent's. Kept for the next agents
+%   that copy the same conditions from it ('$ga_conditions'/3, until it is destroyed: the
+%   clauses of a condition's name never change).
+conditions_found(FromB, FromG, Names, Found) :-
     findall(FromB-Clause, ( member(Name, Names), module_clause(FromB, Name, Clause) ), Own),
     findall(FromG-Clause, ( member(Name, Names), goal_clause(FromG, Name, 0, Clause) ), Goals),
     append(Own, Goals, Clauses),
@@ -339,11 +373,11 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
     (   length(Own, Count),                         % one clause per condition
         \+ ( sub_term(Text, Clauses), ( atom(Text) ; string(Text) ),
              Text \== FromB, Text \== FromG, sub_atom(Text, _, _, _, Secret) )
-    ->  Map = [FromB-ToB, FromG-ToG],
-        forall(member(M0-Clause0, Clauses),
-               ( renamed(Clause0, Map, Clause), memberchk(M0-M, Map), assertz(M:Clause) )),
-        Cloned = true
-    ;   Cloned = false
+    ->  (   sub_term(Text, Clauses), ( Text == FromB ; Text == FromG )
+        ->  Found = found(Clauses, true)
+        ;   Found = found(Clauses, false)
+        )
+    ;   Found = none
     ).
 
 module_clause(M, Name, (Head :- Body)) :-

@@ -22,7 +22,8 @@ from goalagent.kb.limits import Limits
 from goalagent.kb.terms import Atom, Struct, Term, Var
 from goalagent.kb.watchdog import watchdog
 
-__all__ = ["PrologModules", "instantiate", "substitute", "text_of"]
+__all__ = ["IMAGED", "PrologModules", "image_kept", "image_number", "instantiate", "note_image",
+           "substitute", "text_of"]
 
 TRUE, FALSE = Atom("true"), Atom("false")
 
@@ -51,6 +52,36 @@ def instantiate(text: ast.PrologText | str, bindings: Mapping[str, Term],
                 engine: Engine | None = None) -> Term:
     """The term written in ``text`` with ``bindings`` applied (unbound vars stay Var)."""
     return substitute((engine or get_engine()).parsed(text_of(text)), bindings)
+
+
+_IMAGES: dict[tuple[object, ...], int] = {}
+"""The numbers of the images kept so far (load_imaged/7 and declare_imaged/5 in
+mentalstate_images.pl): what loading a program's knowledge and beliefs under the limits
+that change how they load, or declaring formulas after such a load, did to an agent's
+modules, which the next agent of the program does to its own without reading the texts."""
+_MAX_IMAGES = 2000  # past it, agents load and declare from their texts
+_KEPT: set[int] = set()  # the images Prolog keeps (it answered IMAGED)
+IMAGED = Atom("imaged")  # what load_imaged/7 and declare_imaged/5 answer with an image
+
+
+def image_kept(number: int | None) -> bool:
+    """Whether Prolog keeps image ``number`` (None: no image)."""
+    return number in _KEPT
+
+
+def note_image(number: int, result: Term) -> None:
+    """Notes that Prolog keeps image ``number`` when an imaged call answered IMAGED."""
+    if result == IMAGED:
+        _KEPT.add(number)
+
+
+def image_number(key: tuple[object, ...]) -> int | None:
+    """The number of the image of ``key`` (what was loaded or declared, and how); None
+    past :data:`_MAX_IMAGES` images."""
+    number = _IMAGES.get(key)
+    if number is None and len(_IMAGES) < _MAX_IMAGES:
+        number = _IMAGES[key] = len(_IMAGES)
+    return number
 
 
 class PrologModules:
@@ -83,7 +114,6 @@ class PrologModules:
         # Directives (op/3, use_module/1, ...) change how this agent reads text.
         self._directives = "\n".join(text_of(text) for _, text in clauses
                                      if text_of(text).lstrip().startswith(":-"))
-        items = [Struct(kind[0], (text_of(text),)) for kind, text in clauses]
         self._engine.call("new_agent", self._b, self._g)
         self._engine.call("set_limits", self._b, self.limits.max_inferences,
                           self.limits.max_beliefs, module="ga_guard")
@@ -91,8 +121,22 @@ class PrologModules:
         self._watchdog.running = self._memory
         if self._directives and self.limits.runs_code:  # (they may draw random numbers)
             self._engine.give_seed()
-        result = self._call("load", self._b, self._g, items, TRUE if self.limits.sandbox
-                            else FALSE, TRUE if self.limits.runs_code else FALSE, None)[5]
+        sandbox = TRUE if self.limits.sandbox else FALSE
+        runs_code = TRUE if self.limits.runs_code else FALSE
+        # The image of this load (None: a program with directives loads from its texts):
+        # the agents of a program loaded from one image hold the same in their modules.
+        self._image = None if self._directives else image_number(
+            ("load", tuple(clauses), self.limits.sandbox, self.limits.runs_code))
+        image = self._image
+        # (with its image kept, the texts are not even handed over)
+        items = [] if image_kept(image) else [Struct(kind[0], (text_of(text),))
+                                           for kind, text in clauses]
+        if image is None:
+            result = self._call("load", self._b, self._g, items, sandbox, runs_code, None)[5]
+        else:
+            result = self._call("load_imaged", image, self._b, self._g, items, sandbox,
+                                runs_code, None)[6]
+            note_image(image, result)
         if isinstance(result, Struct) and result.name == "error":
             index, message = result.args
             kind, text = clauses[int(index)]

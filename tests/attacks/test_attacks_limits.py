@@ -19,7 +19,10 @@ from goalagent.agent import AgentError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 from tests.attack_agent import load_agent
+from tests.conftest import cli
 from tests.measured import ROOT, Measured, goalagent_measured
+
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
 COUNTER = """
 init module { beliefs { n(0). } goals { n(5). } }
@@ -190,9 +193,8 @@ def test_memory_limits_are_options_of_the_run_and_of_an_agent_file(tmp_path: Pat
     assert Limits(max_memory=2).max_memory_bytes == 2 * 2**20
     with pytest.raises(ValueError, match="max_memory"):
         Limits(max_memory=0)
-    result = goalagent_measured("run", str(ROOT / "bench" / "reference_agent.goal"),
-                                "--max-memory", "0")
-    assert result.returncode == 2 and "--max-memory must be a positive" in result.stderr
+    result = cli("run", str(ROOT / "bench" / "reference_agent.goal"), "--max-memory", "0")
+    assert result.exit_code == 2 and "--max-memory must be a positive" in result.stderr
     (tmp_path / "a.goal").write_text("main module [exit=always] { program { if true then "
                                      "insert(x). } }\n")
     (tmp_path / "s.mas2g").write_text('agentfiles { "a.goal" [max_memory = 3]. }\n')

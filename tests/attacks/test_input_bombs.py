@@ -17,6 +17,8 @@ from goalagent.parser.conditions import MAX_CONDITION_LITERALS, MAX_MACRO_DEPTH
 from goalagent.parser.source import MAX_NESTING, MAX_PROGRAM_BYTES
 from tests.measured import goalagent_measured
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 PEAK_MB = 200  # what one of these inputs may cost the whole process
 
 

@@ -40,6 +40,8 @@ from goalagent.parser import load_agents, parse_agent_file, parse_mas_file
 from goalagent.testing import run_test_file
 from goalagent.trace import TracePrinter, parse_kinds
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
 PAGES = sorted(path for path in DOCS.rglob("*.md") if "results" not in path.parts)

@@ -36,8 +36,8 @@ def test_the_site_builds_strictly_with_every_section(site: Path) -> None:
 
 def test_the_api_reference_is_generated_from_the_docstrings(site: Path) -> None:
     api = (site / "api" / "index.html").read_text()
-    for name in ("Agent", "from_string", "for_agent_text", "MultiAgentSystem", "instantiations",
-                 "run_test_file", "PythonEnvironment"):
+    for name in ("Agent", "from_string", "for_agent_text", "from_mas_file", "MultiAgentSystem",
+                 "instantiations", "run_test_file", "PythonEnvironment"):
         assert name in api, name
     assert "the agents launched so far" in api  # MultiAgentSystem.agents, from its docstring
 

@@ -11,7 +11,7 @@ import pytest
 
 from goalagent.kb.limits import Limits
 from goalagent.testing import run_test_file
-from tests.conftest import goalagent
+from tests.conftest import cli, goalagent
 
 # goalagent check ran agent code: the undefined-call check loaded the agent unconfined and
 # adopting the initial goals ran knowledge rules, even under check --sandbox.
@@ -132,5 +132,5 @@ def test_goalagent_test_takes_the_sandbox_and_the_limits(tmp_path: Path):
     assert "not allowed in the sandbox" in lines[4]
     assert "FAILED  assert  (t.test2g:9:13)" in lines[5]
     assert "more than 1,000,000 inferences" in lines[5]
-    bad = goalagent("test", "t.test2g", "--max-query-seconds", "0", cwd=tmp_path)
-    assert bad.returncode == 2 and "--max-query-seconds" in bad.stderr
+    bad = cli("test", str(tmp_path / "t.test2g"), "--max-query-seconds", "0")
+    assert bad.exit_code == 2 and "--max-query-seconds" in bad.stderr

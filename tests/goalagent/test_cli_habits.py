@@ -2,7 +2,9 @@
 metavars, ``--trace KINDS`` after a space and kinds that filter exactly, ``goalagent test``'s
 report apart from the agents' output, ``GOALAGENT_DEBUG=1`` showing the traceback of an
 environment's own code, and what follows an action the environment refuses (GOAL's
-semantics), the robot's afford/6 saved only where it applies."""
+semantics), the robot's afford/6 saved only where it applies. What the shell or the process
+is part of (completion, the debug traceback, the streams kept apart) runs the installed
+script in a child process; help and runs whose output is the point run in this process."""
 
 from __future__ import annotations
 
@@ -14,6 +16,8 @@ import sys
 from pathlib import Path
 
 import pytest
+
+from tests.conftest import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 GOALAGENT = str(Path(sys.executable).with_name("goalagent"))
@@ -38,6 +42,13 @@ def goalagent(*args: str, cwd: Path = ROOT, **env: str) -> subprocess.CompletedP
                           timeout=300, env=dict(os.environ, COLUMNS="100", **env))
 
 
+def shown(*args: str) -> str:
+    """What ``goalagent ARGS`` prints on stdout, run in this process (ending with 0)."""
+    result = cli(*args, env={"COLUMNS": "100"})
+    assert result.exit_code == 0, result.stderr
+    return result.stdout
+
+
 @pytest.fixture
 def counter(tmp_path: Path) -> Path:
     path = tmp_path / "counter.goal"
@@ -48,9 +59,8 @@ def counter(tmp_path: Path) -> Path:
 @pytest.mark.parametrize("command", [[], ["run"], ["check"], ["test"], ["snapshot"],
                                      ["reproduce"], ["robot"]])
 def test_dash_h_is_help(command: list[str]) -> None:
-    short, long = goalagent(*command, "-h"), goalagent(*command, "--help")
-    assert short.returncode == 0, short.stderr
-    assert short.stdout == long.stdout and short.stdout.startswith("Usage: goalagent")
+    short = shown(*command, "-h")
+    assert short == shown(*command, "--help") and short.startswith("Usage: goalagent")
 
 
 def test_shell_completion_completes_commands_and_options() -> None:
@@ -64,38 +74,35 @@ def test_shell_completion_completes_commands_and_options() -> None:
         ["bash", "-c", f"{shlex.quote(GOALAGENT)} --show-completion; true"],
         capture_output=True, text=True, timeout=300)
     assert "_goalagent_completion" in script.stdout, script.stderr
-    assert "--install-completion" in goalagent("-h").stdout
+    assert "--install-completion" in goalagent("-h").stdout  # the script's own help
 
 
 @pytest.mark.parametrize("command", [["run"], ["check"], ["test"], ["snapshot"],
                                      ["reproduce"], ["objects", "list"]])
 def test_help_shows_readable_metavars(command: list[str]) -> None:
-    shown = goalagent(*command, "-h").stdout
-    assert not re.search(r"<[a-zA-Z]+(\[[^\]]*\])?>", shown), shown
+    help_text = shown(*command, "-h")
+    assert not re.search(r"<[a-zA-Z]+(\[[^\]]*\])?>", help_text), help_text
     if command == ["run"]:
         for option in ("--env NAME", "--env-param KEY=VALUE", "--trace KINDS",
                        "--save-predicate NAME/ARITY", "--max-cycles N"):
-            assert option in shown
+            assert option in help_text
 
 
 def test_trace_kinds_after_a_space_or_an_equals_sign(counter: Path) -> None:
-    spaced = goalagent("run", str(counter), "--trace", "goals,beliefs")
-    joined = goalagent("run", str(counter), "--trace=goals,beliefs")
-    assert spaced.returncode == 0, spaced.stderr
-    assert spaced.stdout == joined.stdout
-    assert "achieved count(2)" in spaced.stdout
-    labels = {line.split()[2] for line in spaced.stdout.splitlines() if " #" in line}
+    spaced = shown("run", str(counter), "--trace", "goals,beliefs")
+    assert spaced == shown("run", str(counter), "--trace=goals,beliefs")
+    assert "achieved count(2)" in spaced
+    labels = {line.split()[2] for line in spaced.splitlines() if " #" in line}
     assert labels == {"inserted", "deleted", "achieved"}  # no rule or action lines
-    bare = goalagent("run", "--trace", str(counter))  # --trace alone: everything
-    assert bare.returncode == 0, bare.stderr
-    assert "fired" in bare.stdout and "inserted" in bare.stdout
+    bare = shown("run", "--trace", str(counter))  # --trace alone: everything
+    assert "fired" in bare and "inserted" in bare
 
 
 @pytest.mark.parametrize("kind", sorted(LABELS))
 def test_each_trace_kind_shows_only_its_lines(kind: str) -> None:
-    run = goalagent("run", "agents/examples/coffee.mas2g", f"--trace={kind}",
-                    "--max-cycles", "12")
-    assert run.returncode in (0, 1), run.stderr
+    run = cli("run", str(ROOT / "agents/examples/coffee.mas2g"), f"--trace={kind}",
+              "--max-cycles", "12")
+    assert run.exit_code in (0, 1), run.stderr
     traced = [line.split()[2] for line in run.stdout.splitlines()
               if re.match(r"\S+ #\d+ ", line)]
     assert set(traced) <= LABELS[kind], (kind, set(traced))
@@ -163,9 +170,9 @@ def test_a_refused_action_counts_as_performed_as_in_goal(tmp_path: Path) -> None
     the postcondition follows and the rule's next actions run."""
     agent = tmp_path / "refused.goal"
     agent.write_text(REFUSED.replace("ACTION", "move(a, b)"))
-    run = goalagent("run", str(agent), "--env", "blocksworld", "--env-param",
-                    "state=[on(a,table),on(b,a)]", "--trace=beliefs")
-    assert run.returncode == 0, run.stderr
+    run = cli("run", str(agent), "--env", "blocksworld", "--env-param",
+              "state=[on(a,table),on(b,a)]", "--trace=beliefs")
+    assert run.exit_code == 0, run.stderr
     assert "could not perform move(a,b): move(a,b): a is not clear" in run.stderr
     assert "inserted tried(a,b)" in run.stdout and run.stdout.endswith("next\n")
 
@@ -174,20 +181,20 @@ def test_an_action_the_environment_cannot_take_stops_the_agent_as_in_goal(
         tmp_path: Path) -> None:
     agent = tmp_path / "unknown.goal"
     agent.write_text(REFUSED.replace("ACTION", "fly(a)"))
-    run = goalagent("run", str(agent), "--env", "blocksworld")
-    assert run.returncode == 1
+    run = cli("run", str(agent), "--env", "blocksworld")
+    assert run.exit_code == 1
     assert "has no action 'fly'" in run.stderr and "the agent is stopped" in run.stderr
     assert "unknown: failed after 1 cycles" in run.stderr and run.stdout == ""
 
 
 def test_a_plain_agent_saves_no_afford_beliefs(counter: Path, tmp_path: Path) -> None:
     saved = tmp_path / "beliefs.pl"
-    run = goalagent("run", str(counter), "--save-beliefs", str(saved))
-    assert run.returncode == 0, run.stderr
+    run = cli("run", str(counter), "--save-beliefs", str(saved))
+    assert run.exit_code == 0, run.stderr
     assert "afford" not in saved.read_text() and "afford" not in run.stderr
     assert "saved no beliefs" in run.stderr
-    named = goalagent("run", str(counter), "--save-beliefs", str(saved),
-                      "--save-predicate", "count/1")
+    named = cli("run", str(counter), "--save-beliefs", str(saved),
+                "--save-predicate", "count/1")
     assert "saved 1 count/1 beliefs" in named.stderr
     assert saved.read_text().splitlines()[-1] == "count(2)."
 
@@ -197,7 +204,7 @@ def test_an_agent_with_afford_beliefs_saves_them(tmp_path: Path) -> None:
     agent.write_text("init module { beliefs { afford(lid, push, opened, 2, 1, 0.5). } }\n"
                      "main module [exit=always] { program { if true then print(done). } }\n")
     saved = tmp_path / "learned.pl"
-    run = goalagent("run", str(agent), "--save-beliefs", str(saved))
-    assert run.returncode == 0, run.stderr
+    run = cli("run", str(agent), "--save-beliefs", str(saved))
+    assert run.exit_code == 0, run.stderr
     assert "saved 1 afford/6 beliefs" in run.stderr
     assert "afford(lid,push,opened,2,1,0.5)." in saved.read_text()

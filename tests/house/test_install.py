@@ -22,6 +22,8 @@ import pytest
 
 from goalagent.swi import install_line, too_old, version_text
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[2]
 DISTRIBUTED = ("goalagent", "ondisk", "robot", "sim", "behaviours")
 HELLO = ROOT / "agents" / "examples" / "hello_world.goal"

@@ -12,7 +12,8 @@ ROOT = Path(__file__).resolve().parents[2]
 PUBLIC = [
     "goalagent/__init__.py", "goalagent/agent/__init__.py", "goalagent/agent/cycle.py",
     "goalagent/agent/events.py", "goalagent/agent/reports.py", "goalagent/agent/actions.py",
-    "goalagent/agent/messages.py", "goalagent/mas.py", "goalagent/testing.py",
+    "goalagent/agent/messages.py", "goalagent/mas.py", "goalagent/mas_building.py",
+    "goalagent/testing.py",
     "goalagent/eis/__init__.py", "goalagent/eis/interface.py", "goalagent/eis/pyenv.py",
     "goalagent/eis/terms.py", "goalagent/eis/registry.py", "goalagent/eis/exceptions.py",
     "goalagent/eis/reference.py", "goalagent/kb/terms.py", "goalagent/kb/limits.py",

@@ -24,6 +24,8 @@ from websockets.sync.client import ClientConnection, connect
 
 from goalagent.inspector.gate import BURST, Gate
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 AGENT = """
 init module { beliefs { count(0). } goals { count(3). } }
 main module [exit=nogoals] { program {
@@ -76,8 +78,12 @@ def _query(socket: ClientConnection, text: str) -> dict:
     return _reply(socket, json.dumps({"op": "query", "agent": "counter", "text": text}))
 
 
-@pytest.fixture(params=[False, True], ids=["plain", "sandbox"])
-def inspected(request, tmp_path: Path) -> Iterator[Inspected]:
+@pytest.fixture(scope="module", params=[False, True], ids=["plain", "sandbox"])
+def inspected(request, tmp_path_factory: pytest.TempPathFactory) -> Iterator[Inspected]:
+    """One run, plain or sandboxed, shared by the module's tests (a run each took a fifth of
+    the module's time): each test leaves it paused before its first cycle and answering, and
+    the floods end only once its message budget has refilled enough to answer again."""
+    tmp_path = tmp_path_factory.mktemp("inspected")
     (tmp_path / "counter.goal").write_text(AGENT)
     process = subprocess.Popen(
         [sys.executable, "-m", "goalagent", "run", "counter.goal", "--inspect", "--port", "0"]

@@ -16,6 +16,8 @@ from goalagent.mas import MultiAgentSystem
 from robot.affordance import AFFORD, affordances
 from tests.conftest import goalagent
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[3]
 MAS = ROOT / "agents" / "garbage_disposal.mas2g"
 TAU = 0.6

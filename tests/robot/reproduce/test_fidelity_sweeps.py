@@ -13,6 +13,8 @@ from robot.reproduce.framework.registry import find
 from robot.reproduce.framework.settings import apply, parse_grid
 from robot.reproduce.framework.sweeps import replot, sweep
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 RESULTS = Path(__file__).resolve().parents[3] / "docs" / "results"
 SMALL = {
     "ch3-navigation": ({"learn_in_exploit": "false,true"}, {}),

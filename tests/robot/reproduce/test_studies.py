@@ -17,6 +17,8 @@ from robot.reproduce.studies import ch4_agent, ch4_exploration, ch4_skills
 from robot.reproduce.studies.common.ch4 import CONFIGURATIONS, METHODS, Exploration
 from robot.reproduce.studies.common.tasks import experienced_rules, majority_movability
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 NAMES = ("appA-params", "appA-search", "ch3-baselines", "ch3-navigation", "ch3-stacking",
          "ch4-agent", "ch4-exploration", "ch4-exploration-camera", "ch4-skills", "ch5-agent",
          "ch5-baseline", "ch5-transfer", "xcs-maze4", "xcs-mux", "xcs-woods2")

@@ -18,6 +18,8 @@ from goalagent.eis.terms import Action
 from robot.reproduce.studies.common.ch5_agent import AgentRun, agent_run, algorithm6_n
 from sim.canfile import find_can
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 SLACK = 5
 """Exploratory actions the agent may take beyond Algorithm 6's N (issue 32)."""
 NEW_PULL_HANDLE = """\

@@ -16,6 +16,8 @@ import pytest
 
 from tests.conftest import cli
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[3]
 
 

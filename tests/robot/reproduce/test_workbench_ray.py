@@ -21,6 +21,8 @@ from typer.testing import CliRunner
 from goalagent.cli import create_app
 from robot.reproduce.framework.local_cluster import LocalCluster, local_cluster
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[3]
 APP = create_app()
 
