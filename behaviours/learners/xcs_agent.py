@@ -27,6 +27,7 @@ import numbers
 import reprlib
 from collections.abc import Iterable
 from dataclasses import dataclass
+from operator import mul
 from os import PathLike
 from typing import ClassVar
 
@@ -340,19 +341,22 @@ class XCS(BaseEstimator):
                 rows, stats = rows[live], stats.compress(live, axis=1)
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
-        set_size = float(sum(stats[NUMEROSITY].tolist()))  # whole numbers: exact in any order
+        numerosity = stats[NUMEROSITY].tolist()
+        set_size = float(sum(numerosity))  # whole numbers: exact in any order
         update_set(stats, set_size, payoff, settings, self._constants)
         population.stats[:, rows] = stats
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
             stats = population.stats.take(rows, axis=1)
+            numerosity = stats[NUMEROSITY].tolist()
         if not step.explore:
             return
-        waited = self.time_ - float(stats[TIME_STAMP] @ stats[NUMEROSITY]) / set_size
-        if waited > settings.theta_ga:  # eq. 7.3
+        # eq. 7.3's numerosity-weighted time stamps: whole numbers, exact in any order
+        stamps = sum(map(mul, stats[TIME_STAMP].tolist(), numerosity))
+        if self.time_ - stamps / set_size > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
-            run_ga(population, rows, stats[FITNESS], step.state, settings, self._rng)
+            run_ga(population, rows, stats[FITNESS].tolist(), step.state, settings, self._rng)
 
     def _compact_keeping(self, previous: _Step | None) -> _Step | None:
         """Drop dead slots once they are half the population; remap [A]-1 if one is held."""

@@ -12,7 +12,8 @@ action set is drawn uniformly among equally general candidates.
 from __future__ import annotations
 
 from bisect import bisect_right
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
+from itertools import accumulate
 
 import numpy as np
 
@@ -59,10 +60,10 @@ def match_set(population: Population, words: np.ndarray, state: int, permitted: 
 
 
 def delete_from_population(population: Population, settings: Settings,
-                           rng: np.random.Generator) -> None:
-    """Remove one micro-classifier when the population holds more than N of them."""
-    if population.micro_count > settings.N:
-        population.delete_one(rng.random(), settings.theta_del, settings.delta)
+                           rng: np.random.Generator, times: int = 1) -> None:
+    """Remove one micro-classifier, ``times`` times, while the population holds more than N of
+    them (each removal spins the wheel with its own draw)."""
+    population.delete_over(settings.N, times, rng, settings.theta_del, settings.delta)
 
 
 def two_point_crossover(first: tuple[int, int], second: tuple[int, int], start: int,
@@ -103,7 +104,7 @@ or not (2), two crossover points (3, 4), whether each offspring's action mutates
 which action (7, 8)."""
 
 
-def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state: int,
+def run_ga(population: Population, rows: np.ndarray, fitness: Sequence[float], state: int,
            settings: Settings, rng: np.random.Generator) -> None:
     """Two offspring from the live action set ``rows`` with fitnesses ``fitness`` (eq. 7.3
     already passed, time stamps already set): roulette-wheel selection of the parents,
@@ -113,17 +114,17 @@ def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state:
     array calls at this size)."""
     n_bits = population.n_bits
     draws = rng.random(_DRAWS + 2 * n_bits).tolist()
-    cumulative = np.add.accumulate(fitness).tolist()
+    cumulative = list(accumulate(fitness))  # left to right, as np.add.accumulate sums
     candidates, total = rows.tolist(), cumulative[-1]
     parents = [candidates[min(bisect_right(cumulative, spin * total), len(candidates) - 1)]
                for spin in draws[:2]]
     prediction, error, fitness_, set_size, experience, numerosity, stamp = (
         population.stats.take(parents, axis=1).tolist())
     micro_fitness = [fitness_[0] / numerosity[0], fitness_[1] / numerosity[1]]
-    keys = [population.keys[parent] for parent in parents]
-    conditions = [key[:2] for key in keys]
+    keys = [population.keys[parents[0]], population.keys[parents[1]]]
+    conditions = [keys[0][:2], keys[1][:2]]
     # the parents that COULD SUBSUME (B&W): experienced and accurate (the GA moves neither)
-    subsumers = [index for index in range(2) if experience[index] > settings.theta_sub
+    subsumers = [index for index in (0, 1) if experience[index] > settings.theta_sub
                  and error[index] < settings.epsilon_0]
     if draws[2] < settings.chi:
         start, stop = sorted((int(draws[3] * (n_bits + 1)), int(draws[4] * (n_bits + 1))))
@@ -131,24 +132,36 @@ def run_ga(population: Population, rows: np.ndarray, fitness: np.ndarray, state:
         prediction = [(prediction[0] + prediction[1]) / 2] * 2
         error = [(error[0] + error[1]) / 2] * 2
         micro_fitness = [(micro_fitness[0] + micro_fitness[1]) / 2] * 2
-    for child in range(2):
-        offset = _DRAWS + child * n_bits
-        positions = [position for position, draw in enumerate(draws[offset:offset + n_bits])
-                     if draw < settings.mu]
-        condition = mutate_condition(conditions[child], positions, state)
+    mutations = draws[_DRAWS:]
+    if min(mutations) < settings.mu:  # (rarely: most offspring keep their condition)
+        for child in (0, 1):
+            positions = [position for position, draw
+                         in enumerate(mutations[child * n_bits:(child + 1) * n_bits])
+                         if draw < settings.mu]
+            conditions[child] = mutate_condition(conditions[child], positions, state)
+    for child in (0, 1):
+        condition = conditions[child]
         action = mutate_action(keys[child][2], draws[5 + child], draws[7 + child], settings)
-        if settings.ga_subsumption:
-            subsumer = next((parents[index] for index in subsumers if keys[index][2] == action
-                             and more_general(keys[index][:2], condition)), -1)
-            if subsumer >= 0:
-                population.numerosity[subsumer] += 1
-                population.micro_count += 1
-                continue
+        if settings.ga_subsumption and _subsume(population, parents, keys, subsumers,
+                                                condition, action):
+            continue
         insert(population, condition, action, prediction=prediction[child],
                error=error[child], fitness=OFFSPRING_FITNESS_FACTOR * micro_fitness[child],
                action_set_size=set_size[child], time_stamp=int(stamp[child]))
-    for _ in parents:
-        delete_from_population(population, settings, rng)
+    delete_from_population(population, settings, rng, times=2)  # one for each offspring
+
+
+def _subsume(population: Population, parents: list[int], keys: list[tuple[int, int, int]],
+             subsumers: list[int], condition: tuple[int, int], action: int) -> bool:
+    """GA subsumption: the first parent able to subsume (``subsumers``: their indices) that
+    has the offspring's action and is more general absorbs it; whether one did."""
+    for index in subsumers:
+        key = keys[index]
+        if key[2] == action and more_general(key[:2], condition):
+            population.numerosity[parents[index]] += 1
+            population.micro_count += 1
+            return True
+    return False
 
 
 def insert(population: Population, condition: tuple[int, int], action: int, *,

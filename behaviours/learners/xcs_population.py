@@ -209,9 +209,31 @@ class Population:
         numerosity, the same test without a division). ``uniform`` is the wheel's draw in
         [0, 1). Dead slots have all numbers 0, so they get no vote and are never weak.
         """
+        self._delete(uniform, theta_del, delta, None)
+
+    def delete_over(self, limit: int, times: int, rng: np.random.Generator, theta_del: float,
+                    delta: float) -> None:
+        """`delete_one` up to ``times`` times while more than ``limit`` micro-classifiers are
+        left, each with its own draw from ``rng``. The population's fitness sum carries over
+        from one removal to the next unless a whole classifier went (a numerosity change
+        leaves every fitness as it was), so it is not summed again."""
+        fitness_sum = None
+        for _ in range(times):
+            if self.micro_count <= limit:
+                return
+            kills = self.kills
+            fitness_sum = self._delete(rng.random(), theta_del, delta, fitness_sum)
+            if self.kills != kills:
+                fitness_sum = None
+
+    def _delete(self, uniform: float, theta_del: float, delta: float,
+                fitness_sum: float | None) -> float:
+        """`delete_one` given the population's fitness sum, if known; returns that sum."""
         size = self.size
         numerosity, fitness = self.numerosity[:size], self.fitness[:size]
-        mean_fitness = float(np.add.reduce(fitness)) / self.micro_count
+        if fitness_sum is None:
+            fitness_sum = float(np.add.reduce(fitness))
+        mean_fitness = fitness_sum / self.micro_count
         votes = self.action_set_size[:size] * numerosity
         weak = self.experience[:size] > theta_del
         weak &= fitness < (delta * mean_fitness) * numerosity
@@ -226,6 +248,7 @@ class Population:
             self.micro_count -= 1
         else:
             self.kill(row)
+        return fitness_sum
 
     def compact(self) -> np.ndarray:
         """Drop dead slots; returns the old-row -> new-row map (-1 for dead rows)."""

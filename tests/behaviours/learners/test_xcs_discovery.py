@@ -186,6 +186,25 @@ def test_deletion_votes_by_action_set_size_and_low_fitness():
         assert xcs.micro_count == 3
 
 
+@pytest.mark.parametrize(("size_limit", "removed"), [(9, 2), (10, 1), (11, 0)])
+def test_repeated_deletion_matches_single_deletions_and_stops_at_n(size_limit, removed):
+    # "0#" holds most of the fitness and of the votes: once it goes, the mean fitness falls
+    # from 7.3 / 11 to 1.3 / 10 and "1#" and "##" are no longer weak
+    records = [cl("0#", 0, fitness=6.0, experience=5, action_set_size=20.0),
+               cl("1#", 0, fitness=0.1, experience=30, numerosity=2),
+               cl("##", 1, fitness=0.3, experience=30, numerosity=5),
+               cl("01", 1, fitness=0.9, experience=40, numerosity=3)]
+    for seed in range(20):
+        repeated, single = make(records), make(records)
+        rng, draws = np.random.default_rng(seed), np.random.default_rng(seed)
+        repeated.population_.delete_over(size_limit, 2, rng, theta_del=20, delta=0.1)
+        for _ in range(removed):
+            single.population_.delete_one(draws.random(), theta_del=20, delta=0.1)
+        assert repeated.classifiers() == single.classifiers()
+        assert repeated.micro_count == 11 - removed
+        assert rng.random() == draws.random()  # one draw per removal, none beyond N
+
+
 def test_the_ga_deletes_down_to_n_after_inserting_offspring():
     xcs = make([cl("##", 0, fitness=0.5, numerosity=4, experience=10)], n_actions=2, N=4,
                theta_ga=0, mu=0.5)
