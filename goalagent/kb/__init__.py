@@ -3,7 +3,8 @@
 - ``engine.py``: the process's one SWI-Prolog (``get_engine()``): syntax checks with SWI's own
   reader (``check_clause``/``check_query`` -> variable names, ``PrologSyntaxError.offset``),
   ``parse_term``, ``write``; on ``calls.py`` (queries, errors, foreign predicates: Prolog
-  calling Python) and ``conversion.py`` (the Python <-> Prolog term conversion, raw C
+  calling Python), ``stretches.py`` (where the main thread is, for the watchdog and the
+  run's signal handler) and ``conversion.py`` (the Python <-> Prolog term conversion, raw C
   interface).
 - ``mentalstate.py`` + ``mentalstate*.pl``: ``MentalState``, one agent's knowledge, beliefs,
   goal bases, percepts and mailbox in two private Prolog modules, joined from one part per

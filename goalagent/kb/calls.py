@@ -50,8 +50,9 @@ from goalagent.kb.clib import (
     text_of,
 )
 from goalagent.kb.conversion import Record, TermConversion
-from goalagent.kb.errors import Interrupted, KBError, PrologRuntimeError
-from goalagent.kb.terms import Atom, Struct, Term, Var, format_term
+from goalagent.kb.errors import KBError, PrologRuntimeError
+from goalagent.kb.stretches import Stretches
+from goalagent.kb.terms import Struct, Term, Var, format_term
 
 __all__ = ["PrologCalls", "define_foreign"]
 
@@ -62,11 +63,13 @@ _INFERENCES_SPENT = "inference_limit_exceeded"  # call_with_inference_limit/3's 
 _FOREIGN_2 = ctypes.CFUNCTYPE(c_size_t, term_t, term_t)
 
 
-class PrologCalls(TermConversion):
-    """Queries, their stretches and errors, on the thread that runs Prolog."""
+class PrologCalls(TermConversion, Stretches):
+    """Queries and their errors, on the thread that runs Prolog (each query a stretch: see
+    :class:`~goalagent.kb.stretches.Stretches`)."""
 
     def __init__(self) -> None:
-        super().__init__()
+        TermConversion.__init__(self)
+        Stretches.__init__(self)
         self._thread = get_ident()
         if PL_thread_self() == -1:  # made in another thread than SWI's first one
             self._attach_thread()
@@ -77,22 +80,6 @@ class PrologCalls(TermConversion):
         self._outputs_thread = self._thread
         self._foreign: list[object] = []  # ctypes callbacks SWI holds: keep them alive
         self._python_errors: list[BaseException] = []  # raised inside foreign predicates
-        # The main thread's current stretch in Prolog (a query, or Prolog again after a
-        # callback into Python): its number and since when (None: in Python). The
-        # watchdog (goalagent.kb.watchdog) bounds stretches and interrupts them.
-        self.stretch = 0
-        self.stretch_since: float | None = None
-        self.abort_reason: str | None = None  # why the watchdog aborted the running query
-        self.depth = 0  # queries open (a callback into Python can open more)
-        self.query = 0  # the number of the outermost query (the watchdog's memory watch)
-        # A stop a signal asked for while queries were open: raised when they are all closed
-        # (raising inside a callback would leave Prolog in between; see kb.watchdog).
-        self.pending_stop: BaseException | None = None
-        # Calls into SWI-Prolog in progress, from their first C call (opening a frame) to
-        # their last (discarding it): a signal's stop raised in between would leave a query
-        # open or a frame undiscarded, and the next query then runs on a broken engine. The
-        # run's signal handler leaves its stop in pending_stop while this is not 0.
-        self.guarded = 0
         # A seed for Prolog's random generator not given to it yet (see seed_random):
         # given before the next call of a predicate not in _seedless, the predicates that
         # run no agent code (so draw no random number).
@@ -271,7 +258,7 @@ class PrologCalls(TermConversion):
         pending (see :meth:`seed_random`)."""
         self._seedless.add(self.predicate(name, arity, module))
 
-    # ------------------------------------------------------------------ stretches
+    # ------------------------------------------------------------------ releases
 
     def _release(self) -> None:
         """Unregisters the call's transient atoms and erases the records Python dropped."""
@@ -279,36 +266,6 @@ class PrologCalls(TermConversion):
             PL_unregister_atom(self._transient_atoms.pop())
         while self._dead_records:
             PL_erase(self._dead_records.pop())
-
-    def _enter(self) -> float | None:
-        """A query opens: a new stretch in Prolog (see goalagent.kb.watchdog); returns the
-        enclosing one's start, for :meth:`_leave`."""
-        outer_since = self.stretch_since
-        if not self.depth:
-            self.query += 1
-        self.depth += 1
-        self.stretch += 1
-        self.stretch_since = monotonic()
-        return outer_since
-
-    def _leave(self, outer_since: float | None) -> None:
-        self.stretch_since = outer_since
-        self.depth -= 1
-
-    def _stop_if_asked(self) -> None:
-        """A signal that came while Prolog ran: once back in Python, the stop it asked for."""
-        if self.pending_stop is not None and self.depth == 0 and self.guarded == 0:
-            stop, self.pending_stop = self.pending_stop, None
-            raise stop
-
-    def _aborted(self) -> BaseException:
-        """The Python exception for a query the watchdog aborted: an interrupt (Ctrl-C,
-        SIGTERM) stops the run; a query that outlived its time limit twice is the error
-        of the agent that ran it."""
-        reason, self.abort_reason = self.abort_reason, None
-        if reason is None or reason.startswith("signal"):
-            return Interrupted(reason or "aborted")
-        return PrologRuntimeError(reason, Atom("$aborted"))
 
     # ------------------------------------------------------------------ internals
 
