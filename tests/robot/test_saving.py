@@ -210,6 +210,30 @@ def test_a_periodic_save_that_fails_is_a_warning_and_the_run_goes_on(walker: Pat
     assert "walker: stopped at the cycle limit after 4 cycles" in result.stderr
 
 
+class _Swallower(RunHook):
+    """Sends the run SIGINT after its third cycle and swallows the stop, as code that catches
+    everything (or Python, for an exception raised in ``__del__``) would."""
+
+    def after_cycle(self, run: RunContext, agent: object) -> None:
+        if getattr(agent, "cycle", 0) == 3:
+            try:
+                os.kill(os.getpid(), signal.SIGINT)
+                time.sleep(1)  # the handler runs here, and its stop is swallowed below
+            except BaseException:  # noqa: BLE001, S110 - the point of the test
+                pass
+
+
+def test_a_stop_that_something_swallowed_still_ends_the_run_a_cycle_later(walker: Path,
+                                                                           tmp_path: Path):
+    saved = tmp_path / "saved.pl"
+    result = CliRunner().invoke(create_app([Extension(name="x", run_hooks=(_Swallower,))]), [
+        "run", str(walker), "--max-cycles", "50", "--save-beliefs", str(saved),
+        "--save-predicate", "visited/1"])
+    assert result.exit_code == 130, result.stderr
+    assert "interrupted (SIGINT)" in result.stderr
+    assert _visited(saved) == [1, 2, 3, 4]  # the stop came with the next cycle's end
+
+
 def test_a_save_never_replaces_what_is_not_a_regular_file(walker: Path, tmp_path: Path):
     fifo = tmp_path / "fifo.pl"
     os.mkfifo(fifo)
