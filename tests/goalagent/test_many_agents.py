@@ -8,6 +8,7 @@ anything draws, as if each agent had seeded it when launched."""
 from __future__ import annotations
 
 import io
+from collections.abc import Iterator
 from dataclasses import replace
 
 import pytest
@@ -37,6 +38,14 @@ main module { program [order=linearall] {
 
 
 @pytest.fixture
+def system() -> Iterator[MultiAgentSystem]:
+    """A system without an environment whose agents print and warn nowhere, closed after."""
+    made = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
+    yield made
+    made.close()
+
+
+@pytest.fixture
 def copies(monkeypatch: pytest.MonkeyPatch) -> list[bool]:
     """What each copy_conditions call answered (True: copied)."""
     answers: list[bool] = []
@@ -50,68 +59,55 @@ def copies(monkeypatch: pytest.MonkeyPatch) -> list[bool]:
     return answers
 
 
-def test_copied_conditions_read_each_agent_s_own_beliefs(copies: list[bool]) -> None:
+def test_copied_conditions_read_each_agent_s_own_beliefs(copies: list[bool],
+                                                         system: MultiAgentSystem) -> None:
     program = parse_agent(COUNTER, "counter.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        for name in ("a", "bb", "ccc"):
-            system.launch(name, program)
-        assert copies == [True, True]
-        first = system.agents[0]
-        first.ms.delete("n(0)")
-        first.ms.insert("n(2)")  # the first agent's beliefs are not the others'
-        system.run(max_cycles=3)
-        assert [agent.query("bel", "n(N)") for agent in system.agents] == [
-            [{"N": 2}], [{"N": 2}], [{"N": 2}]]
-        assert [agent.query("bel", "len(L)") for agent in system.agents] == [
-            [], [{"L": 2}], [{"L": 3}]]
-    finally:
-        system.close()
+    for name in ("a", "bb", "ccc"):
+        system.launch(name, program)
+    assert copies == [True, True]
+    first = system.agents[0]
+    first.ms.delete("n(0)")
+    first.ms.insert("n(2)")  # the first agent's beliefs are not the others'
+    system.run(max_cycles=3)
+    assert [agent.query("bel", "n(N)") for agent in system.agents] == [
+        [{"N": 2}], [{"N": 2}], [{"N": 2}]]
+    assert [agent.query("bel", "len(L)") for agent in system.agents] == [
+        [], [{"L": 2}], [{"L": 3}]]
 
 
-def test_a_condition_naming_an_own_key_is_compiled_by_each_agent(copies: list[bool]) -> None:
+def test_a_condition_naming_an_own_key_is_compiled_by_each_agent(
+        copies: list[bool], system: MultiAgentSystem) -> None:
     program = parse_agent(KEYS, "keys.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        for name in ("a", "b", "c"):
-            system.launch(name, program)
-        assert copies == [False, False]  # the first agent's key is in its clause
-        system.run(max_cycles=2)
-        assert [agent.query("bel", "got(V)") for agent in system.agents] == [
-            [{"V": Atom(name)}] for name in ("a", "b", "c")]
-    finally:
-        system.close()
+    for name in ("a", "b", "c"):
+        system.launch(name, program)
+    assert copies == [False, False]  # the first agent's key is in its clause
+    system.run(max_cycles=2)
+    assert [agent.query("bel", "got(V)") for agent in system.agents] == [
+        [{"V": Atom(name)}] for name in ("a", "b", "c")]
 
 
 def test_once_the_agent_copied_from_is_closed_the_next_compiles_and_is_copied(
-        copies: list[bool]) -> None:
+        copies: list[bool], system: MultiAgentSystem) -> None:
     program = parse_agent(COUNTER, "counter.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        system.launch("a", program).close()
-        system.agents.clear()
-        later = [system.launch(name, program) for name in ("bb", "ccc")]
-        assert copies == [True]  # bb compiled its own (a was closed); ccc copied bb's
-        for agent in later:
-            agent.step()
-            agent.step()
-        assert [agent.query("bel", "len(L)") for agent in later] == [[{"L": 2}], [{"L": 3}]]
-    finally:
-        system.close()
+    system.launch("a", program).close()
+    system.agents.clear()
+    later = [system.launch(name, program) for name in ("bb", "ccc")]
+    assert copies == [True]  # bb compiled its own (a was closed); ccc copied bb's
+    for agent in later:
+        agent.step()
+        agent.step()
+    assert [agent.query("bel", "len(L)") for agent in later] == [[{"L": 2}], [{"L": 3}]]
 
 
-def test_agents_with_directives_compile_their_own(copies: list[bool]) -> None:
+def test_agents_with_directives_compile_their_own(copies: list[bool],
+                                                  system: MultiAgentSystem) -> None:
     program = parse_agent(COUNTER.replace(
         "beliefs { n(0). }", "knowledge { :- dynamic(seen/1). } beliefs { n(0). }"), "d.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        system.launch("a", program)
-        system.launch("bb", program)
-        assert copies == []
-        system.run(max_cycles=3)
-        assert system.agents[1].query("bel", "len(L)") == [{"L": 2}]
-    finally:
-        system.close()
+    system.launch("a", program)
+    system.launch("bb", program)
+    assert copies == []
+    system.run(max_cycles=3)
+    assert system.agents[1].query("bel", "len(L)") == [{"L": 2}]
 
 
 DRAWS = """
@@ -218,52 +214,44 @@ def _held(agent: Agent) -> list[Term]:
 
 
 def test_agents_loaded_from_the_image_hold_what_loading_the_texts_gives(
-        loads: list[str]) -> None:
+        loads: list[str], system: MultiAgentSystem) -> None:
     program = parse_agent(LOADED, "loaded.goal")
     reference = parse_agent(LOADED.replace("n(1).", "n(1). "), "reference.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        agents = [system.launch(name, program) for name in ("a", "b", "c")]
-        texts_only = system.launch("r", reference, limits=replace(system.limits,
-                                                                 sandbox=True))
-        assert loads == ["load_imaged"] * 4
-        assert _imaged("memberchk(assert(b, told), Loaded), memberchk(redefine(g, told), Loaded)"
-                       ", memberchk(dynamic(g, pair/2), Loaded)")
-        queries = ["n(N)", "pair(P, V)", "double(4, Y)", "last([1, 2, 3], X)",
-                   "phrase(greeting, [hello, world])", "told"]
-        assert len(_held(agents[0])) == 5  # (told/0 is knowledge too)
-        for agent in [*agents[1:], texts_only]:
-            assert _held(agent) == _held(agents[0])
-            for query in queries:
-                assert agent.query("bel", query) == agents[0].query("bel", query), query
-        assert _imaged("memberchk(dynamic(b, summed/1), Loaded)")  # declared: updated
-        assert agents[1].query("bel", "summed(S)") == []  # (no existence error)
-        assert agents[0].query("bel", "double(4, Y)") == [{"Y": 8}]
-        assert agents[0].query("bel", "last([1, 2, 3], X)") == [{"X": 3}]
-        system.run(max_cycles=1)
-        assert [agent.query("bel", "summed(S)") for agent in system.agents] == [
-            [{"S": 6}]] * 4
-        second = agents[1]
-        second.ms.delete("n(3)")
-        assert agents[2].query("bel", "n(3)") == [{}]  # each agent's beliefs its own
-    finally:
-        system.close()
+    agents = [system.launch(name, program) for name in ("a", "b", "c")]
+    texts_only = system.launch("r", reference, limits=replace(system.limits,
+                                                             sandbox=True))
+    assert loads == ["load_imaged"] * 4
+    assert _imaged("memberchk(assert(b, told), Loaded), memberchk(redefine(g, told), Loaded)"
+                   ", memberchk(dynamic(g, pair/2), Loaded)")
+    queries = ["n(N)", "pair(P, V)", "double(4, Y)", "last([1, 2, 3], X)",
+               "phrase(greeting, [hello, world])", "told"]
+    assert len(_held(agents[0])) == 5  # (told/0 is knowledge too)
+    for agent in [*agents[1:], texts_only]:
+        assert _held(agent) == _held(agents[0])
+        for query in queries:
+            assert agent.query("bel", query) == agents[0].query("bel", query), query
+    assert _imaged("memberchk(dynamic(b, summed/1), Loaded)")  # declared: updated
+    assert agents[1].query("bel", "summed(S)") == []  # (no existence error)
+    assert agents[0].query("bel", "double(4, Y)") == [{"Y": 8}]
+    assert agents[0].query("bel", "last([1, 2, 3], X)") == [{"X": 3}]
+    system.run(max_cycles=1)
+    assert [agent.query("bel", "summed(S)") for agent in system.agents] == [
+        [{"S": 6}]] * 4
+    second = agents[1]
+    second.ms.delete("n(3)")
+    assert agents[2].query("bel", "n(3)") == [{}]  # each agent's beliefs its own
 
 
 def test_a_knowledge_clause_naming_an_own_key_is_loaded_by_each_agent(
-        loads: list[str]) -> None:
+        loads: list[str], system: MultiAgentSystem) -> None:
     program = parse_agent(OWN_KEY, "own_key.goal")
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        for name in ("a", "b", "c"):
-            system.launch(name, program)
-        assert loads == ["load_imaged"] * 3
-        assert not _imaged("memberchk(assert(_, (mine(_) :- _)), Loaded)")
-        system.run(max_cycles=2)
-        assert [agent.query("bel", "got(V)") for agent in system.agents] == [
-            [{"V": Atom(name)}] for name in ("a", "b", "c")]
-    finally:
-        system.close()
+    for name in ("a", "b", "c"):
+        system.launch(name, program)
+    assert loads == ["load_imaged"] * 3
+    assert not _imaged("memberchk(assert(_, (mine(_) :- _)), Loaded)")
+    system.run(max_cycles=2)
+    assert [agent.query("bel", "got(V)") for agent in system.agents] == [
+        [{"V": Atom(name)}] for name in ("a", "b", "c")]
 
 
 SYSTEM_NAMED = """
@@ -271,16 +259,13 @@ main module { program { if true then insert(append(x)). } }
 """
 
 
-def test_declaring_again_from_the_image_keeps_what_the_agent_believes() -> None:
+def test_declaring_again_from_the_image_keeps_what_the_agent_believes(
+        system: MultiAgentSystem) -> None:
     program = parse_agent(SYSTEM_NAMED, "system_named.goal")  # append/1: SWI's, not ISO
-    system = MultiAgentSystem(output=io.StringIO(), warn=lambda message: None)
-    try:
-        first, second = (system.launch(name, program) for name in ("a", "b"))
-        assert _imaged("memberchk(redefine(b, append(_)), Loaded)")
-        second.step()
-        assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
-        second.ms.declare_updates(update_formulas(program))  # as the launch did: replayed
-        assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
-        assert first.query("bel", "append(X)") == []
-    finally:
-        system.close()
+    first, second = (system.launch(name, program) for name in ("a", "b"))
+    assert _imaged("memberchk(redefine(b, append(_)), Loaded)")
+    second.step()
+    assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
+    second.ms.declare_updates(update_formulas(program))  # as the launch did: replayed
+    assert second.query("bel", "append(X)") == [{"X": Atom("x")}]
+    assert first.query("bel", "append(X)") == []
