@@ -158,8 +158,15 @@ class GoalParts(BuilderBase):
         return ast.ActionCall("exit-module", (), self._pos(meta))
 
     def receiver(self, meta, children):
+        """An addressee: a name, a variable or, in parentheses, a quoted name; GOAL's
+        selector takes ``("bob")`` for the agent ``bob``, so a string becomes that atom."""
         token = children[0]
-        return ast.PrologText(str(token), self._token_pos(token), (str(token),)
+        text = str(token)
+        if token.type == "DQSTRING":
+            # the same escapes mean the same in a quoted atom; only the quotes change
+            name = text[1:-1].replace('\\"', '"').replace('""', '"')
+            text = "'" + name.replace("'", "''") + "'"
+        return ast.PrologText(text, self._token_pos(token), (text,)
                               if token.type == "VAR" else ())
 
     def send(self, meta, children):

@@ -173,6 +173,12 @@ class MasParts(BuilderBase):
         return ast.UseClause(ref, str(purpose), self._pos(meta), quoted)
 
     # --- GOAL 6+ .mas2g --------------------------------------------------------------------
+    def env_value(self, meta, _children):
+        """A parameter's value after ``with k =``: its strings read as GOAL reads them
+        (``map = "sscai\\(2)Destination.scx"`` holds a backslash, not an escape)."""
+        text = self._text(meta)
+        return self.check(ast.PrologText(verbatim_strings(text.text), text.pos))
+
     def env_pair(self, meta, children):
         key, value = children[0], children[1]
         return (str(key), value, self._token_pos(key))

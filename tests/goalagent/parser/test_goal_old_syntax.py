@@ -15,6 +15,8 @@ import pytest
 from goalagent.agent import Agent
 from goalagent.parser import GoalSyntaxError, parse_agent, parse_mas
 
+from .shapes import one_rule
+
 
 def run_printing(text: str) -> list[str]:
     """The lines an agent prints in its first cycle."""
@@ -166,3 +168,25 @@ def test_a_bare_comparison_is_a_belief_query_in_the_newest_dialect(tmp_path: Pat
     with pytest.raises(GoalSyntaxError, match=r"outside bel\(..\): only the newest") as err:
         parse_agent("main module { program { if bel(p(X)), X > 1 then print(x). } }", "x.goal")
     assert (err.value.line, err.value.col) == (1, 39)
+
+
+def test_goal_6_environment_parameter_strings_keep_their_backslashes() -> None:
+    # GOAL's MAS2G grammar: StringLiteral is '"' ('\\"' | ~[\r\n"])* '"', so a backslash
+    # before anything but a quote is itself (Windows paths, map names with '\(').
+    mas = parse_mas(textwrap.dedent("""
+        use "env.jar" as environment with
+            map = "maps\\(4)Arena.scx", home = "C:\\Games", title = "say \\"hi\\"".
+        define robot as agent { use robot as main. }
+        launchpolicy { launch robot. }
+    """), "robots.mas2g")
+    assert [(key, value.text) for key, value in mas.env_init] == [
+        ("map", '"maps\\\\(4)Arena.scx"'), ("home", '"C:\\\\Games"'),
+        ("title", '"say \\"hi\\""')]
+
+
+@pytest.mark.parametrize("receiver", ['("bob")', "('bob')", "(bob)", "bob"])
+def test_a_quoted_name_in_parentheses_addresses_that_agent(receiver: str) -> None:
+    # GOAL's selector is a parenthesised term list (PARLIST); a string in it names the agent.
+    send = one_rule(f"if true then {receiver}.send(:hi).").actions[0]
+    assert send.receiver.text.strip("'") == "bob"
+    assert send.content.text == "hi"
