@@ -46,14 +46,13 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
                else ref.replace(".", "/"))
     path = (base / ref).resolve()
     if path.suffix in _KNOWN_SUFFIXES:
-        if path.is_file():
-            return path
         candidates = [path]
     else:
         candidates = [path.with_name(path.name + ext) for ext in _EXTENSIONS[use.case]]
-        for candidate in candidates:
-            if candidate.is_file():
-                return candidate
+    for candidate in candidates:
+        found = candidate if candidate.is_file() else _differing_in_case(candidate)
+        if found is not None:
+            return found
     how = f" as {use.case}" if use.case else ""
     tried = " or ".join(str(c) for c in candidates)
     suffixes = {c.suffix for c in candidates} | ({path.suffix} - {""})
@@ -62,6 +61,17 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
     close = difflib.get_close_matches(Path(ref).stem, present, n=1)
     hint = f"; did you mean {close[0]}?" if close else ""
     raise GoalSyntaxError.at(use.pos, f"use {use.ref}{how}: no such file ({tried}){hint}")
+
+
+def _differing_in_case(path: Path) -> Path | None:
+    """The one file beside ``path`` whose name differs from it in case only: GOAL programs
+    are written on Windows and macOS, whose file systems find ``Zerghatchery.act2g`` as
+    ``ZergHatchery.act2g``; None when there is none or more than one."""
+    if not path.parent.is_dir():
+        return None
+    same = [p for p in path.parent.iterdir()
+            if p.name.casefold() == path.name.casefold() and p.is_file()]
+    return same[0] if len(same) == 1 else None
 
 
 def _wildcard_matches(use: ast.UseClause, base: Path) -> list[Path]:

@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from goalagent.agent import Agent
+from goalagent.checking import check_file
 from goalagent.parser import GoalSyntaxError, parse_agent, parse_mas
 
 from .shapes import one_rule
@@ -190,3 +191,19 @@ def test_a_quoted_name_in_parentheses_addresses_that_agent(receiver: str) -> Non
     send = one_rule(f"if true then {receiver}.send(:hi).").actions[0]
     assert send.receiver.text.strip("'") == "bob"
     assert send.content.text == "hi"
+
+
+def test_a_use_clause_finds_a_file_whose_name_differs_in_case_only(tmp_path: Path) -> None:
+    # Windows and macOS file systems, where GOAL programs are written, ignore case.
+    (tmp_path / "ZergHatchery.act2g").write_text("define morph with pre { true } post { true }\n")
+    (tmp_path / "hatchery.mod2g").write_text(
+        "use Zerghatchery as actionspec.\nmodule hatchery { if true then morph. }\n")
+    (tmp_path / "Other.act2g").write_text("define a with pre { true } post { true }\n")
+    (tmp_path / "OTHER.act2g").write_text("define b with pre { true } post { true }\n")
+    lines: list[str] = []
+    assert check_file(tmp_path / "hatchery.mod2g", False, lines.append), lines
+    (tmp_path / "hatchery.mod2g").write_text(
+        "use other as actionspec.\nmodule hatchery { if true then a. }\n")
+    lines.clear()  # two files differ from the name in case only: neither is taken
+    assert not check_file(tmp_path / "hatchery.mod2g", False, lines.append)
+    assert "use other as actionspec: no such file" in "\n".join(lines)
