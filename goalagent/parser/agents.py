@@ -114,6 +114,8 @@ def load_agents(mas: ast.MasProgram) -> dict[str, ast.AgentProgram]:
     programs = {}
     for agentfile in mas.agentfiles:
         path = base / agentfile.path
+        if not path.is_file():
+            path = _differing_in_case(path) or path
         try:  # only a regular file of bounded size; why not is said at the agentfiles entry
             text = read_program_file(path)
         except GoalSyntaxError as err:

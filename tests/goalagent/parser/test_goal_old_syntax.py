@@ -207,3 +207,11 @@ def test_a_use_clause_finds_a_file_whose_name_differs_in_case_only(tmp_path: Pat
     lines.clear()  # two files differ from the name in case only: neither is taken
     assert not check_file(tmp_path / "hatchery.mod2g", False, lines.append)
     assert "use other as actionspec: no such file" in "\n".join(lines)
+
+
+def test_an_agent_file_whose_name_differs_in_case_only_is_found(tmp_path: Path) -> None:
+    (tmp_path / "Starport.goal").write_text("main module { program { if true then print(x). } }\n")
+    system = tmp_path / "base.mas2g"
+    system.write_text('agentfiles { "StarPort.goal". }\nlaunchpolicy { launch port : StarPort. }\n')
+    lines: list[str] = []
+    assert check_file(system, False, lines.append), lines
