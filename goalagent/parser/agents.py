@@ -50,8 +50,10 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
     else:
         candidates = [path.with_name(path.name + ext) for ext in _EXTENSIONS[use.case]]
     for candidate in candidates:
-        found = candidate if candidate.is_file() else _differing_in_case(candidate)
-        if found is not None:
+        if candidate.is_file():
+            return candidate
+    for candidate in candidates:
+        if (found := _differing_in_case(candidate)) is not None:
             return found
     how = f" as {use.case}" if use.case else ""
     tried = " or ".join(str(c) for c in candidates)
@@ -64,13 +66,16 @@ def resolve_reference(use: ast.UseClause, base: Path) -> Path:
 
 
 def _differing_in_case(path: Path) -> Path | None:
-    """The one file beside ``path`` whose name differs from it in case only: GOAL programs
-    are written on Windows and macOS, whose file systems find ``Zerghatchery.act2g`` as
-    ``ZergHatchery.act2g``; None when there is none or more than one."""
-    if not path.parent.is_dir():
+    """The one file beside a missing ``path`` whose name differs from it in case only: GOAL
+    programs are written on Windows and macOS, whose file systems find ``Zerghatchery.act2g``
+    as ``ZergHatchery.act2g``; None when ``path`` is there, or none or several differ so."""
+    try:
+        if path.is_file() or not path.parent.is_dir():
+            return None
+        same = [p for p in path.parent.iterdir()
+                if p.name.casefold() == path.name.casefold() and p.is_file()]
+    except OSError:  # a name too long for the file system: read_program_file says so
         return None
-    same = [p for p in path.parent.iterdir()
-            if p.name.casefold() == path.name.casefold() and p.is_file()]
     return same[0] if len(same) == 1 else None
 
 
@@ -114,8 +119,7 @@ def load_agents(mas: ast.MasProgram) -> dict[str, ast.AgentProgram]:
     programs = {}
     for agentfile in mas.agentfiles:
         path = base / agentfile.path
-        if not path.is_file():
-            path = _differing_in_case(path) or path
+        path = _differing_in_case(path) or path
         try:  # only a regular file of bounded size; why not is said at the agentfiles entry
             text = read_program_file(path)
         except GoalSyntaxError as err:
