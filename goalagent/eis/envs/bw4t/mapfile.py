@@ -213,11 +213,13 @@ def shipped_maps() -> list[str]:
 def load_map(spec: str) -> MapSpec:
     """A map by file path, or by the name of a shipped map (``TwoRooms``, ``TwoRooms.map``;
     BW4T's standard maps ``Random``, ``Banana``, ... also under the path a BW4T setup keeps
-    them at, ``environments/maps/Random``)."""
+    them at, ``environments/maps/Random``, and as ``random``)."""
     path = Path(spec)
     if not path.is_file():
-        name = path.name
-        shipped = MAPS_DIR / (name if name.endswith(".map") else f"{name}.map")
+        name = path.name.removesuffix(".map").casefold()
+        # by its name in any case, as BW4T on the Windows file systems of its users found it
+        same = [stem for stem in shipped_maps() if stem.casefold() == name]
+        shipped = MAPS_DIR / f"{same[0] if same else path.name}.map"
         if not shipped.is_file():
             raise ManagementException(
                 f"bw4t: no map file '{spec}' and no shipped map of that name "
