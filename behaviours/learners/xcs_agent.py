@@ -341,20 +341,20 @@ class XCS(BaseEstimator):
                 rows, stats = rows[live], stats.compress(live, axis=1)
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
-        numerosity = stats[NUMEROSITY].tolist()
+        numerosity, stamps = stats[NUMEROSITY:TIME_STAMP + 1].tolist()  # (adjacent rows)
         set_size = float(sum(numerosity))  # whole numbers: exact in any order
         update_set(stats, set_size, payoff, settings, self._constants)
-        population.stats[:, rows] = stats
+        population.write_columns(rows, stats)
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
             stats = population.stats.take(rows, axis=1)
-            numerosity = stats[NUMEROSITY].tolist()
+            numerosity, stamps = stats[NUMEROSITY:TIME_STAMP + 1].tolist()
         if not step.explore:
             return
         # eq. 7.3's numerosity-weighted time stamps: whole numbers, exact in any order
-        stamps = sum(map(mul, stats[TIME_STAMP].tolist(), numerosity))
-        if self.time_ - stamps / set_size > settings.theta_ga:  # eq. 7.3
+        stamp_sum = sum(map(mul, stamps, numerosity))
+        if self.time_ - stamp_sum / set_size > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
             run_ga(population, rows, stats[FITNESS].tolist(), step.state, settings, self._rng)
 

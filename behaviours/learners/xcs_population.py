@@ -127,6 +127,8 @@ class Population:
         self.stats = np.zeros((len(_COLUMNS), capacity))
         for index, name in enumerate(_COLUMNS):
             setattr(self, name, self.stats[index])
+        self._flat_index = np.arange(self.stats.size).reshape(self.stats.shape)
+        """Each cell's index in the flattened ``stats``: `write_columns` puts through it."""
 
     @property
     def capacity(self) -> int:
@@ -173,6 +175,11 @@ class Population:
         self.care[:, :used], self.value[:, :used] = care, value
         self.action[:used], self.specificity[:used] = action, specificity
         self.stats[:, :used] = stats
+
+    def write_columns(self, rows: np.ndarray, columns: np.ndarray) -> None:
+        """``stats[:, rows] = columns`` through flat indices: a 2-D fancy assignment costs
+        about twice a gather of the indices and a `put`."""
+        self.stats.put(self._flat_index.take(rows, axis=1), columns)
 
     def match(self, words: np.ndarray) -> np.ndarray:
         """Rows of the live classifiers whose condition matches the packed state ``words``."""
