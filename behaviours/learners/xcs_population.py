@@ -176,10 +176,12 @@ class Population:
         self.action[:used], self.specificity[:used] = action, specificity
         self.stats[:, :used] = stats
 
-    def write_columns(self, rows: np.ndarray, columns: np.ndarray) -> None:
-        """``stats[:, rows] = columns`` through flat indices: a 2-D fancy assignment costs
-        about twice a gather of the indices and a `put`."""
-        self.stats.put(self._flat_index.take(rows, axis=1), columns)
+    def write_columns(self, rows: np.ndarray, columns: np.ndarray | list[float],
+                      quantities: int = len(_COLUMNS)) -> None:
+        """``stats[:quantities, rows] = columns`` through flat indices (a 2-D fancy assignment
+        costs about twice a gather of the indices and a `put`); ``columns`` is an array or
+        the quantities' values one row after the other."""
+        self.stats.put(self._flat_index[:quantities].take(rows, axis=1), columns)
 
     def match(self, words: np.ndarray) -> np.ndarray:
         """Rows of the live classifiers whose condition matches the packed state ``words``."""

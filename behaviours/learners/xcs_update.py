@@ -29,6 +29,9 @@ from .xcs_population import (
 
 _sum = np.add.reduce
 """The ufunc reduction itself: ndarray.sum adds a Python-level call per use."""
+_CHANGED = EXPERIENCE + 1
+"""The quantities UPDATE SET changes are the leading rows of `Population.stats` (numerosity
+and time stamp follow)."""
 SMALL_SET = 8
 """Action sets smaller than this are updated on Python floats (`update_columns`): below 8
 terms numpy's sum adds left to right, as `update_columns` does."""
@@ -139,8 +142,10 @@ def update_action_set(population: Population, rows: np.ndarray, stats: np.ndarra
     if rows.size < SMALL_SET:
         columns = stats.tolist()
         update_columns(columns, set_size, payoff, settings, constant)
-        population.write_columns(rows, columns)
-        return columns[FITNESS]
+        prediction, error, fitness, estimate, experience = columns[:_CHANGED]
+        population.write_columns(rows, prediction + error + fitness + estimate + experience,
+                                 _CHANGED)
+        return fitness
     update_set(stats, set_size, payoff, settings, constant)
     population.write_columns(rows, stats)
     return stats[FITNESS].tolist()
