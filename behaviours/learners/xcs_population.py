@@ -15,6 +15,7 @@ indices the learner holds for [A] and [A]-1 stay valid until it compacts (and re
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -77,6 +78,9 @@ def more_general(general: tuple[int, int], specific: tuple[int, int]) -> bool:
     return ((care & general_care) == general_care and (value ^ general_value) & general_care == 0
             and care.bit_count() > general_care.bit_count())
 
+
+FEW = 8
+"""Below this many elements, work on Python floats costs fewer calls than array operations."""
 
 PREDICTION, ERROR, FITNESS, SET_SIZE, EXPERIENCE, NUMEROSITY, TIME_STAMP = range(7)
 """Rows of `Population.stats`, one column per slot (counts are stored as exact floats)."""
@@ -218,46 +222,57 @@ class Population:
         numerosity, the same test without a division). ``uniform`` is the wheel's draw in
         [0, 1). Dead slots have all numbers 0, so they get no vote and are never weak.
         """
-        self._delete(uniform, theta_del, delta, None)
+        self._remove(lambda: uniform, 1, None, theta_del, delta)
 
     def delete_over(self, limit: int, times: int, rng: np.random.Generator, theta_del: float,
                     delta: float) -> None:
         """`delete_one` up to ``times`` times while more than ``limit`` micro-classifiers are
-        left, each with its own draw from ``rng``. The population's fitness sum carries over
-        from one removal to the next unless a whole classifier went (a numerosity change
-        leaves every fitness as it was), so it is not summed again."""
-        fitness_sum = None
-        for _ in range(times):
-            if self.micro_count <= limit:
-                return
-            kills = self.kills
-            fitness_sum = self._delete(rng.random(), theta_del, delta, fitness_sum)
-            if self.kills != kills:
-                fitness_sum = None
+        left, each with its own draw from ``rng``."""
+        self._remove(rng.random, times, limit, theta_del, delta)
 
-    def _delete(self, uniform: float, theta_del: float, delta: float,
-                fitness_sum: float | None) -> float:
-        """`delete_one` given the population's fitness sum, if known; returns that sum."""
+    def _remove(self, draw: Callable[[], float], times: int, limit: int | None,
+                theta_del: float, delta: float) -> None:
+        """`delete_one` ``times`` times (while more than ``limit`` are left), each spin with
+        the next ``draw()``. What one removal leaves unchanged carries over to the next: the
+        votes before raising and who is experienced (a removal changes only its own
+        classifier's numerosity; a removed classifier's numbers are all 0, so it has no vote
+        and is never weak either way), and the population's fitness sum unless a whole
+        classifier went."""
+        if limit is not None and self.micro_count <= limit:
+            return
         size = self.size
         numerosity, fitness = self.numerosity[:size], self.fitness[:size]
-        if fitness_sum is None:
-            fitness_sum = float(np.add.reduce(fitness))
-        mean_fitness = fitness_sum / self.micro_count
-        votes = self.action_set_size[:size] * numerosity
-        weak = self.experience[:size] > theta_del
-        weak &= fitness < (delta * mean_fitness) * numerosity
-        weak_rows = weak.nonzero()[0]  # usually a few: raise their votes only
-        if weak_rows.size:
-            votes[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
-        cumulative = np.add.accumulate(votes)
-        row = min(int(cumulative.searchsorted(uniform * cumulative[-1], side="right")),
-                  size - 1)
-        if self.stats[NUMEROSITY, row] > 1:
-            self.stats[NUMEROSITY, row] -= 1
-            self.micro_count -= 1
-        else:
-            self.kill(row)
-        return fitness_sum
+        estimate = self.action_set_size[:size]
+        experienced = self.experience[:size] > theta_del
+        votes = estimate * numerosity
+        fitness_sum = None
+        for left in range(times - 1, -1, -1):
+            if fitness_sum is None:
+                fitness_sum = float(np.add.reduce(fitness))
+            mean_fitness = fitness_sum / self.micro_count
+            weak = fitness < (delta * mean_fitness) * numerosity
+            weak &= experienced
+            weak_rows = weak.nonzero()[0]  # usually a few: raise their votes only
+            spun = votes.copy() if left and weak_rows.size else votes
+            if weak_rows.size >= FEW:
+                spun[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
+            else:  # the same operations on Python floats: fewer calls than the array ones
+                for row in weak_rows.tolist():
+                    spun[row] = spun.item(row) * (mean_fitness * numerosity.item(row)
+                                                  / fitness.item(row))
+            cumulative = np.add.accumulate(spun)
+            row = min(int(cumulative.searchsorted(draw() * cumulative[-1], side="right")),
+                      size - 1)
+            count = numerosity.item(row)
+            if count > 1:
+                numerosity[row] = count - 1
+                self.micro_count -= 1
+            else:
+                self.kill(row)
+                fitness_sum = None
+            if limit is not None and self.micro_count <= limit:
+                return
+            votes[row] = estimate.item(row) * numerosity.item(row)
 
     def compact(self) -> np.ndarray:
         """Drop dead slots; returns the old-row -> new-row map (-1 for dead rows)."""
