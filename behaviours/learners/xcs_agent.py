@@ -341,10 +341,8 @@ class XCS(BaseEstimator):
                 rows, stats = rows[live], stats.compress(live, axis=1)
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
-        numerosity, stamps = stats[NUMEROSITY:TIME_STAMP + 1].tolist()  # (adjacent rows)
-        set_size = float(sum(numerosity))  # whole numbers: exact in any order
-        fitness = update_action_set(population, rows, stats, set_size, payoff, settings,
-                                    self._constants)
+        numerosity, stamps, fitness, set_size = update_action_set(
+            population, rows, stats, payoff, settings, self._constants)
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]

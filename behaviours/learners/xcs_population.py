@@ -126,6 +126,8 @@ class Population:
         self.care = np.zeros((self.n_words, capacity), np.uint64)
         self.value = np.zeros((self.n_words, capacity), np.uint64)
         self._care_0, self._value_0 = self.care[0], self.value[0]  # one-word states' views
+        self._used_masks: tuple[int, np.ndarray | None, np.ndarray | None] = (-1, None, None)
+        """(size, the used slots' views of ``_care_0`` and ``_value_0``) for `match`."""
         self.action = np.zeros(capacity, np.int64)
         self.specificity = np.zeros(capacity, np.int64)
         self.stats = np.zeros((len(_COLUMNS), capacity))
@@ -191,7 +193,10 @@ class Population:
         """Rows of the live classifiers whose condition matches the packed state ``words``."""
         n = self.size
         if self.n_words == 1:  # a value only has bits where its care mask has
-            return ((self._care_0[:n] & words[0]) == self._value_0[:n]).nonzero()[0]
+            views = self._used_masks
+            if views[0] != n:  # (the views change only when slots are added or compacted)
+                views = self._used_masks = (n, self._care_0[:n], self._value_0[:n])
+            return ((views[1] & words[0]) == views[2]).nonzero()[0]
         mismatch = ((self.care[:, :n] & words[:, None]) != self.value[:, :n]).any(axis=0)
         return (~mismatch).nonzero()[0]
 

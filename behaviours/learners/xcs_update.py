@@ -24,6 +24,7 @@ from .xcs_population import (
     NUMEROSITY,
     PREDICTION,
     SET_SIZE,
+    TIME_STAMP,
     Population,
 )
 
@@ -111,41 +112,49 @@ def update_columns(columns: list[list[float]], set_size: float, payoff: float,
     epsilon_0, scale, floor = settings.epsilon_0, constant.scale, constant.floor
     accuracy = list(numerosity)  # an accuracy of 1 times the numerosity, unless inaccurate
     inaccurate, scaled = [], []
-    for index, (p, e, a, x) in enumerate(zip(prediction, error, estimate, experience, strict=True)):
+    for index, x in enumerate(experience):  # (indices: zip(..., strict=) costs a call's worth)
         x += 1.0
         rate = 1.0 / x
+        p = prediction[index]
         p += (rate if rate > beta_p else beta_p) * (payoff - p)  # eq. 7.1
+        e = error[index]
         e += (rate if rate > beta_e else beta_e) * (abs(payoff - p) - e)  # eq. 7.4
+        a = estimate[index]
         a += (rate if rate > beta else beta) * (set_size - a)
         prediction[index], error[index], estimate[index], experience[index] = p, e, a, x
         if e >= epsilon_0:
             inaccurate.append(index)
             scaled.append(e * scale if e * scale > floor else floor)
     if inaccurate:  # eq. 7.6, by numpy's power
-        for index, power in zip(inaccurate, (np.array(scaled) ** constant.minus_nu).tolist(),
-                                strict=True):
-            accuracy[index] = power * accuracy[index]
+        powers = (np.array(scaled) ** constant.minus_nu).tolist()
+        for index, power in enumerate(powers):
+            accuracy[inaccurate[index]] *= power
     total = accuracy[0]
     for value in accuracy[1:]:
         total += value
     share = settings.beta_f / total  # beta_f * kappa' / accuracy, eq. 7.7
     kept = 1.0 - settings.beta_f
-    for index, (f, value) in enumerate(zip(fitness, accuracy, strict=True)):
-        fitness[index] = f * kept + value * share  # eq. 7.5
+    for index, value in enumerate(accuracy):
+        fitness[index] = fitness[index] * kept + value * share  # eq. 7.5
 
 
 def update_action_set(population: Population, rows: np.ndarray, stats: np.ndarray,
-                      set_size: float, payoff: float, settings: Settings,
-                      constant: UpdateConstants) -> list[float]:
+                      payoff: float, settings: Settings, constant: UpdateConstants
+                      ) -> tuple[list[float], list[float], list[float], float]:
     """UPDATE SET on the action set ``rows`` (``stats``: their columns of the population),
-    written back to the population; returns their updated fitnesses."""
+    written back to the population. Returns the set's numerosities, time stamps and updated
+    fitnesses, and its size (the numerosities' sum: whole numbers, exact in any order)."""
     if rows.size < SMALL_SET:
         columns = stats.tolist()
+        numerosity = columns[NUMEROSITY]
+        set_size = float(sum(numerosity))
         update_columns(columns, set_size, payoff, settings, constant)
         prediction, error, fitness, estimate, experience = columns[:_CHANGED]
         population.write_columns(rows, prediction + error + fitness + estimate + experience,
                                  _CHANGED)
-        return fitness
+        return numerosity, columns[TIME_STAMP], fitness, set_size
+    numerosity, stamps = stats[NUMEROSITY:TIME_STAMP + 1].tolist()  # (adjacent rows)
+    set_size = float(sum(numerosity))
     update_set(stats, set_size, payoff, settings, constant)
     population.write_columns(rows, stats)
-    return stats[FITNESS].tolist()
+    return numerosity, stamps, stats[FITNESS].tolist(), set_size
