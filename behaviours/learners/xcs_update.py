@@ -6,12 +6,13 @@ on them as Python floats for action sets of fewer than `SMALL_SET` classifiers. 
 costs about as much as twenty float operations whatever its length, and a multiplexer's action
 set holds about five classifiers, so there the array form spends most of a trial on call
 overhead. Both give the same numbers bit for bit: each classifier goes through the same IEEE
-operations in the same order, numpy's pairwise sum adds fewer than 8 terms left to right, and
+operations in the same order, the accuracies are summed in numpy's order (`numpy_sum`), and
 the power of eq. 7.6 stays numpy's (its vectorised pow differs from C's in the last bit).
 """
 
 from __future__ import annotations
 
+from operator import add
 from typing import NamedTuple
 
 import numpy as np
@@ -33,9 +34,32 @@ _sum = np.add.reduce
 _CHANGED = EXPERIENCE + 1
 """The quantities UPDATE SET changes are the leading rows of `Population.stats` (numerosity
 and time stamp follow)."""
-SMALL_SET = 8
-"""Action sets smaller than this are updated on Python floats (`update_columns`): below 8
-terms numpy's sum adds left to right, as `update_columns` does."""
+SMALL_SET = 16
+"""Action sets smaller than this are updated on Python floats (`update_columns`): fewer
+instructions a trial than the array form on the 6- and the 11-multiplexer (8 and 32 cost
+more on the 11); at most 128, the longest sum `numpy_sum` follows numpy through."""
+
+
+def numpy_sum(values: list[float]) -> float:
+    """The sum numpy's ``add.reduce`` gives for a contiguous float64 array of these values
+    (at most 128 of them), term for term: its pairwise summation adds fewer than 8 terms left
+    to right, more in 8 running sums over strides of 8 that it then adds pairwise, and the
+    terms past the last whole stride left to right after those."""
+    count = len(values)
+    if count < 8:
+        total = 0.0
+        for value in values:
+            total += value
+        return total
+    sums = values[:8]
+    whole = count - count % 8
+    for start in range(8, whole, 8):
+        sums = list(map(add, sums, values[start:start + 8]))
+    total = ((sums[0] + sums[1]) + (sums[2] + sums[3])) + ((sums[4] + sums[5])
+                                                          + (sums[6] + sums[7]))
+    for value in values[whole:]:
+        total += value
+    return total
 
 
 class UpdateConstants(NamedTuple):
@@ -106,7 +130,7 @@ def update_columns(columns: list[list[float]], set_size: float, payoff: float,
                    settings: Settings, constant: UpdateConstants) -> None:
     """`update_set` on an action set's columns as Python lists (``stats.tolist()``), in
     place, for sets of fewer than `SMALL_SET` classifiers: per classifier the same
-    operations in the same order, the accuracies' sum left to right, the power numpy's."""
+    operations in the same order, the accuracies summed in numpy's order, the power numpy's."""
     prediction, error, fitness, estimate, experience, numerosity, _ = columns
     beta, beta_p, beta_e = settings.beta, settings.beta_p, settings.beta_e
     epsilon_0, scale, floor = settings.epsilon_0, constant.scale, constant.floor
@@ -129,10 +153,7 @@ def update_columns(columns: list[list[float]], set_size: float, payoff: float,
         powers = (np.array(scaled) ** constant.minus_nu).tolist()
         for index, power in enumerate(powers):
             accuracy[inaccurate[index]] *= power
-    total = accuracy[0]
-    for value in accuracy[1:]:
-        total += value
-    share = settings.beta_f / total  # beta_f * kappa' / accuracy, eq. 7.7
+    share = settings.beta_f / numpy_sum(accuracy)  # beta_f * kappa' / accuracy, eq. 7.7
     kept = 1.0 - settings.beta_f
     for index, value in enumerate(accuracy):
         fitness[index] = fitness[index] * kept + value * share  # eq. 7.5

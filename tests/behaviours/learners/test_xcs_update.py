@@ -1,6 +1,7 @@
-"""UPDATE SET's two forms (behaviours/learners/xcs_update.py): the array form for action sets of
-8 classifiers or more and the Python-float form below that must give the same numbers bit for
-bit, and a large action set follows eq. 7.1, 7.4-7.7 through the array form."""
+"""UPDATE SET's two forms (behaviours/learners/xcs_update.py): the array form for large action
+sets and the Python-float form for small ones must give the same numbers bit for bit (down to
+numpy's order of summation), and a large action set follows eq. 7.1, 7.4-7.7 through the array
+form."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from behaviours.learners.xcs_params import Settings
 from behaviours.learners.xcs_update import (
     SMALL_SET,
     UpdateConstants,
+    numpy_sum,
     update_columns,
     update_set,
 )
@@ -47,14 +49,24 @@ def test_the_python_float_form_equals_the_array_form_bit_for_bit(params):
             assert np.array(columns).tobytes() == stats.tobytes()
 
 
-def test_an_action_set_of_eight_or_more_follows_eq_7_1_and_7_4_to_7_7():
-    # nine conditions over 0 and #, all matching 0000
-    conditions = [f"{code:04b}".replace("1", "#") for code in range(SMALL_SET + 1)]
+def test_numpy_sum_adds_in_numpy_order_up_to_128_terms():
+    rng = np.random.default_rng(3)
+    for count in range(1, 129):
+        for _ in range(20):
+            values = rng.random(count) * 10.0 ** rng.uniform(-3, 3, count)
+            assert numpy_sum(values.tolist()) == np.add.reduce(values)
+    values = [1.0, 1e16, -1e16, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]  # order shows: not 8.0
+    assert numpy_sum(values) == np.add.reduce(np.array(values)) != sum(values)
+
+
+def test_a_large_action_set_follows_eq_7_1_and_7_4_to_7_7():
+    # SMALL_SET + 1 conditions over 0 and #, all matching 00000
+    conditions = [f"{code:05b}".replace("1", "#") for code in range(SMALL_SET + 1)]
     records = [cl(condition, 0, prediction=1000.0, error=5.0 if index % 2 else 40.0,
                   fitness=0.3, experience=50, numerosity=1 + index % 3, action_set_size=4.0)
                for index, condition in enumerate(conditions)]
     xcs = make(records, beta=0.2, epsilon_0=10.0, alpha=0.1, nu=5.0)
-    xcs.act("0000", explore=True, allowed={0})
+    xcs.act("00000", explore=True, allowed={0})
     xcs.reward(1000.0, done=True)
     after = by_condition(xcs)
     set_size = sum(record.numerosity for record in records)
