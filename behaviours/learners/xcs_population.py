@@ -266,7 +266,7 @@ class Population:
                     spun[row] = spun.item(row) * (mean_fitness * numerosity.item(row)
                                                   / fitness.item(row))
             cumulative = np.add.accumulate(spun)
-            row = min(int(cumulative.searchsorted(draw() * cumulative[-1], side="right")),
+            row = min(int(cumulative.searchsorted(draw() * cumulative.item(-1), "right")),
                       size - 1)
             count = numerosity.item(row)
             if count > 1:
