@@ -262,9 +262,11 @@ class Population:
             if weak_rows.size >= FEW:
                 spun[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
             else:  # the same operations on Python floats: fewer calls than the array ones
-                for row in weak_rows.tolist():
-                    spun[row] = spun.item(row) * (mean_fitness * numerosity.item(row)
-                                                  / fitness.item(row))
+                for row in weak_rows.tolist():  # (a fitness of 0, only after an underflow,
+                    weight = mean_fitness * numerosity.item(row)  # divides as numpy does)
+                    own = fitness.item(row)
+                    spun[row] = spun.item(row) * (weight / own if own
+                                                  else float(np.divide(weight, own)))
             cumulative = np.add.accumulate(spun)
             row = min(int(cumulative.searchsorted(draw() * cumulative.item(-1), "right")),
                       size - 1)

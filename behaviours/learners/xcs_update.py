@@ -153,7 +153,9 @@ def update_columns(columns: list[list[float]], set_size: float, payoff: float,
         powers = (np.array(scaled) ** constant.minus_nu).tolist()
         for index, power in enumerate(powers):
             accuracy[inaccurate[index]] *= power
-    share = settings.beta_f / numpy_sum(accuracy)  # beta_f * kappa' / accuracy, eq. 7.7
+    total = numpy_sum(accuracy)  # 0 only when every accuracy underflowed (huge rewards):
+    # then numpy's IEEE division (inf and a warning), as the array form gives, not an error
+    share = settings.beta_f / total if total else float(np.divide(settings.beta_f, total))
     kept = 1.0 - settings.beta_f
     for index, value in enumerate(accuracy):
         fitness[index] = fitness[index] * kept + value * share  # eq. 7.5

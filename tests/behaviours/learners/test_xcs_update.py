@@ -49,6 +49,22 @@ def test_the_python_float_form_equals_the_array_form_bit_for_bit(params):
             assert np.array(columns).tobytes() == stats.tobytes()
 
 
+def test_both_forms_agree_when_every_accuracy_underflows():
+    """Errors of 1e300 (rewards that large are finite input) make every accuracy 0: the
+    array form divides by a zero sum into inf and NaN; the float form must do the same, not
+    raise ZeroDivisionError."""
+    settings = _settings()
+    constant = UpdateConstants.of(settings)
+    stats = _columns(np.random.default_rng(5), 5)
+    stats[0], stats[1], stats[4] = 0.0, 1e300, 10.0  # predictions far off, errors stay huge
+    columns = stats.tolist()
+    with np.errstate(all="ignore"):
+        update_set(stats, 7.0, 1e300, settings, constant)
+        update_columns(columns, 7.0, 1e300, settings, constant)
+    assert np.isnan(stats[2]).all()
+    assert np.array(columns).tobytes() == stats.tobytes()
+
+
 def test_numpy_sum_adds_in_numpy_order_up_to_128_terms():
     rng = np.random.default_rng(3)
     for count in range(1, 129):
