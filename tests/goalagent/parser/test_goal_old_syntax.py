@@ -2,7 +2,9 @@
 blank (the SWI-Prolog of GOAL 4/5 read it as ``name(args)``), GOAL 3's mood prefix in
 ``send(Receiver, :content)``, a GOAL 4 environment ``env = "x.jar"`` holding a Windows path,
 ``define UTbot as agent``; and a GOAL 5 module file's error reported where it is. Each
-snippet is taken from a public GOAL program (named in the test)."""
+snippet is taken from a public GOAL program (named in the test). Then what eishub/Starcraft's
+GOAL 6 bots showed, each built from GOAL's grammar: backslashes in an environment
+parameter's string, a string addressee, file names that differ in case only."""
 
 from __future__ import annotations
 
