@@ -18,6 +18,7 @@ database (with the pairs explored) once its functional pair is known.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -176,11 +177,15 @@ class PairEpisode:
     Each ``explore(part, action)`` is Algorithm 4's lines 3-8 for that pair (random θ until n
     samples or the pair's model settles as moving nothing, §5.4.2), stopping early once an
     action opens the can (5.9), on the can as learning found it. The report is the one a
-    transfer run gives for a pair it tried. Once the functional pair is known (an explored
-    action opened the can, or ``verified`` says a use of a pair did), the can joins
-    ``database`` with every pair explored, so that later cans can transfer from it; with
-    ``prior`` (what a transfer that stopped short learned on this can before), with those
-    pairs, actions and source too.
+    transfer run gives for a pair it tried. With ``prior`` (what a transfer that stopped
+    short learned on this can before), the episode goes on from that transfer's samples: a
+    pair it tried is explored only up to Algorithm 4's n samples (or until dead) in all, so
+    no action is tried twice over and a pair it explored fully costs nothing more (issue 32:
+    a can that cannot be opened cost more than random learning when the agent's second
+    episode explored the transferred part's pairs from scratch). Once the functional pair is
+    known (an explored action opened the can, or ``verified`` says a use of a pair did), the
+    can joins ``database`` with every pair explored, so that later cans can transfer from
+    it; after a transfer, with its pairs, actions and source too.
     """
 
     def __init__(self, world: GarbageWorld, perception: Perception,
@@ -195,6 +200,9 @@ class PairEpisode:
         rng = check_random_state(random_state)
         params = SessionParams.from_estimator(PartBasedLearner(goal=delta, random_state=rng))
         self.session = Session(self.can, params, rng)
+        if prior is not None:  # copies: the database's entry for the can keeps its own
+            self.session.models.update(
+                {pair: copy.deepcopy(model) for pair, model in prior.models.items()})
         self.functional: FunctionalPair | None = None
 
     def explore(self, part: str, action: str, effect_name: str = "opened") -> PairReport:

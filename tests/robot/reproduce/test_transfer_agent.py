@@ -7,6 +7,7 @@ known objects (issue 32: o4 and o5 after o1 and o2 never finished)."""
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -58,6 +59,40 @@ give:
   can:
     slide: 0.03
 """
+
+STIFF_SLIDE = """\
+# A sliding lid on a weak lever: sweeping its tab the whole 0.1 m opens it too little.
+name: stiff_slide
+mechanism:
+  type: slide_lid
+  direction: left
+  gear: 0.6
+dimensions:
+  width: 0.22
+  depth: 0.28
+  height: 0.26
+lid:
+  height: 0.02
+"""
+
+HIGH_STEEP_HANDLE = """\
+# A lift handle high on a narrow can, geared steeply: lifted far, it stands over the rim.
+name: high_lift
+mechanism:
+  type: lift_handle
+  gear: 18.0
+dimensions:
+  width: 0.18
+  depth: 0.24
+  height: 0.30
+lid:
+  height: 0.03
+  marker_z: 0.015
+handle:
+  drop: 0.06
+"""
+N = 5
+"""Algorithm 4's samples per pair at most (thesis n = 5)."""
 
 
 def run(can: str, folder: Path, *, trials: int = 1, learning: str = "transfer") -> AgentRun:
@@ -201,3 +236,41 @@ def test_the_whole_object_form_and_its_refusals(tmp_path: Path):
     (tmp_path / "bad.json").write_text("{")
     with pytest.raises(ManagementException, match=r"bad.json:1:2: not JSON"):
         load_environment("garbage")().init({"objects": str(tmp_path / "bad.json")})
+
+
+def exploration_per_pair(result: AgentRun) -> dict[tuple[str, str], int]:
+    """The exploratory actions each (part, action) pair took over the whole run."""
+    counts: dict[tuple[str, str], int] = {}
+    for part, action, n in re.findall(r"^exploration\((\w+),(\w+),\w+,(\d+)\)$",
+                                      result.output, flags=re.MULTILINE):
+        counts[(part, action)] = counts.get((part, action), 0) + int(n)
+    return counts
+
+
+def test_a_can_that_cannot_open_is_given_up_with_no_pair_tried_twice(after_o1_o2,
+                                                                    tmp_path: Path):
+    """o1's push transfers to the sliding lid and fails; the agent learns the body pair by
+    pair, then gives the transferred lid its second chance before it gives up. That second
+    episode goes on from transfer's own tries (issue 32: it explored the lid's pairs from
+    scratch again, 49 exploratory actions against random learning's 48)."""
+    folder = known_copy(after_o1_o2[0], tmp_path)
+    can = tmp_path / "stiff_slide.yaml"
+    can.write_text(STIFF_SLIDE)
+    result = run(str(can), folder)
+    assert result.terminated and result.disposed == 0 and "cannot_open(" in result.output
+    assert "transferred(opened,o1)" in result.output
+    per_pair = exploration_per_pair(result)
+    assert len(per_pair) == 12 and max(per_pair.values()) <= N, per_pair
+    assert sum(per_pair.values()) == result.exploratory
+    (tmp_path / "random").mkdir()
+    randomly = run(str(can), tmp_path / "random", learning="random")
+    assert randomly.terminated and "cannot_open(" in randomly.output
+    assert result.exploratory <= randomly.exploratory, (result.exploratory,
+                                                        randomly.exploratory)
+
+
+def test_a_handle_lifted_over_the_rim_after_o1_and_o2(after_o1_o2, tmp_path: Path):
+    """Transferred from o2, the lift opens the can at once; lifted that far the handle
+    stands over the rim, and the ball is carried over it (it was stopped for ever)."""
+    result, _ = finished_new_can(after_o1_o2, tmp_path, "high_lift", HIGH_STEEP_HANDLE)
+    assert "ball_missed" not in result.output
