@@ -19,6 +19,7 @@ from behaviours.skills import (
 from sim.canfile import find_can, parse_can
 from sim.scene import WALL
 from sim.world import CANS, GarbageWorld
+from tests.can_files import HIGH_STEEP_HANDLE
 
 GOAL = 0.1
 """Thesis goal width (m)."""
@@ -157,23 +158,6 @@ def test_ball_goes_in_only_when_the_can_is_open(world: GarbageWorld, can: str) -
     s = world.state()
     assert s.ball_in_can and not s.holding_ball
     assert not ball_within_reach(world)
-
-
-HIGH_STEEP_HANDLE = """\
-name: high_lift
-mechanism:
-  type: lift_handle
-  gear: 18.0
-dimensions:
-  width: 0.18
-  depth: 0.24
-  height: 0.30
-lid:
-  height: 0.03
-  marker_z: 0.015
-handle:
-  drop: 0.06
-"""
 
 
 def test_the_ball_is_carried_over_a_handle_lifted_above_the_rim(world: GarbageWorld) -> None:

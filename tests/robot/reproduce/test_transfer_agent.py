@@ -18,6 +18,7 @@ from goalagent.eis import ActException, ManagementException, load_environment
 from goalagent.eis.terms import Action
 from robot.reproduce.studies.common.ch5_agent import AgentRun, agent_run, algorithm6_n
 from sim.canfile import find_can
+from tests.can_files import HIGH_STEEP_HANDLE
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -73,23 +74,6 @@ dimensions:
   height: 0.26
 lid:
   height: 0.02
-"""
-
-HIGH_STEEP_HANDLE = """\
-# A lift handle high on a narrow can, geared steeply: lifted far, it stands over the rim.
-name: high_lift
-mechanism:
-  type: lift_handle
-  gear: 18.0
-dimensions:
-  width: 0.18
-  depth: 0.24
-  height: 0.30
-lid:
-  height: 0.03
-  marker_z: 0.015
-handle:
-  drop: 0.06
 """
 N = 5
 """Algorithm 4's samples per pair at most (thesis n = 5)."""
