@@ -119,6 +119,7 @@ def dqn_run(make_env: EnvFactory, seed: int, trials: int,
     import torch
     from stable_baselines3 import DQN
     from stable_baselines3.common.callbacks import StopTrainingOnMaxEpisodes
+    from stable_baselines3.common.logger import Logger
 
     torch.set_num_threads(1)
     train, evaluate = ExploreTrials(make_env()), make_env()
@@ -129,6 +130,9 @@ def dqn_run(make_env: EnvFactory, seed: int, trials: int,
                 exploration_initial_eps=1.0, exploration_final_eps=1.0,
                 policy_kwargs={"net_arch": [settings.hidden, settings.hidden]}, seed=seed,
                 device="cpu")
+    # Without a logger of its own, every learn() makes a log folder tempdir/SB3-<time> and
+    # leaves it there, empty: one per explore trial of every seed.
+    model.set_logger(Logger(folder=None, output_formats=[]))
     codes = evaluate.unwrapped.action_codes
     exploits = []
     for trial in range(trials):

@@ -3,6 +3,8 @@ runs beside XCS and stable-baselines3's DQN (hand-computed updates)."""
 
 from __future__ import annotations
 
+import tempfile
+
 import numpy as np
 import pytest
 
@@ -29,7 +31,11 @@ def test_q_learning_updates_by_sutton_and_bartos_eq_6_8():
         QLearning(2, 2, alpha=1.5)
 
 
-def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path):
+def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path, monkeypatch):
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    monkeypatch.setenv("TMPDIR", str(scratch))  # seeds run in child processes too
+    monkeypatch.setattr(tempfile, "tempdir", None)
     study = find("ch3-baselines")
     config = study.quick_config()
     outcome = reproduce(study, config, [0, 1], LocalBackend(1), tmp_path)
@@ -47,3 +53,5 @@ def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path):
     assert metrics[key].mean == pytest.approx(np.mean(values))
     page = (tmp_path / "ch3-baselines.md").read_text()
     assert "## Claims and tests" in page and "tabular Q-learning" in page
+    # DQN's learn() left no SB3-<time> log folders (torch keeps its one compile cache there)
+    assert [p.name for p in scratch.iterdir() if p.name.startswith("SB3-")] == []
