@@ -3,7 +3,9 @@
 MuJoCo, in the order the thesis learns the cans: o1 from nothing, o2 from o1, then o3, o4, o5
 and cans the thesis never saw. Each must finish, with at most Algorithm 6's N + 5
 exploratory actions, N being what Algorithm 6 alone takes on the same can with the same
-known objects (issue 32: o4 and o5 after o1 and o2 never finished)."""
+known objects (issue 32: o4 and o5 after o1 and o2 never finished). A can that no action
+opens is given up, each pair tried at most Algorithm 4's n times in all, within what random
+learning takes to give it up."""
 
 from __future__ import annotations
 
