@@ -77,6 +77,35 @@ dimensions:
 lid:
   height: 0.02
 """
+
+SLIDE_RIGHT = """\
+# A flat lid that slides to the right (the shipped one slides left), on a wide can.
+name: slide_right
+mechanism:
+  type: slide_lid
+  direction: right
+  gear: 1.6
+dimensions:
+  width: 0.28
+  depth: 0.26
+  height: 0.24
+lid:
+  height: 0.02
+"""
+
+SMALL_PUSH = """\
+# A push lid on a small narrow can, a tall lid with its marker high.
+name: small_push
+mechanism:
+  type: push_lid
+dimensions:
+  width: 0.16
+  depth: 0.20
+  height: 0.22
+lid:
+  height: 0.16
+  marker_z: 0.13
+"""
 N = 5
 """Algorithm 4's samples per pair at most (thesis n = 5)."""
 
@@ -260,3 +289,52 @@ def test_a_handle_lifted_over_the_rim_after_o1_and_o2(after_o1_o2, tmp_path: Pat
     stands over the rim, and the ball is carried over it (it was stopped for ever)."""
     result, _ = finished_new_can(after_o1_o2, tmp_path, "high_lift", HIGH_STEEP_HANDLE)
     assert "ball_missed" not in result.output
+
+
+def write_can(folder: Path, name: str, text: str) -> str:
+    """The can file ``text`` written in ``folder``; its path."""
+    can = folder / f"{name}.yaml"
+    can.write_text(text)
+    return str(can)
+
+
+def test_pair_by_pair_stops_a_pair_where_random_learning_would(tmp_path: Path):
+    """Nothing known: the agent learns pair by pair, drawing the same pairs and thetas as
+    its random learning on the same seed, and stops each pair no later than random learning
+    does (issue 32: Algorithm 4 tries a pair five times where random learning's line settles
+    at four; on this can and seed, 5 exploratory actions against 4)."""
+    can = write_can(tmp_path, "small_push", SMALL_PUSH)
+    (tmp_path / "transfer").mkdir()
+    (tmp_path / "random").mkdir()
+    by_transfer = agent_run(can, tmp_path / "transfer", seed=4, trials=1, max_cycles=150)
+    randomly = agent_run(can, tmp_path / "random", seed=4, trials=1, learning="random",
+                         max_cycles=150)
+    assert by_transfer.finished and randomly.finished
+    assert "transferred(" not in by_transfer.output  # nothing was known
+    first = by_transfer.learns()[0][1]
+    assert first == randomly.learns()[0][1].replace("random", "transfer")
+    per_pair, random_per_pair = exploration_per_pair(by_transfer), exploration_per_pair(randomly)
+    assert all(n <= random_per_pair.get(pair, n) for pair, n in per_pair.items()), (
+        per_pair, random_per_pair)
+    assert by_transfer.exploratory <= randomly.exploratory
+
+
+def test_transfer_checks_the_asked_pair_first_on_the_part_it_works_on(tmp_path: Path):
+    """After o1, the agent's first question about a lid sliding right is the sweep right,
+    the pair its random learning explores first and finishes with (4 actions). Transfer tries
+    o1's push there, then that sweep before the other actions (issue 32: in Algorithm 6's
+    fixed order it came fourth, 5 actions)."""
+    can = write_can(tmp_path, "slide_right", SLIDE_RIGHT)
+    (tmp_path / "known").mkdir()
+    (tmp_path / "random").mkdir()
+    assert agent_run("o1", tmp_path / "known", seed=5, trials=1, max_cycles=150).finished
+    by_transfer = agent_run(can, tmp_path / "known", seed=5, trials=1, max_cycles=150)
+    randomly = agent_run(can, tmp_path / "random", seed=5, trials=1, learning="random",
+                         max_cycles=150)
+    assert by_transfer.finished and randomly.finished
+    assert "transferred(opened,o1)" in by_transfer.output
+    assert [text for _, text in by_transfer.learns()] == ["learn(lid,sweep_right,opened,transfer)"]
+    tried = re.findall(r"^exploration\(lid,(\w+),transfer,\d+\)$", by_transfer.output,
+                       flags=re.MULTILINE)
+    assert tried == ["extend_arm", "sweep_right"]  # o1's push, then the asked sweep
+    assert by_transfer.exploratory <= randomly.exploratory
