@@ -183,19 +183,19 @@ rule ``PairEpisode`` also follows."""
 class PairEpisode:
     """Algorithm 4 on a can one pair at a time, in the order an agent asks about them.
 
-    Each ``explore(part, action)`` is Algorithm 4's lines 3-8 for that pair (random θ until n
-    samples or the pair's model settles as moving nothing, §5.4.2, or until the agent's
+    Each ``explore(part, action)`` is Algorithm 4's lines 3-8 for that pair (random θ until
+    n samples or the pair's model settles as moving nothing, §5.4.2, or until the agent's
     random learning would stop, ``explored``), stopping early once an action opens the can
-    (5.9), on the can as learning found it. The report is the one a
-    transfer run gives for a pair it tried. With ``prior`` (what a transfer that stopped
-    short learned on this can before), the episode goes on from that transfer's samples: a
-    pair it tried is explored only up to Algorithm 4's n samples (or until dead) in all, so
-    no action is tried twice over and a pair it explored fully costs nothing more (issue 32:
-    a can that cannot be opened cost more than random learning when the agent's second
-    episode explored the transferred part's pairs from scratch). Once the functional pair is
-    known (an explored action opened the can, or ``verified`` says a use of a pair did), the
-    can joins ``database`` with every pair explored, so that later cans can transfer from
-    it; after a transfer, with its pairs, actions and source too.
+    (5.9), on the can as learning found it. The report is the one a transfer run gives for a
+    pair it tried. With ``prior`` (what a transfer that stopped short learned on this can
+    before), the episode goes on from that transfer's samples: a pair it tried is explored
+    only up to Algorithm 4's n samples (or until dead) in all, so no action is tried twice
+    over and a pair it explored fully costs nothing more (issue 32: a can that cannot be
+    opened cost more than random learning when the agent's second episode explored the
+    transferred part's pairs from scratch). Once the functional pair is known (an explored
+    action opened the can, or ``verified`` says a use of a pair did), the can joins
+    ``database`` with every pair explored, so that later cans can transfer from it; after a
+    transfer, with its pairs, actions and source too.
     """
 
     def __init__(self, world: GarbageWorld, perception: Perception,
