@@ -1,11 +1,11 @@
 """Shared pytest set-up, and the two ways the tests run the ``goalagent`` command.
 
-MuJoCo renders headless (EGL) unless the caller chose a backend. :func:`goalagent` runs the
-command in a child process, as a user does: for what needs a process of its own (its exit
-status and streams as the shell sees them, signals, the interpreter's start-up, anything that
-would change the test process). :func:`cli` runs it in this process through click's
-``CliRunner``, built as the console script builds it: for argument validation, exit codes,
-help and messages, without a Python start-up.
+MuJoCo renders headless (EGL) unless the caller chose a backend, and OpenMP runs one thread.
+:func:`goalagent` runs the command in a child process, as a user does: for what needs a process
+of its own (its exit status and streams as the shell sees them, signals, the interpreter's
+start-up, anything that would change the test process). :func:`cli` runs it in this process
+through click's ``CliRunner``, built as the console script builds it: for argument validation,
+exit codes, help and messages, without a Python start-up.
 :func:`python` runs a snippet in a child Python.
 """
 
@@ -27,6 +27,12 @@ if TYPE_CHECKING:
     from click.testing import Result
 
 os.environ.setdefault("MUJOCO_GL", "egl")
+# One OpenMP (and OpenBLAS) thread in the test processes and their children: the suite runs two
+# workers on two cores, and scikit-learn's parallel loops (a nearest-neighbour search over five
+# parts, say) spun their threads against the other worker, taking 0.1 s a call instead of a
+# millisecond. Set before anything loads numpy (nothing has when pytest reads this file); a
+# value the caller set is kept.
+os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 ROOT = Path(__file__).resolve().parents[1]
 """The repository's root: the child processes' default working directory."""

@@ -195,6 +195,11 @@ class ActiveExplorer(BaseEstimator):
 
 
 def _state(value: object, what: str) -> np.ndarray:
-    """A world's state as a finite 1-D float vector, or a clear error naming ``what``."""
-    return as_rows(np.atleast_1d(np.asarray(value, dtype=float))[None, :], what)[0]
+    """A world's state as a finite 1-D float vector, or a clear error naming ``what``
+    (scikit-learn's, from ``as_rows``: only asked for when the vector is empty or not finite,
+    since check_array at every step cost more than the learners' steps)."""
+    row = np.atleast_1d(np.asarray(value, dtype=float))[None, :]
+    if row.size and np.isfinite(row).all():
+        return row[0]
+    return as_rows(row, what)[0]
 

@@ -52,7 +52,7 @@ from .xcs_population import (
     int_to_words,
     words_for,
 )
-from .xcs_update import UpdateConstants, update_set
+from .xcs_update import UpdateConstants, update_action_set
 
 STATE_CACHE_SIZE = 1 << 16
 _all = np.logical_and.reduce
@@ -341,22 +341,21 @@ class XCS(BaseEstimator):
                 rows, stats = rows[live], stats.compress(live, axis=1)
             if rows.size == 0:  # every classifier of the set was deleted meanwhile
                 return
-        numerosity = stats[NUMEROSITY].tolist()
-        set_size = float(sum(numerosity))  # whole numbers: exact in any order
-        update_set(stats, set_size, payoff, settings, self._constants)
-        population.stats[:, rows] = stats
+        numerosity, stamps, fitness, set_size = update_action_set(
+            population, rows, stats, payoff, settings, self._constants)
         if settings.action_set_subsumption:  # numerosities move, their sum stays
             action_set_subsumption(population, rows, settings, self._rng)
             rows = rows[population.alive(rows)]
-            stats = population.stats.take(rows, axis=1)
-            numerosity = stats[NUMEROSITY].tolist()
+            columns = population.stats.take(rows, axis=1).tolist()
+            numerosity, stamps = columns[NUMEROSITY], columns[TIME_STAMP]
+            fitness = columns[FITNESS]
         if not step.explore:
             return
         # eq. 7.3's numerosity-weighted time stamps: whole numbers, exact in any order
-        stamps = sum(map(mul, stats[TIME_STAMP].tolist(), numerosity))
-        if self.time_ - stamps / set_size > settings.theta_ga:  # eq. 7.3
+        stamp_sum = sum(map(mul, stamps, numerosity))
+        if self.time_ - stamp_sum / set_size > settings.theta_ga:  # eq. 7.3
             population.time_stamp[rows] = self.time_
-            run_ga(population, rows, stats[FITNESS].tolist(), step.state, settings, self._rng)
+            run_ga(population, rows, fitness, step.state, settings, self._rng)
 
     def _compact_keeping(self, previous: _Step | None) -> _Step | None:
         """Drop dead slots once they are half the population; remap [A]-1 if one is held."""

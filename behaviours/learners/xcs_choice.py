@@ -50,4 +50,4 @@ def explore_action(permitted: np.ndarray, rng: np.random.Generator, population: 
             share = numerosity[population.matches(rows, words)].sum() / numerosity.sum()
             if share >= 1.0 or rng.random() < share:
                 return previous_action
-    return int(permitted[int(rng.random() * permitted.size)])
+    return permitted.item(int(rng.random() * permitted.size))

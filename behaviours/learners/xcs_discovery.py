@@ -158,7 +158,7 @@ def _subsume(population: Population, parents: list[int], keys: list[tuple[int, i
     for index in subsumers:
         key = keys[index]
         if key[2] == action and more_general(key[:2], condition):
-            population.numerosity[parents[index]] += 1
+            population.numerosity[parents[index]] = population.numerosity.item(parents[index]) + 1
             population.micro_count += 1
             return True
     return False
@@ -170,7 +170,7 @@ def insert(population: Population, condition: tuple[int, int], action: int, *,
     """INSERT IN POPULATION: one more copy of an identical classifier, else a new one."""
     row = population.find(condition[0], condition[1], action)
     if row >= 0:
-        population.numerosity[row] += 1
+        population.numerosity[row] = population.numerosity.item(row) + 1
         population.micro_count += 1
         return
     population.add(condition[0], condition[1], action, prediction=prediction, error=error,

@@ -15,6 +15,7 @@ indices the learner holds for [A] and [A]-1 stay valid until it compacts (and re
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -78,6 +79,9 @@ def more_general(general: tuple[int, int], specific: tuple[int, int]) -> bool:
             and care.bit_count() > general_care.bit_count())
 
 
+FEW = 8
+"""Below this many elements, work on Python floats costs fewer calls than array operations."""
+
 PREDICTION, ERROR, FITNESS, SET_SIZE, EXPERIENCE, NUMEROSITY, TIME_STAMP = range(7)
 """Rows of `Population.stats`, one column per slot (counts are stored as exact floats)."""
 _COLUMNS = ("prediction", "error", "fitness", "action_set_size", "experience", "numerosity",
@@ -122,11 +126,15 @@ class Population:
         self.care = np.zeros((self.n_words, capacity), np.uint64)
         self.value = np.zeros((self.n_words, capacity), np.uint64)
         self._care_0, self._value_0 = self.care[0], self.value[0]  # one-word states' views
+        self._used_masks: tuple[int, np.ndarray | None, np.ndarray | None] = (-1, None, None)
+        """(size, the used slots' views of ``_care_0`` and ``_value_0``) for `match`."""
         self.action = np.zeros(capacity, np.int64)
         self.specificity = np.zeros(capacity, np.int64)
         self.stats = np.zeros((len(_COLUMNS), capacity))
         for index, name in enumerate(_COLUMNS):
             setattr(self, name, self.stats[index])
+        self._flat_index = np.arange(self.stats.size).reshape(self.stats.shape)
+        """Each cell's index in the flattened ``stats``: `write_columns` puts through it."""
 
     @property
     def capacity(self) -> int:
@@ -174,11 +182,21 @@ class Population:
         self.action[:used], self.specificity[:used] = action, specificity
         self.stats[:, :used] = stats
 
+    def write_columns(self, rows: np.ndarray, columns: np.ndarray | list[float],
+                      quantities: int = len(_COLUMNS)) -> None:
+        """``stats[:quantities, rows] = columns`` through flat indices (a 2-D fancy assignment
+        costs about twice a gather of the indices and a `put`); ``columns`` is an array or
+        the quantities' values one row after the other."""
+        self.stats.put(self._flat_index[:quantities].take(rows, axis=1), columns)
+
     def match(self, words: np.ndarray) -> np.ndarray:
         """Rows of the live classifiers whose condition matches the packed state ``words``."""
         n = self.size
         if self.n_words == 1:  # a value only has bits where its care mask has
-            return ((self._care_0[:n] & words[0]) == self._value_0[:n]).nonzero()[0]
+            views = self._used_masks
+            if views[0] != n:  # (the views change only when slots are added or compacted)
+                views = self._used_masks = (n, self._care_0[:n], self._value_0[:n])
+            return ((views[1] & words[0]) == views[2]).nonzero()[0]
         mismatch = ((self.care[:, :n] & words[:, None]) != self.value[:, :n]).any(axis=0)
         return (~mismatch).nonzero()[0]
 
@@ -209,46 +227,59 @@ class Population:
         numerosity, the same test without a division). ``uniform`` is the wheel's draw in
         [0, 1). Dead slots have all numbers 0, so they get no vote and are never weak.
         """
-        self._delete(uniform, theta_del, delta, None)
+        self._remove(lambda: uniform, 1, None, theta_del, delta)
 
     def delete_over(self, limit: int, times: int, rng: np.random.Generator, theta_del: float,
                     delta: float) -> None:
         """`delete_one` up to ``times`` times while more than ``limit`` micro-classifiers are
-        left, each with its own draw from ``rng``. The population's fitness sum carries over
-        from one removal to the next unless a whole classifier went (a numerosity change
-        leaves every fitness as it was), so it is not summed again."""
-        fitness_sum = None
-        for _ in range(times):
-            if self.micro_count <= limit:
-                return
-            kills = self.kills
-            fitness_sum = self._delete(rng.random(), theta_del, delta, fitness_sum)
-            if self.kills != kills:
-                fitness_sum = None
+        left, each with its own draw from ``rng``."""
+        self._remove(rng.random, times, limit, theta_del, delta)
 
-    def _delete(self, uniform: float, theta_del: float, delta: float,
-                fitness_sum: float | None) -> float:
-        """`delete_one` given the population's fitness sum, if known; returns that sum."""
+    def _remove(self, draw: Callable[[], float], times: int, limit: int | None,
+                theta_del: float, delta: float) -> None:
+        """`delete_one` ``times`` times (while more than ``limit`` are left), each spin with
+        the next ``draw()``. What one removal leaves unchanged carries over to the next: the
+        votes before raising and who is experienced (a removal changes only its own
+        classifier's numerosity; a removed classifier's numbers are all 0, so it has no vote
+        and is never weak either way), and the population's fitness sum unless a whole
+        classifier went."""
+        if limit is not None and self.micro_count <= limit:
+            return
         size = self.size
         numerosity, fitness = self.numerosity[:size], self.fitness[:size]
-        if fitness_sum is None:
-            fitness_sum = float(np.add.reduce(fitness))
-        mean_fitness = fitness_sum / self.micro_count
-        votes = self.action_set_size[:size] * numerosity
-        weak = self.experience[:size] > theta_del
-        weak &= fitness < (delta * mean_fitness) * numerosity
-        weak_rows = weak.nonzero()[0]  # usually a few: raise their votes only
-        if weak_rows.size:
-            votes[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
-        cumulative = np.add.accumulate(votes)
-        row = min(int(cumulative.searchsorted(uniform * cumulative[-1], side="right")),
-                  size - 1)
-        if self.stats[NUMEROSITY, row] > 1:
-            self.stats[NUMEROSITY, row] -= 1
-            self.micro_count -= 1
-        else:
-            self.kill(row)
-        return fitness_sum
+        estimate = self.action_set_size[:size]
+        experienced = self.experience[:size] > theta_del
+        votes = estimate * numerosity
+        fitness_sum = None
+        for left in range(times - 1, -1, -1):
+            if fitness_sum is None:
+                fitness_sum = float(np.add.reduce(fitness))
+            mean_fitness = fitness_sum / self.micro_count
+            weak = fitness < (delta * mean_fitness) * numerosity
+            weak &= experienced
+            weak_rows = weak.nonzero()[0]  # usually a few: raise their votes only
+            spun = votes.copy() if left and weak_rows.size else votes
+            if weak_rows.size >= FEW:
+                spun[weak_rows] *= mean_fitness * numerosity[weak_rows] / fitness[weak_rows]
+            else:  # the same operations on Python floats: fewer calls than the array ones
+                for row in weak_rows.tolist():  # (a fitness of 0, only after an underflow,
+                    weight = mean_fitness * numerosity.item(row)  # divides as numpy does)
+                    own = fitness.item(row)
+                    spun[row] = spun.item(row) * (weight / own if own
+                                                  else float(np.divide(weight, own)))
+            cumulative = np.add.accumulate(spun)
+            row = min(int(cumulative.searchsorted(draw() * cumulative.item(-1), "right")),
+                      size - 1)
+            count = numerosity.item(row)
+            if count > 1:
+                numerosity[row] = count - 1
+                self.micro_count -= 1
+            else:
+                self.kill(row)
+                fitness_sum = None
+            if limit is not None and self.micro_count <= limit:
+                return
+            votes[row] = estimate.item(row) * numerosity.item(row)
 
     def compact(self) -> np.ndarray:
         """Drop dead slots; returns the old-row -> new-row map (-1 for dead rows)."""

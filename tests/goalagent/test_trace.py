@@ -8,7 +8,6 @@ import json
 import os
 import re
 import shlex
-from functools import partial
 from pathlib import Path
 
 import pytest
@@ -16,7 +15,6 @@ from rich.console import Console
 
 from goalagent.agent import Agent, EventKind
 from goalagent.trace import TraceKindError, TracePrinter, parse_kinds
-from tests import conftest
 from tests.conftest import ROOT, cli
 
 # Text Rich would read as markup: a list, a style tag, a closing tag, a quoted atom.
@@ -31,17 +29,17 @@ main module [exit=nogoals] { program {
 } }
 """
 
-
-goalagent = partial(conftest.goalagent, env={"COLUMNS": "200"})
-"""The command, on a terminal wide enough that no line is wrapped."""
+WIDE = {"COLUMNS": "200"}
+"""A terminal wide enough that no line is wrapped."""
 
 
 def test_every_output_path_shows_brackets_and_quoted_atoms(tmp_path: Path) -> None:
     program = tmp_path / "markup.goal"
     program.write_text(MARKUP_AGENT)
     trace_file = tmp_path / "trace.txt"
-    result = goalagent("run", str(program), "--trace", "--plot", str(tmp_path / "p.png"))
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(program), "--trace", "--plot", str(tmp_path / "p.png"),
+                 env=WIDE)
+    assert result.exit_code == 0, result.stderr
     # print/1 on stdout, the trace on stdout
     assert "[c]\n[bold]x[/]\n" in result.stdout
     assert "fired main" in result.stdout and "L=[c], T='[bold]x[/]'" in result.stdout
@@ -152,11 +150,11 @@ def test_the_readme_trace_examples_show_their_lists() -> None:
     commands = {Path(command[1]).name: command for command in readme_run_commands()}
     blocks = commands["blocks_builder.goal"]
     assert "--trace" in blocks  # the README shows this one traced
-    traced = goalagent(*blocks)
-    assert traced.returncode == 0, traced.stderr
+    traced = cli(*blocks, env=WIDE)
+    assert traced.exit_code == 0, traced.stderr
     assert "[X=a, Y=b, T=[c]]" in traced.stdout and "T_M1" not in traced.stdout
-    coffee = goalagent(*commands["coffee.mas2g"], "--trace")
-    assert coffee.returncode == 0, coffee.stderr
+    coffee = cli(*commands["coffee.mas2g"], "--trace", env=WIDE)
+    assert coffee.exit_code == 0, coffee.stderr
     assert "maker.sendonce(:canMake(grinder,[grounds]))" in coffee.stdout
     assert "received grinder: :canMake(grinder,[grounds])" in coffee.stdout
     assert "received maker: ?canMake(_,_)" in coffee.stdout  # fresh variables as _

@@ -23,9 +23,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 START_SECONDS = 180.0
-STOP_SECONDS = 12.0
-"""How long the nodes get to stop after SIGTERM before what is left is killed (the raylets
-and workers stop within seconds; the head's GCS and ``ray start`` itself linger on)."""
+STOP_SECONDS = 2.0
+"""How long the nodes get to stop after SIGTERM before what is left is killed by process id
+(the raylets take about ten seconds to shut down, and the head's GCS and ``ray start`` linger
+on after them; killed at once they leave nothing behind in /dev/shm, and the cluster's
+folder is removed)."""
 OBJECT_STORE_BYTES = 80_000_000
 TASK_TITLE = "ray::run_on_worker"
 """The process title of a Ray worker while it runs one of the workbench's tasks."""

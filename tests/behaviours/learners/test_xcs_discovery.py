@@ -205,6 +205,17 @@ def test_repeated_deletion_matches_single_deletions_and_stops_at_n(size_limit, r
         assert rng.random() == draws.random()  # one draw per removal, none beyond N
 
 
+def test_a_weak_classifier_whose_fitness_underflowed_to_0_is_deleted_without_an_error():
+    # only rewards near the float range underflow a fitness; its raised vote is then numpy's
+    # x / 0 (inf), on the wheel as before, not a ZeroDivisionError of the float path
+    population = make([cl("0#", 0, fitness=1.0, experience=30),
+                       cl("##", 1, fitness=1.0, experience=30)]).population_
+    population.fitness[0] = 0.0
+    with np.errstate(all="ignore"):
+        population.delete_one(0.5, theta_del=20, delta=0.1)
+    assert population.micro_count == 1
+
+
 def test_the_ga_deletes_down_to_n_after_inserting_offspring():
     xcs = make([cl("##", 0, fitness=0.5, numerosity=4, experience=10)], n_actions=2, N=4,
                theta_ga=0, mu=0.5)

@@ -14,7 +14,7 @@ from goalagent.beliefs import load_beliefs, save_beliefs
 from goalagent.kb.terms import Atom
 from goalagent.mas import MultiAgentSystem
 from robot.affordance import AFFORD, affordances
-from tests.conftest import goalagent
+from tests.conftest import cli
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -146,17 +146,19 @@ def test_both_experiments_end_the_same_when_the_agent_learns_actively(tmp_path: 
         system.close()
 
 
-def test_experiments_from_the_command_line(tmp_path: Path):
+def test_experiments_from_the_command_line(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
     """The README's commands: Experiment 1 saves its beliefs and plots its reliabilities,
-    Experiment 2 starts from them (one trial here: all its learning happens in the first)."""
+    Experiment 2 starts from them (one trial here: all its learning happens in the first).
+    The command runs in this process (cli()): what is checked is its exit code, its files
+    and its messages, which two child Pythons only paid a start-up each for."""
     from matplotlib.image import imread
 
     saved = tmp_path / "exp1.pl"
     models = f"models={tmp_path / 'models.json'}"
     common = ["run", str(MAS), "--env-param", models]
-    first = goalagent(*common, "--save-beliefs", str(saved), "--plot", str(tmp_path / "exp1.png"),
-                      cwd=tmp_path, timeout=600)
-    assert first.returncode == 0, first.stderr
+    monkeypatch.chdir(tmp_path)
+    first = cli(*common, "--save-beliefs", str(saved), "--plot", str(tmp_path / "exp1.png"))
+    assert first.exit_code == 0, first.stderr
     assert "afford(lid,extend_arm,opened,5,5,1.0)." in saved.read_text()
     plot = imread(tmp_path / "exp1.png")
     assert plot.shape[:2] == (550, 990)  # 9 x 5 inches at 110 dpi
@@ -165,9 +167,9 @@ def test_experiments_from_the_command_line(tmp_path: Path):
     drawn = [colour for colour in colormaps["tab20"].colors
              if np.all(np.abs(plot[..., :3] - colour) < 0.02, axis=-1).sum() > 20]
     assert len(drawn) >= 3  # several affordances' reliability steps, one tab20 colour each
-    second = goalagent(*common, "--env-param", "can=o2", "--env-param", "trials=1",
-                       "--load-beliefs", str(saved), cwd=tmp_path, timeout=600)
-    assert second.returncode == 0, second.stderr
+    second = cli(*common, "--env-param", "can=o2", "--env-param", "trials=1",
+                 "--load-beliefs", str(saved))
+    assert second.exit_code == 0, second.stderr
     assert "robot: terminated" in second.stderr
     table = [line for line in second.stderr.splitlines() if "lift_up" in line]
     assert any("handle" in line and "1.000" in line for line in table), second.stderr

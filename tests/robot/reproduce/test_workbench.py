@@ -390,7 +390,9 @@ def test_shards_merge_into_the_document_of_one_run(tmp_path):
 def test_a_sweep_runs_one_cell_per_combination_with_statistics_and_plots(tmp_path):
     log = tmp_path / "ran.txt"
     grid = parse_grid(TOY, ToyConfig(), ["offset=0,1,2", "choice=plain,doubled"])
-    outcome = sweep(TOY, ToyConfig(log=str(log)), grid, [0, 1, 2], LocalBackend(2),
+    # in this process: a sweep's cells in worker processes are test_workbench_cli.py's sweep
+    # (--jobs 2), and processes giving the same document is tested above
+    outcome = sweep(TOY, ToyConfig(log=str(log)), grid, [0, 1, 2], LocalBackend(1),
                     tmp_path, cache=Cache(tmp_path / "cache"))
     document = read(tmp_path / "toy-run-sweep-offset-choice.json")
     assert [cell.values for cell in document.cells] == [

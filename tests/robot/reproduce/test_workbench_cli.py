@@ -28,7 +28,8 @@ def cache(tmp_path_factory) -> Path:
 
 
 def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
-    result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--jobs", "2",
+    # --jobs 1: this process (the sweep below takes the command's --jobs 2 path)
+    result = cli("reproduce", "xcs-mux", "--quick", "--set", "N=400", "--jobs", "1",
                  "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
     document = json.loads((tmp_path / "xcs-mux.json").read_text())

@@ -42,10 +42,13 @@ def _document(folder: Path, name: str) -> dict:
 
 @pytest.fixture(scope="module")
 def local(tmp_path_factory) -> dict:
-    """xcs-mux at its quick size with N = 400, seeds 0-2, on local processes."""
+    """xcs-mux at its quick size with N = 400, seeds 0-2, run here (--jobs 1: this process;
+    local processes give the same document, test_workbench.py's
+    test_parallel_processes_give_the_same_document_but_for_the_seconds, and two spawned
+    workers would only add their start-up)."""
     out = tmp_path_factory.mktemp("local")
     result = CliRunner().invoke(APP, ["reproduce", "xcs-mux", "--quick", "--set", "N=400",
-                                      "--seeds", "3", "--jobs", "2", "--out", str(out),
+                                      "--seeds", "3", "--jobs", "1", "--out", str(out),
                                       "--fresh", "--cache", str(out / "cache")])
     assert result.exit_code == 0, result.stderr
     return _document(out, "xcs-mux")
