@@ -195,19 +195,31 @@ class DropResult:
     blocked: bool
 
 
+def _handle_top(world: GarbageWorld) -> float:
+    """World height (m) of the top of the can's handle, -inf for a can without one: a
+    handle high on the front face, lifted far, stands over the rim in the ball's way."""
+    if "handle" not in world.parts:
+        return -math.inf
+    m, d = world.model, world.data
+    body = m.body("handle").id
+    return max(float(d.geom_xpos[g][2] + np.abs(d.geom_xmat[g].reshape(3, 3)[2]) @ m.geom_size[g])
+               for g in range(m.ngeom) if m.geom_bodyid[g] == body)
+
+
 def drop_ball(world: GarbageWorld) -> DropResult:
     """Carry the held ball into the can's opening and let go.
 
     The hand slides the ball in just above the rim, at the stretch of the front edge the lid
     leaves most open (``GarbageWorld.free_rim_y``: the middle for a lid that lifts, the
-    uncovered side for one that slides away); the move is guarded, so a closed (or not open
-    enough) lid stops the ball at the can and it is dropped there, outside. Without a ball in
-    hand nothing moves (neither landed nor blocked).
+    uncovered side for one that slides away), or just above a handle that a lift left
+    standing over the rim; the move is guarded, so a closed (or not open enough) lid stops
+    the ball at the can and it is dropped there, outside. Without a ball in hand nothing
+    moves (neither landed nor blocked).
     """
     if not world.state().holding_ball:
         return DropResult(landed=False, blocked=False)
     y = world.free_rim_y()
-    z = world.spec.rim + BALL_RADIUS + 0.006
+    z = max(world.spec.rim, _handle_top(world)) + BALL_RADIUS + 0.006
     inside = np.array([WALL + BALL_RADIUS + 0.006 - GRIP_OFFSET, y, z])
     outside = np.array([CLEAR_X + 0.04 - GRIP_OFFSET, y, z])
     world.move_arm_to(outside)

@@ -81,7 +81,13 @@ class TransferLearner(PartBasedLearner):
     ``other_parts``, whether to go on past the look-alike of the source's functional part
     (lines 24-31: one try per action on the other look-alike parts, then Algorithm 4 on the
     novel ones). False stops after line 23 and leaves those parts to the caller: an agent
-    that learns them a pair at a time, in its own order (issue 32).
+    that learns them a pair at a time, in its own order (issue 32). ``first_pair``, a
+    (part, action) pair that lines 17-23 check before the other actions when they work on
+    its part (Algorithm 6 leaves their order open; None: the order of the action types):
+    the pair an agent asked about, the one its random learning would have tried first, so
+    that transfer never tries it later than random learning would (issue 32: a lid sliding
+    right after o1 took 5 or 6 exploratory actions where random learning, drawing the
+    sweep first, took 4).
 
     After ``fit(obj)``, besides PartBasedLearner's attributes: ``candidates_`` (Algorithm 5's
     ranking), ``source_`` (the source's name or None), ``similar_parts_`` (Ψ_sim) and
@@ -92,7 +98,7 @@ class TransferLearner(PartBasedLearner):
         **PartBasedLearner._parameter_constraints,
         "database": "no_validation",  # any iterable of KnownObject: checked in fit
         "consistency_tol": [POSITIVE], "n_neighbors": [POSITIVE_INT], "stop_at_goal": ["boolean"],
-        "other_parts": ["boolean"],
+        "other_parts": ["boolean"], "first_pair": [tuple, None],
         "max_distance": [POSITIVE, None], "weights": ["array-like", None],
     }
 
@@ -102,7 +108,7 @@ class TransferLearner(PartBasedLearner):
                  consistency_tol: float = 0.01, n_neighbors: int = 3,
                  max_distance: float = 1.0, weights: Sequence[float] = DEFAULT_WEIGHTS,
                  aim: str = "goal_plus_delta1", stop_at_goal: bool = True,
-                 other_parts: bool = True,
+                 other_parts: bool = True, first_pair: tuple[str, str] | None = None,
                  random_state: int | np.random.RandomState | None = None) -> None:
         super().__init__(n=n, n_min=n_min, settle_tol=settle_tol,
                          min_displacement=min_displacement, goal=goal, delta1=delta1,
@@ -110,6 +116,7 @@ class TransferLearner(PartBasedLearner):
                          random_state=random_state)
         self.stop_at_goal = stop_at_goal
         self.other_parts = other_parts
+        self.first_pair = first_pair
         self.database = database
         self.consistency_tol = consistency_tol
         self.n_neighbors = n_neighbors
@@ -153,7 +160,8 @@ class TransferLearner(PartBasedLearner):
         self.similar_parts_.append(part)
         if self._exploit_source(session, known, rehearsal, part):
             return "direct" if len(session.trials) == 1 else "gradient"
-        others = [a for a in session.bounds if a != action]
+        others = sorted((a for a in session.bounds if a != action),
+                        key=lambda a: (part, a) != self.first_pair)  # stable: the rest in order
         if self._check_consistency(session, known, rehearsal.part, part, others):
             return "other_action"
         if not self.other_parts:

@@ -76,8 +76,10 @@ class AffordanceRequests:
                        lambda: self._learn_pair_by_transfer(part, action_type, effect))
         else:
             whole = len(asked) == 2
+            first = None if whole else (asked[0], asked[1])
             self._once((effect, mode), events,
-                       lambda: self._learn_by_transfer(effect, other_parts=whole))
+                       lambda: self._learn_by_transfer(effect, other_parts=whole,
+                                                       first_pair=first))
         return events
 
     def apply(self, part: str, action_type: str) -> list[PerceptLike]:
@@ -135,14 +137,17 @@ class AffordanceRequests:
         self._tell_where("known objects", self.objects.path)
         return self._report_pairs([report])
 
-    def _learn_by_transfer(self, effect: str, other_parts: bool) -> list[PerceptLike]:
+    def _learn_by_transfer(self, effect: str, other_parts: bool,
+                           first_pair: tuple[str, str] | None) -> list[PerceptLike]:
         """Algorithm 6 on this can (past the source's functional part only if
-        ``other_parts``); afford/model percepts for every pair tried (§5.5.4), and
+        ``other_parts``; the pair the agent asked about checked first of the other actions
+        if it is on the part transfer works on); afford/model percepts for every pair tried
+        (§5.5.4), and
         ``transferred(Eff, Source)`` (``none``: no known object was relevant, so it was
         Algorithm 4 on every pair)."""
         result = learn_by_transfer(self.world, self.perception, self.objects, delta=self.delta,
                                    effect_name=effect, random_state=self._transfer_rng,
-                                   other_parts=other_parts)
+                                   other_parts=other_parts, first_pair=first_pair)
         self._transferred = result.known
         self._tell_where("known objects", self.objects.path)
         source = result.learner.source_

@@ -16,9 +16,10 @@ from behaviours.skills import (
     grasp_ball,
     perform_skill,
 )
-from sim.canfile import find_can
+from sim.canfile import find_can, parse_can
 from sim.scene import WALL
 from sim.world import CANS, GarbageWorld
+from tests.can_files import HIGH_STEEP_HANDLE
 
 GOAL = 0.1
 """Thesis goal width (m)."""
@@ -157,6 +158,18 @@ def test_ball_goes_in_only_when_the_can_is_open(world: GarbageWorld, can: str) -
     s = world.state()
     assert s.ball_in_can and not s.holding_ball
     assert not ball_within_reach(world)
+
+
+def test_the_ball_is_carried_over_a_handle_lifted_above_the_rim(world: GarbageWorld) -> None:
+    """A handle high on the front, lifted the whole 0.1 m, stands over the rim where the
+    ball goes in: the ball is carried over it and lands (it was stopped there, issue 32)."""
+    world.reset(parse_can(HIGH_STEEP_HANDLE, "high_lift.yaml"), seed=0)
+    assert grasp_ball(world)
+    assert perform_skill(world, "lift_up", "handle", 0.1).opening_after > GOAL
+    handle = world.model.geom("marker_handle").id
+    top = world.data.geom_xpos[handle][2] + world.model.geom_size[handle][2]
+    assert top > world.spec.rim + 0.02  # the bar stands in the ball's way over the rim
+    assert drop_ball(world) == DropResult(landed=True, blocked=False)
 
 
 def test_a_sliding_lid_uncovers_one_side_of_the_rim(world: GarbageWorld) -> None:
