@@ -141,6 +141,8 @@ class SystemBuilding:
                        if mas.environment else None)
         if environment is not None:
             environment.home = Path(path).parent
+            if mas.environment.lower().endswith(".jar"):
+                environment.jar = environment.home / mas.environment
         system = cls(environment, seed=seed, output=output, tracer=tracer, warn=warn,
                      listeners=listeners, limits=limits, max_agents=max_agents)
         system._programs.update(programs)

@@ -107,6 +107,9 @@ class Environment(EntityRelations):
         # named by an init parameter is looked for first: GOAL looks next to the
         # environment's jar, which sits beside the .mas2g. None: the working directory.
         self.home: Path | None = None
+        # The environment jar a .mas2g names (resolved against its folder), where it names
+        # one: the Java environment may keep its own data beside it (BW4T 2's server maps).
+        self.jar: Path | None = None
 
     # ---- hooks for subclasses ------------------------------------------------------------
 

@@ -15,6 +15,7 @@ nothing (``pickUp`` of a block out of reach) the agent is told why instead.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from pathlib import Path
 
 from goalagent.eis.envs.bw4t.mapfile import colour_name, load_map
 from goalagent.eis.envs.bw4t.render import draw_world
@@ -93,7 +94,8 @@ class BW4T(PythonEnvironment):
         version = _version(self.version)
         self.filter = PerceptFilter(legacy=version < (3, 9))
         self.closest_block_only = version < (3, 8, 4)
-        self.world = World(load_map(self.map_name), seed, bots, humans, collision)
+        self.world = World(load_map(self.map_name, self._map_folders()), seed, bots, humans,
+                           collision)
         self.robots = {robot.name: robot for robot in self.world.robots}
         self.clock = RoundClock()
         self.inbox: dict[str, list[tuple[str, str]]] = {name: [] for name in self.robots}
@@ -102,6 +104,15 @@ class BW4T(PythonEnvironment):
         if folder is not None:
             folder = text_param(self.name, params, "snapshots", "")
             self.snapshots = SnapshotWriter(folder, "bw4t")
+
+    def _map_folders(self) -> list[Path]:
+        """Where a map named by a relative path is looked for before the shipped maps: the
+        system's folder, then where BW4T 2's server, in ``BW4TServer`` beside the client jar
+        the system names, keeps its maps (``maps/big12``)."""
+        folders = [] if self.home is None else [self.home]
+        if self.jar is not None:
+            folders += [self.jar.parent / "BW4TServer" / "maps", self.jar.parent / "maps"]
+        return folders
 
     def initial_entities(self) -> dict[str, str]:
         """One entity per robot, typed ``bot`` or ``human``."""

@@ -30,6 +30,7 @@ and says so with the map's name and the zone concerned.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ElementTree
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -210,11 +211,14 @@ def shipped_maps() -> list[str]:
     return sorted(path.stem for path in MAPS_DIR.glob("*.map"))
 
 
-def load_map(spec: str) -> MapSpec:
-    """A map by file path, or by the name of a shipped map (``TwoRooms``, ``TwoRooms.map``;
-    BW4T's standard maps ``Random``, ``Banana``, ... also under the path a BW4T setup keeps
-    them at, ``environments/maps/Random``, and as ``random``)."""
+def load_map(spec: str, folders: Sequence[Path] = ()) -> MapSpec:
+    """A map by file path (relative: in the working directory, then in ``folders``), or by
+    the name of a shipped map (``TwoRooms``, ``TwoRooms.map``; BW4T's standard maps
+    ``Random``, ``Banana``, ... also under the path a BW4T setup keeps them at,
+    ``environments/maps/Random``, and as ``random``)."""
     path = Path(spec)
+    if not path.is_file() and not path.is_absolute():
+        path = next((folder / spec for folder in folders if (folder / spec).is_file()), path)
     if not path.is_file():
         name = path.name.removesuffix(".map").casefold()
         # by its name in any case, as BW4T on the Windows file systems of its users found it
