@@ -137,9 +137,9 @@ class SystemBuilding:
         params: dict[str, Term | ParameterText] = {
             key: get_engine().parse_term(value.text) for key, value in mas.env_init}
         params.update(env_params or {})
-        environment = (make_environment(mas.environment, mas.env_pos or mas.pos)
-                       if mas.environment else None)
-        if environment is not None:
+        environment = None
+        if mas.environment:
+            environment = make_environment(mas.environment, mas.env_pos or mas.pos)
             environment.home = Path(path).parent
             if mas.environment.lower().endswith(".jar"):
                 environment.jar = environment.home / mas.environment
