@@ -40,4 +40,8 @@ if [ "$FOR_TESTS" -eq 1 ]; then
 else
     .venv/bin/python -m pip install -q -e ".[robot]"
 fi
+# An editable install leaves our own modules uncompiled, and where PYTHONDONTWRITEBYTECODE is
+# set (as in many CI images) every Python process compiles them again when it starts: compile
+# them once here, as pip does for what it installs (a file changed since is recompiled).
+.venv/bin/python -m compileall -q goalagent behaviours robot sim ondisk >/dev/null
 echo "setup: done (.venv ready, swipl $(swipl --version | awk '{print $3}'))"
