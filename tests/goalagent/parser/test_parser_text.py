@@ -1,6 +1,6 @@
-"""Parser tests, second part: comments, Prolog text kept exactly, positions, broken programs
-reported at the exact ``file:line:col``, the corpora and `.mas2g` files (the first part,
-``test_parser.py``, covers the constructs of the language)."""
+"""Parser tests: comments, Prolog text kept exactly, positions, broken programs reported at
+the exact ``file:line:col``, the corpora and `.mas2g` files (``test_parser.py`` and
+``test_parser_rules.py`` cover the constructs of the language; helpers in ``shapes.py``)."""
 
 from __future__ import annotations
 
@@ -18,6 +18,8 @@ from goalagent.parser import (
     parse_mas_file,
 )
 
+from .shapes import main_rules, one_rule, squash
+
 ROOT = Path(__file__).resolve().parents[3]
 EXAMPLES = ROOT / "agents" / "examples"
 CORPUS = Path(__file__).resolve().parents[2] / "agents"
@@ -29,25 +31,6 @@ EXAMPLE_SYSTEMS = sorted(EXAMPLES.glob("*.mas2g"))
 
 
 # ----------------------------------------------------------------------------- helpers
-
-
-def squash(text: str) -> str:
-    """Prolog text without white space, to compare fragments independent of layout."""
-    return re.sub(r"\s+", "", text)
-
-
-def main_rules(program: ast.AgentProgram) -> tuple[ast.Rule, ...]:
-    """The rules of the main module (which must exist)."""
-    main = program.module("main")
-    assert main is not None, "no main module"
-    return main.rules
-
-
-def one_rule(body: str) -> ast.Rule:
-    """The single rule of a main module whose program section is ``body``."""
-    rules = main_rules(parse_agent(f"main module {{ program {{ {body} }} }}"))
-    assert len(rules) == 1
-    return rules[0]
 
 
 def expected_position(path: Path) -> tuple[int, int | None]:
