@@ -86,10 +86,10 @@ class RenderedWorld:
     def settle(self, max_steps: int | None = None, calm_speed: float = 2e-3) -> None:
         """Step until every joint is (nearly) at rest for 20 steps, or ``max_steps`` passed
         (default ``settle_steps``)."""
-        calm = 0
+        calm, velocity = 0, self.data.qvel  # a view: every step updates it
         for _ in range(self.settle_steps if max_steps is None else max_steps):
             self.step()
-            calm = calm + 1 if float(np.max(np.abs(self.data.qvel))) < calm_speed else 0
+            calm = calm + 1 if float(np.abs(velocity).max()) < calm_speed else 0
             if calm >= 20:
                 return
 

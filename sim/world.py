@@ -49,6 +49,8 @@ ARM_SPEED = 0.4
 """Speed (m/s) of the arm's set-point along a straight-line move."""
 ARRIVE_TOL = 1.5e-3
 """Distance (m) from the set-point at which the hand counts as arrived."""
+CAN_PARTS = ("can_body", "lid", "lid_tab", "handle", "pedal")
+"""The bodies a can may have (a sliding lid's tab, a handle, a pedal only on some cans)."""
 
 
 @dataclass(frozen=True)
@@ -112,6 +114,7 @@ class GarbageWorld(HandHold, Recording, RenderedWorld):
         self._hand_dadr = [m.jnt_dofadr[m.joint(f"arm_{a}").id] for a in "xyz"]
         self._ball_body = m.body("ball").id
         self._hand_body = m.body("hand").id
+        self._can_bodies = np.array([m.body(n).id for n in CAN_PARTS if _has_body(m, n)])
         self.steps = 0
         mujoco.mj_forward(m, d)
         self._restart_recording_clock()
@@ -180,18 +183,22 @@ class GarbageWorld(HandHold, Recording, RenderedWorld):
         start = self.setpoint
         step_len = ARM_SPEED * self.model.opt.timestep
         n = max(1, math.ceil(np.linalg.norm(target - start) / step_len))
-        home = np.asarray(HOME)
+        home, way = np.asarray(HOME), target - start
         for i in range(1, n + 1):
-            self.data.ctrl[:3] = start + (target - start) * (i / n) - home
+            self.data.ctrl[:3] = start + way * (i / n) - home
             self.step()
             if stop_if is not None and stop_if():
                 self.data.ctrl[:3] = self.effector_pos - home
                 self.settle(300)
                 return False
+        # up to 400 steps of waiting, each checked: the hand's position is read as a view that
+        # every step updates, and its distance is np.linalg.norm's own sqrt(x . x), spelled out
+        hand, velocity = self.data.xpos[self._hand_body], self.data.qvel
         for _ in range(400):
             self.step()
-            if (np.linalg.norm(self.effector_pos - target) < ARRIVE_TOL
-                    and float(np.max(np.abs(self.data.qvel[self._hand_dadr]))) < 1e-2):
+            gap = hand - target
+            if (math.sqrt(gap.dot(gap)) < ARRIVE_TOL
+                    and float(np.abs(velocity[self._hand_dadr]).max()) < 1e-2):
                 break
         return bool(np.linalg.norm(self.effector_pos - target) < 3 * ARRIVE_TOL)
 
@@ -253,15 +260,12 @@ class GarbageWorld(HandHold, Recording, RenderedWorld):
     def ball_touches_can(self) -> bool:
         """True if the ball currently touches the can: its body, lid (or a sliding lid's tab),
         handle or pedal."""
-        m, d = self.model, self.data
-        can_bodies = {m.body(n).id for n in ("can_body", "lid", "lid_tab", "handle", "pedal")
-                      if _has_body(m, n)}
-        for c in d.contact[: d.ncon]:
-            b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
-            if (b1 == self._ball_body and b2 in can_bodies) or (
-                    b2 == self._ball_body and b1 in can_bodies):
-                return True
-        return False
+        # checked after every physics step of a drop, so the contacts are read as arrays:
+        # row k is the two bodies of contact k; a hit is the ball on one side, a can part on
+        # the other (the columns swapped lines each body up with its partner)
+        bodies = self.model.geom_bodyid[self.data.contact.geom[: self.data.ncon]]
+        touching = (bodies == self._ball_body) & np.isin(bodies[:, ::-1], self._can_bodies)
+        return bool(touching.any())
 
     # ------------------------------------------------------------------ truth
     def opening(self) -> float:
