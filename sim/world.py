@@ -183,9 +183,11 @@ class GarbageWorld(HandHold, Recording, RenderedWorld):
         start = self.setpoint
         step_len = ARM_SPEED * self.model.opt.timestep
         n = max(1, math.ceil(np.linalg.norm(target - start) / step_len))
-        home, way = np.asarray(HOME), target - start
-        for i in range(1, n + 1):
-            self.data.ctrl[:3] = start + way * (i / n) - home
+        # the whole ramp at once, element for element the sum start + (target - start)·i/n
+        home = np.asarray(HOME)
+        ramp = start + (target - start) * (np.arange(1, n + 1) / n)[:, None] - home
+        for setpoint in ramp:
+            self.data.ctrl[:3] = setpoint
             self.step()
             if stop_if is not None and stop_if():
                 self.data.ctrl[:3] = self.effector_pos - home
