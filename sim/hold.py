@@ -51,7 +51,8 @@ class HandHold:
             return
         eq, body, (lo, hi) = self._sliding
         local = self.data.xmat[body].reshape(3, 3).T @ (self.effector_pos - self.data.xpos[body])
-        self.model.eq_data[eq, 4:6] = np.clip(local[1:], lo, hi)
+        # np.clip's own two ufuncs, called directly: this runs before every physics step
+        self.model.eq_data[eq, 4:6] = np.minimum(np.maximum(local[1:], lo), hi)
 
     @property
     def held_part(self) -> str | None:
