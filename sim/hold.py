@@ -21,8 +21,10 @@ SLIDING_SOLREF = (-44000.0, -2.0)
 ball joint's (timeconst 0.005 s) but nearly undamped, since the damping would also act along
 the face and drag the sliding hand (moved ~2 mm of a 1 cm step instead of ~8 mm)."""
 
-SlidingHold = tuple[int, int, tuple[np.ndarray, np.ndarray]]
-"""A sliding hold: its equality's id, the held body's id, the (y, z) bounds of its face."""
+SlidingHold = tuple[int, np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]
+"""A sliding hold: its equality's id, the held body's frame (the transpose of its rotation
+matrix and its origin, views of the data that every physics step updates) and the (y, z)
+bounds of its face."""
 
 
 class HandHold:
@@ -49,8 +51,8 @@ class HandHold:
         hand is (its depth stays)."""
         if self._sliding is None:
             return
-        eq, body, (lo, hi) = self._sliding
-        local = self.data.xmat[body].reshape(3, 3).T @ (self.effector_pos - self.data.xpos[body])
+        eq, rotation_t, origin, (lo, hi) = self._sliding
+        local = rotation_t @ (self.effector_pos - origin)
         # np.clip's own two ufuncs, called directly: this runs before every physics step
         self.model.eq_data[eq, 4:6] = np.minimum(np.maximum(local[1:], lo), hi)
 
@@ -87,7 +89,8 @@ class HandHold:
         m.eq_data[eq, 3:6] = d.xmat[body].reshape(3, 3).T @ offset  # ... where it is on the part
         m.eq_solref[eq] = SLIDING_SOLREF if sliding else HOLD_SOLREF
         d.eq_active[eq] = 1
-        self._sliding = (eq, body, _face_extent(m, body)) if sliding else None
+        self._sliding = ((eq, d.xmat[body].reshape(3, 3).T, d.xpos[body], _face_extent(m, body))
+                         if sliding else None)
         self.relax()
 
     def release(self) -> None:
