@@ -24,7 +24,7 @@ from robot.reproduce.framework.provenance import Provenance
 from robot.reproduce.framework.runner import Tally, command_line, run_tasks
 from robot.reproduce.framework.settings import SettingError
 from robot.reproduce.framework.statistics import summarize
-from robot.reproduce.framework.study import Study, StudyConfig
+from robot.reproduce.framework.study import Metric, SeedResult, Study, StudyConfig
 from robot.reproduce.framework.tasks import SCHEMA_VERSION, Task
 
 HEADLINE_DEFAULT = 4
@@ -108,8 +108,12 @@ def write_sweep(study: Study, document: SweepDocument, out: Path) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     name = stem(study, list(document.grid))
     keys = headline(study, document)
+    # each cell's metrics and typed seed results, made once for all the plots
+    measured = [(study.metrics(study.config.model_validate(cell.config)),
+                 [study.result.model_validate(record.result) for record in cell.seeds])
+                for cell in document.cells]
     files = [write_atomically(out / f"{name}-{key.replace('.', '-')}.png",
-                              _plot(study, document, key)) for key in keys]
+                              _plot(study, document, key, measured)) for key in keys]
     base = study.config.model_validate(document.config)
     page = sweep_page(study, document, keys, [path.name for path in files], base)
     files.append(write_atomically(out / f"{name}.md", page.encode()))
@@ -117,20 +121,21 @@ def write_sweep(study: Study, document: SweepDocument, out: Path) -> list[Path]:
     return files
 
 
-def _plot(study: Study, document: SweepDocument, key: str) -> bytes:
-    """``key`` against the grid's first parameter, one line per value of the others."""
+def _plot(study: Study, document: SweepDocument, key: str,
+          measured: Sequence[tuple[Sequence[Metric], Sequence[SeedResult]]]) -> bytes:
+    """``key`` against the grid's first parameter, one line per value of the others;
+    ``measured`` holds each cell's metrics and typed seed results, in the cells' order."""
     first, *others = document.grid
     values = document.grid[first]
     lines = []
     for rest in itertools.product(*(document.grid[other] for other in others)):
         fixed = dict(zip(others, rest, strict=True))
-        chosen = [cell for cell in document.cells
+        chosen = [(cell, metrics, results)
+                  for cell, (metrics, results) in zip(document.cells, measured, strict=True)
                   if all(cell.values[k] == v for k, v in fixed.items())]
         points, means, intervals = [], [], []
-        for cell in chosen:
-            metric = next(m for m in study.metrics(study.config.model_validate(cell.config))
-                          if m.key == key)
-            results = [study.result.model_validate(r.result) for r in cell.seeds]
+        for cell, metrics, results in chosen:
+            metric = next(m for m in metrics if m.key == key)
             points.append([float(v) for v in map(metric.value, results) if v is not None])
             row = next(row for row in cell.summary.metrics if row.key == key)
             means.append(row.mean)
