@@ -28,9 +28,10 @@ BOOTSTRAP_RESAMPLES = 10_000
 PERMUTATIONS = 2 ** 16
 """Sign patterns of the permutation test: all of them up to 16 seeds."""
 PERMUTATION_BATCH = 2 ** 12
-"""Sign patterns scipy draws and averages at a time: a divisor of PERMUTATIONS, so the random
+"""Sign patterns scipy draws and averages at a time. A divisor of PERMUTATIONS, so the random
 patterns (each batch drawn on from the same generator) and the p-values are those of one
-batch, in a third of the time (the arrays stay in the processor's cache)."""
+whole batch; the smaller arrays make a test of 20 or 30 seeds about three times faster and
+one of 16 (exact) 40% faster."""
 
 
 class Frozen(BaseModel):
