@@ -50,19 +50,28 @@ main module [exit=nogoals] { program {
 """
 
 
-def _run_with_counter(tmp_path: Path, knowledge: str, rule: str) -> subprocess.CompletedProcess:
-    (tmp_path / "atk.goal").write_text(
-        f"init module {{ knowledge {{ spin(N) :- N1 is N + 1, spin(N1). {knowledge} }} }}\n"
-        f"main module [exit=always] {{ program {{\n{rule}\nif true then print(after). }} }}\n")
+def _attacker(knowledge: str, rule: str, after: str = "after") -> str:
+    """An agent knowing spin/1 and ``knowledge`` that tries ``rule``, then prints ``after``."""
+    return (f"init module {{ knowledge {{ spin(N) :- N1 is N + 1, spin(N1). {knowledge} }} }}\n"
+            f"main module [exit=always] {{ program {{\n{rule}\n"
+            f"if true then print({after}). }} }}\n")
+
+
+def _run_with_counter(tmp_path: Path, programs: dict[str, str]) -> subprocess.CompletedProcess:
+    """``goalagent run`` of one agent per program (NAME.goal) and the counter, with small
+    limits, in a child process with a timeout."""
+    for name, program in programs.items():
+        (tmp_path / f"{name}.goal").write_text(program)
     (tmp_path / "counter.goal").write_text(COUNTER)
-    (tmp_path / "s.mas2g").write_text('agentfiles { "atk.goal". "counter.goal". }\n')
+    files = " ".join(f'"{name}.goal".' for name in [*programs, "counter"])
+    (tmp_path / "s.mas2g").write_text(f"agentfiles {{ {files} }}\n")
     return subprocess.run([sys.executable, "-m", "goalagent", "run", str(tmp_path / "s.mas2g"),
-                           "--max-inferences", "200000", "--max-query-seconds", "1"],
+                           "--max-inferences", "200000", "--max-query-seconds", "0.5"],
                           capture_output=True, text=True, timeout=60,
                           stdin=subprocess.DEVNULL)
 
 
-@pytest.mark.parametrize("knowledge, rule", [
+RUNAWAYS = [
     # a catch-all whose recovery runs the runaway again: each limit (and abort) was caught
     ("st :- catch(spin(0), _, st).", "if bel(st) then print(never)."),
     ("st :- catch_with_backtrace(sleep(100), _, st).", "if bel(st) then print(never)."),
@@ -75,13 +84,36 @@ def _run_with_counter(tmp_path: Path, knowledge: str, rule: str) -> subprocess.C
     ("", "if bel(setup_call_cleanup(true, true, (repeat, sleep(0.1), fail))) then print(never)."),
     ("st :- catch(sleep(100), _, true), st.",
      "if bel(setup_call_cleanup(true, fail, st)) then print(never)."),
-])
-def test_runaway_recovery_or_cleanup_ends_with_its_rule(tmp_path: Path, knowledge: str, rule: str):
-    result = _run_with_counter(tmp_path, knowledge, rule)
+    ("", "if bel(call_cleanup(spin(0), _, spin(0))) then print(never)."),  # call_cleanup/3
+]
+
+
+@pytest.fixture(scope="module")
+def runaways(tmp_path_factory: pytest.TempPathFactory) -> subprocess.CompletedProcess:
+    """One run of agent atkI for each case I of RUNAWAYS (printing afterI when its rule has
+    ended) and of agent cyclic, which sends a cyclic list, beside the counter: a regression
+    of any of them fails this run, which has a timeout, never the suite."""
+    programs = {f"atk{index}": _attacker(knowledge, rule, f"after{index}")
+                for index, (knowledge, rule) in enumerate(RUNAWAYS)}
+    programs["cyclic"] = _attacker("", "if bel(X = [a|X]) then counter.send(X).")
+    return _run_with_counter(tmp_path_factory.mktemp("runaways"), programs)
+
+
+def _ended_with_its_rule(result: subprocess.CompletedProcess, index: int) -> None:
+    """Agent atkI's rule (line 3) was ended as not applicable, and the agent went on; the
+    counter finished."""
     assert "Traceback" not in result.stderr
-    assert "atk.goal:3:1:" in result.stderr and "the rule is not applicable" in result.stderr
-    assert "after" in result.stdout
+    assert any(f"atk{index}.goal:3:1:" in line and "the rule is not applicable" in line
+               for line in result.stderr.splitlines()), result.stderr
     assert "counter: terminated after 5 cycles" in result.stderr
+
+
+@pytest.mark.parametrize("knowledge, rule", RUNAWAYS[:-1])
+def test_runaway_recovery_or_cleanup_ends_with_its_rule(runaways: subprocess.CompletedProcess,
+                                                       knowledge: str, rule: str):
+    index = RUNAWAYS.index((knowledge, rule))
+    _ended_with_its_rule(runaways, index)
+    assert f"after{index}" in runaways.stdout.split()
 
 
 def test_cleanup_still_runs_when_its_goal_ends_without_an_exception():
@@ -190,12 +222,12 @@ def test_an_error_carrying_a_huge_or_cyclic_term_is_a_short_warning(thrown: str,
     assert len(warnings) == 1 and says in warnings[0] and len(warnings[0]) < 1300, warnings
 
 
-def test_sending_a_cyclic_list_stops_that_agent_not_the_process(tmp_path: Path):
+def test_sending_a_cyclic_list_stops_that_agent_not_the_process(
+        runaways: subprocess.CompletedProcess):
     # converting it for Python never ended (a cyclic list has no end), past every limit
-    result = _run_with_counter(tmp_path, "", "if bel(X = [a|X]) then counter.send(X).")
-    assert "Traceback" not in result.stderr
-    assert "error: agent atk failed: cannot pass a cyclic term" in result.stderr
-    assert "counter: terminated after 5 cycles" in result.stderr
+    assert "Traceback" not in runaways.stderr
+    assert "error: agent cyclic failed: cannot pass a cyclic term" in runaways.stderr
+    assert "counter: terminated after 5 cycles" in runaways.stderr
 
 
 def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
@@ -216,7 +248,7 @@ def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
     "if bel(X = ga_limit(time(1)), throw(X)) then print(x).",
 ])
 def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: str):
-    result = _run_with_counter(tmp_path, "", rule)
+    result = _run_with_counter(tmp_path, {"atk": _attacker("", rule)})
     assert result.returncode in (0, 2), result.stderr  # 2: refused when loading
     assert "this exception is the runtime's" in result.stderr
     assert "interrupted" not in result.stderr
@@ -322,11 +354,9 @@ def test_process_wide_built_ins_are_refused(rules: str, says: str, sandbox: bool
     _untouched()
 
 
-def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(tmp_path: Path):
-    result = _run_with_counter(tmp_path, "", "if bel(call_cleanup(spin(0), _, spin(0))) "
-                                             "then print(never).")
-    assert "atk.goal:3:1:" in result.stderr and "the rule is not applicable" in result.stderr
-    assert "counter: terminated after 5 cycles" in result.stderr
+def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(
+        runaways: subprocess.CompletedProcess):
+    _ended_with_its_rule(runaways, len(RUNAWAYS) - 1)
 
 
 def test_global_variables_flags_and_records_are_each_agent_s_own():

@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -25,18 +23,12 @@ from goalagent.cli import create_app
 from goalagent.console import printable
 from robot.extension import EXTENSION
 from sim.canfile import MAX_CAN_BYTES, CanFileError, load_can
+from tests.measured import goalagent_measured_each
 
-ROOT = Path(__file__).resolve().parents[2]
 APP = create_app([EXTENSION])
 GOOD_CAN = ("name: x\nmechanism: {type: push_lid}\n"
             "dimensions: {width: 0.22, depth: 0.30, height: 0.26}\n"
             "lid: {height: 0.13, marker_z: 0.11}\n")
-
-
-def goalagent(*args: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "goalagent", *args], cwd=ROOT,
-                          capture_output=True, text=True, timeout=timeout,
-                          stdin=subprocess.DEVNULL)
 
 
 def _laughs(levels: int = 9) -> str:
@@ -53,9 +45,9 @@ def _laughs(levels: int = 9) -> str:
 def test_a_yaml_bomb_is_refused_by_snapshot_and_by_the_environment(tmp_path: Path):
     bomb = tmp_path / "bomb.yaml"
     bomb.write_text(_laughs())
-    for args in (("snapshot", "--can", str(bomb), "--out", str(tmp_path / "f.png")),
-                 ("run", "agents/garbage_disposal.mas2g", "--env-param", f"can={bomb}")):
-        result = goalagent(*args, timeout=60)
+    for result in goalagent_measured_each(  # in one child: a regression cannot grow this one
+            ["snapshot", "--can", str(bomb), "--out", str(tmp_path / "f.png")],
+            ["run", "agents/garbage_disposal.mas2g", "--env-param", f"can={bomb}"], timeout=60):
         assert result.returncode == 2, result.stderr
         assert f"{bomb}:2:8: an alias (*a): YAML aliases are not accepted" in result.stderr
         assert "Traceback" not in result.stderr

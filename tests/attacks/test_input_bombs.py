@@ -15,7 +15,7 @@ from goalagent.kb.terms import Struct
 from goalagent.parser import GoalSyntaxError, parse_agent, parse_mas
 from goalagent.parser.conditions import MAX_CONDITION_LITERALS, MAX_MACRO_DEPTH
 from goalagent.parser.source import MAX_NESTING, MAX_PROGRAM_BYTES
-from tests.measured import goalagent_measured
+from tests.measured import Measured, goalagent_measured, goalagent_measured_each
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -73,12 +73,26 @@ BOMBS: dict[str, tuple[str, str, str]] = {
 }
 
 
+@pytest.fixture(scope="module")
+def checked(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Path, Measured]]:
+    """``goalagent check`` of each bomb, all in one child (each measured alone): by name,
+    the bomb's path and what the check did."""
+    folder = tmp_path_factory.mktemp("bombs")
+    paths = {}
+    for index, (name, (file, text, _)) in enumerate(BOMBS.items()):
+        paths[name] = folder / str(index) / file
+        paths[name].parent.mkdir()
+        paths[name].write_text(text)
+    results = goalagent_measured_each(*(["check", str(path)] for path in paths.values()))
+    return {name: (path, result)
+            for (name, path), result in zip(paths.items(), results, strict=True)}
+
+
 @pytest.mark.parametrize("name", list(BOMBS))
-def test_each_bomb_is_one_located_error_line_with_exit_2(name: str, tmp_path: Path):
-    file, text, says = BOMBS[name]
-    path = tmp_path / file
-    path.write_text(text)
-    result = goalagent_measured("check", str(path), timeout=120)
+def test_each_bomb_is_one_located_error_line_with_exit_2(
+        name: str, checked: dict[str, tuple[Path, Measured]]):
+    _, _, says = BOMBS[name]
+    path, result = checked[name]
     assert result.returncode == 2, result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1, result.stderr
@@ -93,8 +107,9 @@ def test_a_fifo_or_a_huge_sparse_file_is_refused_before_reading(tmp_path: Path):
     huge = tmp_path / "huge.goal"
     with huge.open("wb") as stream:
         stream.truncate(MAX_PROGRAM_BYTES * 50)
-    for path, says in ((fifo, "a FIFO, not a regular file"), (huge, "larger than")):
-        result = goalagent_measured("check", str(path), timeout=120)
+    results = goalagent_measured_each(["check", str(fifo)], ["check", str(huge)])
+    for path, says, result in ((fifo, "a FIFO, not a regular file", results[0]),
+                               (huge, "larger than", results[1])):
         assert result.returncode == 2
         assert result.stderr.strip() == f"{path}:1:1: cannot read file: " + (
             says if says != "larger than" else
@@ -103,30 +118,42 @@ def test_a_fifo_or_a_huge_sparse_file_is_refused_before_reading(tmp_path: Path):
         assert result.peak_mb < PEAK_MB
 
 
-def test_text_that_is_not_utf8_is_read_as_latin1_as_goal_read_it(tmp_path: Path):
-    path = tmp_path / "latin.goal"
-    path.write_bytes(b"% caf\xe9 au lait\nmain module [exit=always] {\n"
-                     b"  program { if true then print('caf\xe9'). }\n}\n")
-    result = goalagent_measured("run", str(path))
+ACCEPTED = {  # name: an agent file's bytes, which must run to its end
+    "latin1": b"% caf\xe9 au lait\nmain module [exit=always] {\n"
+              b"  program { if true then print('caf\xe9'). }\n}\n",
+    "big": ("init module { beliefs { big(" + "7" * 5000 + "). } }\n"
+            "main module [exit=always] { program {\n"
+            "  if bel(big(B), X is B * 10^5000) then print(X). } }\n").encode(),
+    "huge": b"main module [exit=always] { program {\n"
+            b"  if bel(X is 10^200000) then print(X). } }\n",
+}
+
+
+@pytest.fixture(scope="module")
+def ran(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Measured]:
+    """``goalagent run`` of each ACCEPTED program, all in one child (each measured alone)."""
+    folder = tmp_path_factory.mktemp("accepted")
+    for name, text in ACCEPTED.items():
+        (folder / f"{name}.goal").write_bytes(text)
+    results = goalagent_measured_each(*(["run", str(folder / f"{name}.goal")]
+                                        for name in ACCEPTED))
+    return dict(zip(ACCEPTED, results, strict=True))
+
+
+def test_text_that_is_not_utf8_is_read_as_latin1_as_goal_read_it(ran: dict[str, Measured]):
+    result = ran["latin1"]
     assert result.returncode == 0
     assert result.stdout.strip() == "caf\u00e9"
 
 
-def test_a_huge_integer_is_accepted_and_printed_whole(tmp_path: Path):
-    path = tmp_path / "big.goal"
-    path.write_text("init module { beliefs { big(" + "7" * 5000 + "). } }\n"
-                    "main module [exit=always] { program {\n"
-                    "  if bel(big(B), X is B * 10^5000) then print(X). } }\n")
-    result = goalagent_measured("run", str(path))
+def test_a_huge_integer_is_accepted_and_printed_whole(ran: dict[str, Measured]):
+    result = ran["big"]
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "7" * 5000 + "0" * 5000
 
 
-def test_an_integer_too_long_for_python_is_printed_by_prolog_whole(tmp_path: Path):
-    path = tmp_path / "huge.goal"
-    path.write_text("main module [exit=always] { program {\n"
-                    "  if bel(X is 10^200000) then print(X). } }\n")
-    result = goalagent_measured("run", str(path))
+def test_an_integer_too_long_for_python_is_printed_by_prolog_whole(ran: dict[str, Measured]):
+    result = ran["huge"]
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "1" + "0" * 200000
     assert result.cpu_seconds < 5 and result.peak_mb < 200

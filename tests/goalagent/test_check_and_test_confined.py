@@ -92,10 +92,10 @@ def test_runaway_and_sleeping_conditions_fail_their_own_items(tmp_path: Path):
             do main until bel(n(5)).
         }
     """)
-    report = run_test_file(path, limits=Limits(max_inferences=200_000, max_query_seconds=1.0))
+    report = run_test_file(path, limits=Limits(max_inferences=200_000, max_query_seconds=0.5))
     found = [(v.what, v.pos.line, v.passed, v.detail) for v in report.verdicts]
     inferences = "more than 200,000 inferences (--max-inferences)"
-    slept = "longer than 1.0 s (--max-query-seconds)"
+    slept = "longer than 0.5 s (--max-query-seconds)"
     assert ("do main until ...", 8, False) == found[0][:3] and inferences in found[0][3]
     assert found[1] == ("do main until ...", 9, True, "reached after 2 cycle(s)")
     judged = {(what, passed, inferences in detail or slept in detail)

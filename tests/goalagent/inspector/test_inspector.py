@@ -7,6 +7,7 @@ through the extension seam."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import signal
@@ -42,14 +43,15 @@ main module [exit=nogoals] { program {
 """
 
 
-@pytest.fixture
-def inspected(tmp_path: Path) -> Iterator[tuple[subprocess.Popen, str]]:
-    """``goalagent run counter.goal --inspect --port 0`` and the page's address."""
-    program = tmp_path / "counter.goal"
+@contextlib.contextmanager
+def _inspected_run(folder: Path) -> Iterator[tuple[subprocess.Popen, str]]:
+    """``goalagent run counter.goal --inspect --port 0`` in ``folder`` and the page's
+    address; killed at the end if still running."""
+    program = folder / "counter.goal"
     program.write_text(AGENT)
     process = subprocess.Popen(
         [sys.executable, "-m", "goalagent", "run", str(program), "--inspect", "--port", "0"],
-        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         line = process.stderr.readline()
         match = re.search(r"http://127\.0\.0\.1:(\d+)/\?token=[\w-]+", line)
@@ -62,14 +64,30 @@ def inspected(tmp_path: Path) -> Iterator[tuple[subprocess.Popen, str]]:
 
 
 @pytest.fixture
-def browser(tmp_path: Path) -> Iterator[webdriver.Chrome]:
+def inspected(tmp_path: Path) -> Iterator[tuple[subprocess.Popen, str]]:
+    """A run of its own, for a test that steps and ends it."""
+    with _inspected_run(tmp_path) as run:
+        yield run
+
+
+@pytest.fixture(scope="module")
+def paused(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[subprocess.Popen, str]]:
+    """A run shared by the tests that only look at it or attack it: each leaves it paused
+    before its first cycle (what they check)."""
+    with _inspected_run(tmp_path_factory.mktemp("paused")) as run:
+        yield run
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory: pytest.TempPathFactory) -> Iterator[webdriver.Chrome]:
+    """One Chromium for the module's tests (each opens the pages it needs)."""
     options = webdriver.ChromeOptions()
     options.binary_location = CHROMIUM
     for flag in FLAGS:
         options.add_argument(flag)
     # a name of another site that resolves to this machine, as after a DNS rebinding
     options.add_argument("--host-resolver-rules=MAP rebound.test 127.0.0.1")
-    options.add_argument(f"--user-data-dir={tmp_path / 'chromium-profile'}")
+    options.add_argument(f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}")
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
     try:
         yield driver
@@ -143,8 +161,8 @@ def test_page_steps_breaks_queries_and_scrolls_back(inspected, browser, tmp_path
     assert "counter: terminated after 3 cycles" in err
 
 
-def test_the_inspector_listens_on_this_machine_only_by_default(inspected) -> None:
-    _, url = inspected
+def test_the_inspector_listens_on_this_machine_only_by_default(paused) -> None:
+    _, url = paused
     assert url.startswith("http://127.0.0.1:")
 
 
@@ -194,8 +212,8 @@ def foreign_site(tmp_path: Path) -> Iterator[tuple[Path, str]]:
         thread.join(timeout=10)
 
 
-def test_a_page_of_another_origin_cannot_open_the_socket(inspected, browser, foreign_site):
-    process, url = inspected
+def test_a_page_of_another_origin_cannot_open_the_socket(paused, browser, foreign_site):
+    process, url = paused
     parts = urlsplit(url)
     folder, site = foreign_site
     (folder / "attack.html").write_text(FOREIGN_PAGE.replace("PORT", str(parts.port))
@@ -211,9 +229,9 @@ def test_a_page_of_another_origin_cannot_open_the_socket(inspected, browser, for
     assert process.poll() is None
 
 
-def test_a_page_reached_through_another_host_name_is_refused(inspected, browser):
+def test_a_page_reached_through_another_host_name_is_refused(paused, browser):
     # DNS rebinding: a page of rebound.test whose name now resolves to 127.0.0.1
-    _, url = inspected
+    _, url = paused
     parts = urlsplit(url)
     browser.get(f"http://rebound.test:{parts.port}/?{parts.query}")
     assert "forbidden" in browser.find_element(By.TAG_NAME, "body").text

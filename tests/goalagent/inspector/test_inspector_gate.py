@@ -22,7 +22,7 @@ import pytest
 from websockets.exceptions import InvalidStatus
 from websockets.sync.client import ClientConnection, connect
 
-from goalagent.inspector.gate import BURST, Gate
+from goalagent.inspector.gate import BURST, RATE, Gate
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -78,16 +78,13 @@ def _query(socket: ClientConnection, text: str) -> dict:
     return _reply(socket, json.dumps({"op": "query", "agent": "counter", "text": text}))
 
 
-@pytest.fixture(scope="module", params=[False, True], ids=["plain", "sandbox"])
-def inspected(request, tmp_path_factory: pytest.TempPathFactory) -> Iterator[Inspected]:
-    """One run, plain or sandboxed, shared by the module's tests (a run each took a fifth of
-    the module's time): each test leaves it paused before its first cycle and answering, and
-    the floods end only once its message budget has refilled enough to answer again."""
-    tmp_path = tmp_path_factory.mktemp("inspected")
+@contextlib.contextmanager
+def _inspected_run(tmp_path: Path, sandbox: bool) -> Iterator[Inspected]:
+    """A run of AGENT with --inspect (and --sandbox) in ``tmp_path``, ended with Ctrl-C."""
     (tmp_path / "counter.goal").write_text(AGENT)
     process = subprocess.Popen(
         [sys.executable, "-m", "goalagent", "run", "counter.goal", "--inspect", "--port", "0"]
-        + ["--sandbox"] * request.param, cwd=tmp_path, stdout=subprocess.PIPE,
+        + ["--sandbox"] * sandbox, cwd=tmp_path, stdout=subprocess.PIPE,
         stderr=subprocess.PIPE, text=True, stdin=subprocess.DEVNULL)
     try:
         line = process.stderr.readline()
@@ -99,6 +96,23 @@ def inspected(request, tmp_path_factory: pytest.TempPathFactory) -> Iterator[Ins
             process.send_signal(signal.SIGINT)
         _, err = process.communicate(timeout=60)
         assert "Traceback" not in err, err
+
+
+@pytest.fixture(scope="module", params=[False, True], ids=["plain", "sandbox"])
+def inspected(request, tmp_path_factory: pytest.TempPathFactory) -> Iterator[Inspected]:
+    """One run, plain or sandboxed, shared by the module's tests (a run each took a fifth of
+    the module's time): each test leaves it paused before its first cycle and answering,
+    with most of its message budget left (the floods have runs of their own)."""
+    with _inspected_run(tmp_path_factory.mktemp("inspected"), request.param) as run:
+        yield run
+
+
+@pytest.fixture(params=[False, True], ids=["plain", "sandbox"])
+def flooded(request, tmp_path: Path) -> Iterator[Inspected]:
+    """A run of its own for a flood, which starts with the run's whole message budget and
+    leaves it spent (refilling it for the next test took BURST / RATE seconds of waiting)."""
+    with _inspected_run(tmp_path, request.param) as run:
+        yield run
 
 
 def test_only_the_right_host_origin_and_token_are_served(inspected: Inspected):
@@ -144,52 +158,68 @@ def test_bad_messages_get_a_json_error(inspected: Inspected):
         assert _query(socket, "bel(count(X))")["answers"] == ["X=0"]  # still answering
 
 
-def test_a_flood_of_messages_leaves_it_responsive(inspected: Inspected):
-    with inspected.socket() as socket:
+def _until_answered(socket: ClientConnection, text: str,
+                    within: float) -> tuple[list[dict], dict]:
+    """The messages received before the answer to the query ``text``, and that answer. The
+    query is sent again whenever a quarter of a second passes without a message: while the
+    socket's or the run's budget is spent it is dropped, with a rate error at most once a
+    second. Fails when no answer came within ``within`` seconds."""
+    query = json.dumps({"op": "query", "agent": "counter", "text": text})
+    received: list[dict] = []
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline:
+        socket.send(query)
+        with contextlib.suppress(TimeoutError):
+            while True:
+                message = json.loads(socket.recv(timeout=0.25))
+                if message["type"] == "answer" and message["query"] == text:
+                    return received, message
+                received.append(message)
+    raise AssertionError(f"no answer to {text} in {within} s")
+
+
+RATE_ERROR = f"too many messages: at most {RATE:g} a second"
+
+
+def test_a_flood_of_messages_leaves_it_responsive(flooded: Inspected):
+    with flooded.socket() as socket:
         for index in range(20000):  # 20,000 breakpoints made it unresponsive
-            socket.send(json.dumps({"op": "break", "text": f"bel(flood({index}))"}))
-        time.sleep(BURST / 30 + 0.5)  # the budget refills
-        started = time.monotonic()
-        with inspected.socket() as other:
-            assert _query(other, "bel(count(X))")["answers"] == ["X=0"]
-        assert time.monotonic() - started < 10
-        errors = []
-        while True:  # what the flood was answered: a few breakpoints, one rate error
-            try:
-                message = json.loads(socket.recv(timeout=2))
-            except TimeoutError:
-                break
-            if message["type"] == "error":
-                errors.append(message["text"])
-            elif message["type"] == "state":
+            socket.send(json.dumps({"op": "break", "text": f"bel(count({index}))"}))
+        ended = time.monotonic()
+        told = {"type": "error", "text": RATE_ERROR}
+        while (message := json.loads(socket.recv(timeout=60))) != told:  # the flood is told
+            if message["type"] == "state":
+                assert len(message["breakpoints"]) <= BURST  # a few breakpoints were taken
+        with flooded.socket() as other:  # a page is answered once the budget has refilled
+            answer = _until_answered(other, "bel(count(X))", within=BURST / RATE + 10)[1]
+            assert answer["answers"] == ["X=0"]
+        assert time.monotonic() - ended < BURST / RATE + 10
+        # what else the flood was answered (all of it comes before this query's answer: the
+        # run thread carries out one socket's commands in their order)
+        received, _ = _until_answered(socket, "bel(count(X))", within=60)
+        for message in received:
+            if message["type"] == "state":
                 assert len(message["breakpoints"]) <= BURST
-        assert errors.count("too many messages: at most 30 a second") >= 1
 
 
-def test_many_pages_flooding_together_get_one_budget(inspected: Inspected):
+def test_many_pages_flooding_together_get_one_budget(flooded: Inspected):
     # each socket kept to its own rate, 15 sockets each sending their burst of queries of
     # 100,000 inferences held the run thread for 35 s (attack round of 2026-11-26): the run
     # takes BURST messages at once from all its pages together, then RATE a second
+    flood = json.dumps({"op": "query", "agent": "counter", "text": "bel(count(X))"})
     with contextlib.ExitStack() as stack:
-        sockets = [stack.enter_context(inspected.socket()) for _ in range(6)]
+        sockets = [stack.enter_context(flooded.socket()) for _ in range(6)]
         started = time.monotonic()
         for socket in sockets:
             for _ in range(BURST):
-                socket.send(json.dumps({"op": "query", "agent": "counter",
-                                        "text": "bel(count(X))"}))
+                socket.send(flood)
         sent = time.monotonic() - started
         answers = 0
-        for socket in sockets:
-            while True:
-                try:
-                    message = json.loads(socket.recv(timeout=1))
-                except TimeoutError:
-                    break
-                answers += message["type"] == "answer"
-        assert 0 < answers <= BURST + 30 * sent + 10, (answers, sent)
-        time.sleep(BURST / 30 + 0.5)  # the run's budget refills
-        with inspected.socket() as other:
-            assert _query(other, "bel(count(X))")["answers"] == ["X=0"]
+        for socket in sockets:  # a page's answers all come before that of its later query
+            received, last = _until_answered(socket, "bel(count(Y))", within=60)
+            assert last["answers"] == ["Y=0"]  # answering again once the budget refilled
+            answers += sum(message["type"] == "answer" for message in received)
+        assert 0 < answers <= BURST + RATE * sent + 10, (answers, sent)
 
 
 @pytest.mark.parametrize("query, says", [

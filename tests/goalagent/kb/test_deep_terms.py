@@ -13,7 +13,7 @@ import textwrap
 from pathlib import Path
 
 from tests.conftest import python
-from tests.measured import goalagent_measured
+from tests.measured import goalagent_measured, goalagent_measured_each
 
 KNOWLEDGE = """
 init module {
@@ -86,12 +86,12 @@ def test_a_deep_term_in_a_condition_is_a_located_warning_and_the_others_go_on(tm
 
 def test_check_takes_the_program_and_refuses_deep_text_located(tmp_path: Path):
     (tmp_path / "deep.goal").write_text(_deep_program())
-    result = goalagent_measured("check", "deep.goal", cwd=tmp_path)
-    assert result.returncode == 0 and "error" not in result.stdout + result.stderr, result
     (tmp_path / "text.goal").write_text("init module { beliefs { t(" + "f(" * 100_000 + "z"
                                         + ")" * 100_000 + "). } }\n")
-    for command in ("check", "run"):
-        result = goalagent_measured(command, "text.goal", cwd=tmp_path)
+    result, *refused = goalagent_measured_each(  # one child: none of them runs agent code
+        ["check", "deep.goal"], ["check", "text.goal"], ["run", "text.goal"], cwd=tmp_path)
+    assert result.returncode == 0 and "error" not in result.stdout + result.stderr, result
+    for result in refused:
         assert result.returncode == 2, result.stderr
         assert result.stderr.strip().removeprefix("error: ") == (
             "text.goal:1:422: brackets nested more than 200 deep")  # the 201st: 26 + 2 * 198

@@ -22,7 +22,7 @@ from goalagent.kb.errors import LimitError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
-from tests.conftest import goalagent
+from tests.conftest import cli
 
 RUNAWAYS = """
 init module { knowledge {
@@ -134,8 +134,8 @@ def test_a_module_calling_itself_stops_that_agent_alone_without_a_traceback(tmp_
         "module loop { program { if true then loop. } }\n")
     (tmp_path / "counter.goal").write_text(COUNTER)
     (tmp_path / "system.mas2g").write_text('agentfiles { "selfcall.goal". "counter.goal". }\n')
-    result = goalagent("run", str(tmp_path / "system.mas2g"))
-    assert result.returncode == 1
+    result = cli("run", str(tmp_path / "system.mas2g"))
+    assert result.exit_code == 1
     assert "Traceback" not in result.stderr
     assert re.search(r"error: agent selfcall failed: module calls nested more than \d+ deep "
                      r"\(.*loop -> loop\)", result.stderr)
@@ -148,9 +148,9 @@ def test_an_agent_flooding_its_beliefs_is_stopped_and_the_other_finishes(tmp_pat
         "main module { program { if bel(flood) then print(never). } }\n")
     (tmp_path / "counter.goal").write_text(COUNTER)
     (tmp_path / "system.mas2g").write_text('agentfiles { "flood.goal". "counter.goal". }\n')
-    result = goalagent("run", str(tmp_path / "system.mas2g"), "--max-inferences", "1000000",
-                       "--max-beliefs", "100000")
-    assert result.returncode == 1  # one agent failed; the process ended normally
+    result = cli("run", str(tmp_path / "system.mas2g"), "--max-inferences", "1000000",
+                 "--max-beliefs", "100000")
+    assert result.exit_code == 1  # one agent failed; the run ended normally
     assert re.search(r"error: agent flood failed: holds [\d,]+ beliefs, more than 100,000 "
                      r"\(--max-beliefs\); stopped", result.stderr), result.stderr
     assert "counter: terminated after 5 cycles" in result.stderr
@@ -214,6 +214,12 @@ main module { program { if bel(spin(0)) then print(never). } }
 """
 
 
+def _cpu_seconds(pid: int) -> float:
+    """The CPU time process ``pid`` has used (/proc/PID/stat: user and system ticks)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 @pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_a_signal_stops_a_runaway_query_says_where_and_saves(tmp_path: Path, signum: int,
                                                              code: int):
@@ -226,7 +232,11 @@ def test_a_signal_stops_a_runaway_query_says_where_and_saves(tmp_path: Path, sig
          "--max-query-seconds", "100000"], cwd=tmp_path, stdout=subprocess.PIPE,
         stderr=subprocess.PIPE, text=True, env={**os.environ, "PYTHONUNBUFFERED": "1"})
     assert child.stdout is not None and child.stdout.readline() == "started\n"
-    time.sleep(1.0)  # well inside spin/1
+    started = _cpu_seconds(child.pid)
+    deadline = time.monotonic() + 60
+    while _cpu_seconds(child.pid) < started + 0.2:  # well inside spin/1: working on and on
+        assert child.poll() is None and time.monotonic() < deadline, child.returncode
+        time.sleep(0.02)
     sent = time.monotonic()
     child.send_signal(signum)
     _, stderr = child.communicate(timeout=60)
