@@ -18,11 +18,13 @@ to a wakeup pipe, and checks the running stretch every ``TICK`` seconds:
 - the process's resident memory, read every tick (a few microseconds, off the main thread):
   when the running query of an agent has grown it by more than the agent's --max-memory,
   the query is asked to account for it (memory.pl: it stops the agent if what is not
-  Prolog's stacks passes the budget); when the process has grown past its alarm mark, the
-  running agent accounts for what it holds at once and every agent at its next call
-  (``generation``; goalagent/kb/memory.py); a call that has grown it past four budgets
-  and Prolog's stacks without returning to Prolog is in a built-in nothing can interrupt:
-  the process ends then, before the machine runs out of memory.
+  Prolog's stacks passes the budget); when the process has grown past its alarm mark (the
+  larger of an eighth of its size and 64 MB, or of the smallest budget of an agent seen
+  running where that is less), the running agent accounts for what it holds at once and
+  every agent at its next call (``generation``; goalagent/kb/memory.py); a call that has
+  grown it past four budgets and Prolog's stacks without returning to Prolog is in a
+  built-in nothing can interrupt: the process ends then, before the machine runs out of
+  memory.
 
 Both use ``thread_signal/2`` from the watchdog's engine; the goal it sends checks that the
 same stretch is still running (its number), so nothing strays into a later query. Why a
@@ -91,6 +93,7 @@ class Watchdog:
         self._query = 0  # the outermost query watched, the memory when it began, and how
         self._query_base = 0  # much growth asks it for an account next
         self._next_ask = 0
+        self._alarm_step = ALARM_STEP  # at most the smallest budget of an agent seen running
         # Taken to read the signals' pipe and act on them, and by stop_handled(): a signal
         # Python has already turned into the run's stop is never acted on again later.
         self._lock = threading.Lock()
@@ -216,6 +219,10 @@ class Watchdog:
         running = bool(engine.depth) and engine.stretch_since is not None and agent is not None
         if running:
             module, limit, name = agent  # type: ignore[misc]
+            # a budget under the step would otherwise be seen only after the process grew by
+            # the step, however many calls of that agent's its growth took (one record a
+            # cycle: 16 MB budgets were stopped holding 200 MB)
+            self._alarm_step = min(self._alarm_step, limit)
             if engine.query != self._query:  # first seen: it began after the last look
                 self._query, self._query_base, self._next_ask = engine.query, self._last_rss, limit
             growth = rss - self._query_base
@@ -225,7 +232,7 @@ class Watchdog:
                 self._send(f"call_memory({module}, {limit}, {base}, {_PAGE})", None)
             if growth > 4 * limit + STACK_LIMIT:
                 self._out_of_memory(name, growth)
-        next_mark = rss + max(ALARM_STEP, rss // 8)
+        next_mark = rss + max(self._alarm_step, rss // 8)
         if rss > self._mark:
             self.generation += 1
             if running:

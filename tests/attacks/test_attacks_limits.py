@@ -223,6 +223,10 @@ main module {{ program {{
                       result.stderr)
     assert found and says.format(found.group(2)) in found.group(0), result.stderr
     assert int(found.group(2)) >= int(MEMORY[1])  # over the limit, not stopped for another
+    # seen within a few budgets, however many calls it took to hold it (a record a cycle
+    # was seen only once the process had grown by 64 MB, holding 220 MB)
+    if found.group(1) == "holds":
+        assert int(found.group(2)) <= 5 * int(MEMORY[1]), result.stderr
     assert result.returncode == 1 and result.peak_mb < 1500, (result.peak_mb, result.stderr)
 
 
