@@ -101,6 +101,7 @@ class PrologModules:
         # What the watchdog's memory watch needs of this agent's calls, and the memory
         # alarm it last accounted after (goalagent/kb/memory.py).
         self._memory = (str(self._b), self.limits.max_memory_bytes, agent_name)
+        self._watchdog.note_budget(self.limits.max_memory_bytes)
         self._generation = self._watchdog.generation
         self._closed = False
         # What blind commitment (GoalBases) has still to do, which every part changes:

@@ -19,8 +19,8 @@ to a wakeup pipe, and checks the running stretch every ``TICK`` seconds:
   when the running query of an agent has grown it by more than the agent's --max-memory,
   the query is asked to account for it (memory.pl: it stops the agent if what is not
   Prolog's stacks passes the budget); when the process has grown past its alarm mark (the
-  larger of an eighth of its size and 64 MB, or of the smallest budget of an agent seen
-  running where that is less), the running agent accounts for what it holds at once and
+  larger of an eighth of its size and 64 MB, or of the smallest budget of an agent made
+  where that is less), the running agent accounts for what it holds at once and
   every agent at its next call (``generation``; goalagent/kb/memory.py); a call that has
   grown it past four budgets and Prolog's stacks without returning to Prolog is in a
   built-in nothing can interrupt: the process ends then, before the machine runs out of
@@ -93,7 +93,7 @@ class Watchdog:
         self._query = 0  # the outermost query watched, the memory when it began, and how
         self._query_base = 0  # much growth asks it for an account next
         self._next_ask = 0
-        self._alarm_step = ALARM_STEP  # at most the smallest budget of an agent seen running
+        self._alarm_step = ALARM_STEP  # at most the smallest budget of an agent made (note_budget)
         # Taken to read the signals' pipe and act on them, and by stop_handled(): a signal
         # Python has already turned into the run's stop is never acted on again later.
         self._lock = threading.Lock()
@@ -204,6 +204,13 @@ class Watchdog:
             self._send(f"time({limit!r})", None)
         self._struck_at = time.monotonic()  # the next strike after another limit
 
+    def note_budget(self, limit: int) -> None:
+        """An agent with a memory budget of ``limit`` bytes was made: the process's alarm
+        comes at least every ``limit`` of growth, or an agent that holds a little more each
+        call would be seen only once the process grew by ALARM_STEP, however many calls that
+        took (a record a cycle with --max-memory 16 was stopped holding 220 MB)."""
+        self._alarm_step = min(self._alarm_step, limit)
+
     def _resident(self) -> int:
         """The process's resident memory in bytes (/proc/self/statm: no lock, no walk)."""
         return int(os.pread(self._statm, 64, 0).split()[1]) * _PAGE
@@ -219,10 +226,6 @@ class Watchdog:
         running = bool(engine.depth) and engine.stretch_since is not None and agent is not None
         if running:
             module, limit, name = agent  # type: ignore[misc]
-            # a budget under the step would otherwise be seen only after the process grew by
-            # the step, however many calls of that agent's its growth took (one record a
-            # cycle: 16 MB budgets were stopped holding 200 MB)
-            self._alarm_step = min(self._alarm_step, limit)
             if engine.query != self._query:  # first seen: it began after the last look
                 self._query, self._query_base, self._next_ask = engine.query, self._last_rss, limit
             growth = rss - self._query_base
