@@ -41,13 +41,8 @@ from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 from goalagent.parser.errors import GoalSyntaxError
 from tests.attack_agent import RUNTIME_MODULES, load_agent
-
-COUNTER = """
-init module { beliefs { n(0). } goals { n(5). } }
-main module [exit=nogoals] { program {
-    if bel(n(N), N < 5, M is N + 1) then delete(n(N)) + insert(n(M)).
-} }
-"""
+from tests.attacks.beside_counter import counter_finished, run_beside_counter
+from tests.measured import Measured
 
 
 def _attacker(knowledge: str, rule: str, after: str = "after") -> str:
@@ -57,18 +52,8 @@ def _attacker(knowledge: str, rule: str, after: str = "after") -> str:
             f"if true then print({after}). }} }}\n")
 
 
-def _run_with_counter(tmp_path: Path, programs: dict[str, str]) -> subprocess.CompletedProcess:
-    """``goalagent run`` of one agent per program (NAME.goal) and the counter, with small
-    limits, in a child process with a timeout."""
-    for name, program in programs.items():
-        (tmp_path / f"{name}.goal").write_text(program)
-    (tmp_path / "counter.goal").write_text(COUNTER)
-    files = " ".join(f'"{name}.goal".' for name in [*programs, "counter"])
-    (tmp_path / "s.mas2g").write_text(f"agentfiles {{ {files} }}\n")
-    return subprocess.run([sys.executable, "-m", "goalagent", "run", str(tmp_path / "s.mas2g"),
-                           "--max-inferences", "200000", "--max-query-seconds", "0.5"],
-                          capture_output=True, text=True, timeout=60,
-                          stdin=subprocess.DEVNULL)
+RUNAWAY_LIMITS = ("--max-inferences", "200000", "--max-query-seconds", "0.5")
+"""Small limits, so that each runaway meets one soon."""
 
 
 RUNAWAYS = [
@@ -89,27 +74,27 @@ RUNAWAYS = [
 
 
 @pytest.fixture(scope="module")
-def runaways(tmp_path_factory: pytest.TempPathFactory) -> subprocess.CompletedProcess:
+def runaways(tmp_path_factory: pytest.TempPathFactory) -> Measured:
     """One run of agent atkI for each case I of RUNAWAYS (printing afterI when its rule has
     ended) and of agent cyclic, which sends a cyclic list, beside the counter: a regression
     of any of them fails this run, which has a timeout, never the suite."""
     programs = {f"atk{index}": _attacker(knowledge, rule, f"after{index}")
                 for index, (knowledge, rule) in enumerate(RUNAWAYS)}
     programs["cyclic"] = _attacker("", "if bel(X = [a|X]) then counter.send(X).")
-    return _run_with_counter(tmp_path_factory.mktemp("runaways"), programs)
+    return run_beside_counter(tmp_path_factory.mktemp("runaways"), programs,
+                              *RUNAWAY_LIMITS, timeout=60)
 
 
-def _ended_with_its_rule(result: subprocess.CompletedProcess, index: int) -> None:
+def _ended_with_its_rule(result: Measured, index: int) -> None:
     """Agent atkI's rule (line 3) was ended as not applicable, and the agent went on; the
     counter finished."""
-    assert "Traceback" not in result.stderr
+    counter_finished(result)
     assert any(f"atk{index}.goal:3:1:" in line and "the rule is not applicable" in line
                for line in result.stderr.splitlines()), result.stderr
-    assert "counter: terminated after 5 cycles" in result.stderr
 
 
 @pytest.mark.parametrize("knowledge, rule", RUNAWAYS[:-1])
-def test_runaway_recovery_or_cleanup_ends_with_its_rule(runaways: subprocess.CompletedProcess,
+def test_runaway_recovery_or_cleanup_ends_with_its_rule(runaways: Measured,
                                                        knowledge: str, rule: str):
     index = RUNAWAYS.index((knowledge, rule))
     _ended_with_its_rule(runaways, index)
@@ -223,11 +208,10 @@ def test_an_error_carrying_a_huge_or_cyclic_term_is_a_short_warning(thrown: str,
 
 
 def test_sending_a_cyclic_list_stops_that_agent_not_the_process(
-        runaways: subprocess.CompletedProcess):
+        runaways: Measured):
     # converting it for Python never ended (a cyclic list has no end), past every limit
-    assert "Traceback" not in runaways.stderr
+    counter_finished(runaways)
     assert "error: agent cyclic failed: cannot pass a cyclic term" in runaways.stderr
-    assert "counter: terminated after 5 cycles" in runaways.stderr
 
 
 def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
@@ -248,7 +232,8 @@ def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
     "if bel(X = ga_limit(time(1)), throw(X)) then print(x).",
 ])
 def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: str):
-    result = _run_with_counter(tmp_path, {"atk": _attacker("", rule)})
+    result = run_beside_counter(tmp_path, {"atk": _attacker("", rule)}, *RUNAWAY_LIMITS,
+                                timeout=60)
     assert result.returncode in (0, 2), result.stderr  # 2: refused when loading
     assert "this exception is the runtime's" in result.stderr
     assert "interrupted" not in result.stderr
@@ -355,7 +340,7 @@ def test_process_wide_built_ins_are_refused(rules: str, says: str, sandbox: bool
 
 
 def test_a_runaway_call_cleanup_3_handler_ends_with_its_rule(
-        runaways: subprocess.CompletedProcess):
+        runaways: Measured):
     _ended_with_its_rule(runaways, len(RUNAWAYS) - 1)
 
 

@@ -23,39 +23,16 @@ from goalagent.agent import AgentError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 from tests.attack_agent import load_agent
+from tests.attacks.beside_counter import counter_finished, run_beside_counter
 from tests.conftest import cli
 from tests.measured import ROOT, Measured, goalagent_measured
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
-COUNTER = """
-init module { beliefs { n(0). } goals { n(5). } }
-main module [exit=nogoals] { program {
-    if bel(n(N), N < 5, M is N + 1) then delete(n(N)) + insert(n(M)).
-} }
-"""
-
-
 def _run_beside_counter(tmp_path: Path, program: str, *options: str,
                         timeout: float = 120) -> Measured:
     """``goalagent run`` of the agent ``program`` (atk.goal) and the counter."""
-    return _run_all_beside_counter(tmp_path, {"atk": program}, *options, timeout=timeout)
-
-
-def _run_all_beside_counter(tmp_path: Path, programs: dict[str, str], *options: str,
-                            timeout: float = 120) -> Measured:
-    """``goalagent run`` of one agent per program (NAME.goal) and the counter."""
-    for name, program in programs.items():
-        (tmp_path / f"{name}.goal").write_text(program)
-    (tmp_path / "counter.goal").write_text(COUNTER)
-    files = " ".join(f'"{name}.goal".' for name in [*programs, "counter"])
-    (tmp_path / "s.mas2g").write_text(f"agentfiles {{ {files} }}\n")
-    return goalagent_measured("run", str(tmp_path / "s.mas2g"), *options, timeout=timeout)
-
-
-def _counter_finished(result: Measured) -> None:
-    assert "Traceback" not in result.stderr, result.stderr
-    assert "counter: terminated after 5 cycles" in result.stderr, result.stderr
+    return run_beside_counter(tmp_path, {"atk": program}, *options, timeout=timeout)
 
 
 # ----------------------------------------------------------------------------- saves
@@ -75,7 +52,7 @@ def test_a_fact_too_deep_to_write_costs_only_its_agent_s_save(tmp_path: Path):
     result = _run_beside_counter(tmp_path, DEEP_FACT, "--save-beliefs", str(saved),
                                  "--save-predicate", "n/1", "--save-predicate", "keep/1",
                                  "--save-predicate", "other/1")
-    _counter_finished(result)
+    counter_finished(result)
     assert ("warning: beliefs of agent atk not saved to " in result.stderr
             and "keep/1: an answer is a cyclic or too deeply nested term" in result.stderr)
     text = saved.read_text()
@@ -95,7 +72,7 @@ def goal_checks(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Measure
     """One run of the runaway goal checks below, each an agent beside the counter, with
     LIMITS: its folder and what it did."""
     folder = tmp_path_factory.mktemp("goal_checks")
-    return folder, _run_all_beside_counter(folder, {
+    return folder, run_beside_counter(folder, {
         "atk_initial": RUNAWAY_INITIAL_GOAL, "atk_nogoals": RUNAWAY_GOAL_IN_NOGOALS,
         "atk_achieved": RUNAWAY_ACHIEVEMENT_CHECK}, *LIMITS)
 
@@ -111,7 +88,7 @@ def test_a_runaway_initial_goal_is_a_located_warning_not_a_failed_start(
         goal_checks: tuple[Path, Measured]):
     # checking whether the goal is believed ran away: the start failed (exit 2) unlocated
     folder, result = goal_checks
-    _counter_finished(result)
+    counter_finished(result)
     assert result.returncode == 0 and "after_initial\n" in result.stdout, result.stderr
     assert (f"warning: agent atk_initial: module init, goal at {folder / 'atk_initial.goal'}"
             ":3:11: checking whether p is believed ran more than 200,000 inferences "
@@ -131,7 +108,7 @@ def test_a_runaway_goal_adopted_in_a_nogoals_module_is_a_located_warning(
     # was 'Unhandled exception: inference_limit_exceeded': the module call had used up the
     # calling rule's limit, which escaped the nested query
     folder, result = goal_checks
-    _counter_finished(result)
+    counter_finished(result)
     assert result.returncode == 0, result.stderr
     atk = folder / "atk_nogoals.goal"
     assert (f"module m, rule at {atk}:4:37: ran more than 200,000 inferences") in result.stderr
@@ -149,7 +126,7 @@ def test_a_runaway_goal_achievement_check_keeps_the_goal_with_a_located_warning(
         goal_checks: tuple[Path, Measured]):
     # the check after insert(flag) ran away outside every rule's catch: the agent stopped
     folder, result = goal_checks
-    _counter_finished(result)
+    counter_finished(result)
     assert result.returncode == 0 and "after_achieved\n" in result.stdout, result.stderr
     assert (f"warning: agent atk_achieved: module main, rule at "
             f"{folder / 'atk_achieved.goal'}:3:39: checking whether goal q is achieved ran "
@@ -218,7 +195,7 @@ main module {{ program {{
 {rules}
 }} }}
 """, *MEMORY)
-    _counter_finished(result)
+    counter_finished(result)
     found = re.search(r"error: agent atk failed: (holds|took) (\d+) MB.*; stopped\n",
                       result.stderr)
     assert found and says.format(found.group(2)) in found.group(0), result.stderr
@@ -292,7 +269,7 @@ def one_call(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Measured]:
     folder = tmp_path_factory.mktemp("one_call")
     programs = {f"atk{index}": _refused_then_small(index, condition)
                 for index, (condition, _) in enumerate(ONE_CALL)}
-    return folder, _run_all_beside_counter(folder, programs, "--max-query-seconds", "2",
+    return folder, run_beside_counter(folder, programs, "--max-query-seconds", "2",
                                            timeout=60)
 
 
@@ -301,7 +278,7 @@ def test_work_one_call_could_not_be_interrupted_in_is_refused_before_it_starts(
         one_call: tuple[Path, Measured], condition: str, says: str):
     folder, result = one_call
     index = ONE_CALL.index((condition, says))
-    _counter_finished(result)
+    counter_finished(result)
     printed = result.stdout.split()
     assert result.returncode == 0 and printed.count(f"small{index}") == 1, result.stderr
     assert set(printed) <= {f"small{other}" for other in range(len(ONE_CALL))}, printed
@@ -326,7 +303,7 @@ main module [exit=always] { program [order=linearall] {
     if true then print(after).
 } }
 """, "--max-query-seconds", "10", timeout=60)
-    _counter_finished(result)
+    counter_finished(result)
     assert result.returncode == 0 and result.stdout == "after\n", result.stderr
     assert "print failed: an integer of 6,647,815 bits written, more than 1,000,000" in (
         result.stderr)
@@ -385,7 +362,7 @@ main module { program {
 } }
 """, "--max-memory", "16", "--max-cycles", "300", "--save-beliefs", str(saved),
         "--save-predicate", "keep/1", "--save-predicate", "n/1")
-    _counter_finished(result)
+    counter_finished(result)
     assert "error: agent atk failed: holds " in result.stderr
     assert re.search(r"keep/1: its facts take \d+ MB, more than its --max-memory of 16 MB",
                      result.stderr), result.stderr
