@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING
 import pytest
 
 if TYPE_CHECKING:
+    from collections.abc import Iterator
+
     import click
     import typer
     from click.testing import Result
@@ -36,6 +38,21 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 ROOT = Path(__file__).resolve().parents[1]
 """The repository's root: the child processes' default working directory."""
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_collection() -> Iterator[object]:
+    """Collection may write bytecode, whatever PYTHONDONTWRITEBYTECODE says: pytest keeps the
+    test modules it rewrote for their asserts only where Python may write bytecode, and with
+    the variable set (this machine, many CI images) each worker rewrote all of them again
+    on every run, about 4 of its 7.5 s of collection. Only collection: a run the tests
+    start in this process still writes none beside the files it imports."""
+    writes = sys.dont_write_bytecode
+    sys.dont_write_bytecode = False
+    try:
+        return (yield)
+    finally:
+        sys.dont_write_bytecode = writes
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
