@@ -23,11 +23,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 START_SECONDS = 180.0
-STOP_SECONDS = 2.0
-"""How long the nodes get to stop after SIGTERM before what is left is killed by process id
-(the raylets take about ten seconds to shut down, and the head's GCS and ``ray start`` linger
-on after them; killed at once they leave nothing behind in /dev/shm, and the cluster's
-folder is removed)."""
+POLL_SECONDS = 0.1
+"""How often a starting cluster is asked whether it is up."""
+STOP_SECONDS = 10.0
+"""How long stopping the nodes may take: every process of theirs is killed (SIGKILL, by process
+id) until none is left. A raylet given SIGTERM took about ten seconds to shut down, and the
+head's GCS and ``ray start`` lingered on after it; killed at once they leave nothing behind in
+/dev/shm, and the cluster's folder is removed."""
 OBJECT_STORE_BYTES = 80_000_000
 TASK_TITLE = "ray::run_on_worker"
 """The process title of a Ray worker while it runs one of the workbench's tasks."""
@@ -96,7 +98,9 @@ def local_cluster(cpus: tuple[int, ...] = (1, 1)) -> Iterator[LocalCluster]:
                 [_ray_command(), "start", "--block", f"--num-cpus={count}",
                  "--disable-usage-stats", f"--object-store-memory={OBJECT_STORE_BYTES}", *where],
                 env=environment, stdout=log, stderr=subprocess.STDOUT, start_new_session=True))
-            _wait_for_nodes(address, index + 1, nodes)
+            if index == 0:
+                _wait_for_head(port, nodes[0])
+        _wait_for_nodes(address, len(cpus), nodes)
         yield LocalCluster(address, environment, tuple(node.pid for node in nodes))
     finally:
         cluster = LocalCluster(address, environment, tuple(node.pid for node in nodes))
@@ -111,38 +115,57 @@ def local_cluster(cpus: tuple[int, ...] = (1, 1)) -> Iterator[LocalCluster]:
         shutil.rmtree(folder, ignore_errors=True)
 
 
+def _wait_for_head(port: int, head: subprocess.Popen) -> None:
+    """Until the head's GCS takes connections on ``port``: the other nodes start then, side by
+    side with the rest of the head's start (a node retries the GCS for about 20 s, Ray's
+    NUM_REDIS_GET_RETRIES, but not for as long as a head can take to start on a busy
+    machine). RuntimeError when the head ended or START_SECONDS passed."""
+    deadline = time.monotonic() + START_SECONDS
+    while True:
+        if head.poll() is not None:
+            raise RuntimeError("the head's ray start process ended before its GCS listened")
+        if time.monotonic() > deadline:
+            raise RuntimeError(f"the head's GCS did not listen within {START_SECONDS:.0f} s")
+        with contextlib.suppress(OSError), socket.create_connection(("127.0.0.1", port), 1):
+            return
+        time.sleep(POLL_SECONDS)
+
+
 def _wait_for_nodes(address: str, count: int, nodes: list[subprocess.Popen]) -> None:
-    """Until ``count`` nodes are alive in the cluster (RuntimeError when one ended)."""
+    """Until ``count`` nodes are alive in the cluster, asked of one connection to it
+    (RuntimeError when a node's process ended or START_SECONDS passed)."""
     import ray
 
     deadline = time.monotonic() + START_SECONDS
-    while True:
+
+    def check() -> None:
         if any(node.poll() is not None for node in nodes):
             raise RuntimeError("a ray start process ended before its node joined")
         if time.monotonic() > deadline:
             raise RuntimeError(f"the cluster did not have {count} nodes within "
                                f"{START_SECONDS:.0f} s")
+
+    while True:
+        check()
         try:
             ray.init(address=address, logging_level="ERROR", log_to_driver=False)
+            break
         except ConnectionError:
-            time.sleep(1)
-            continue
-        try:
-            if sum(node["Alive"] for node in ray.nodes()) >= count:
-                return
-        finally:
-            ray.shutdown()
-        time.sleep(0.5)
+            time.sleep(POLL_SECONDS)
+    try:
+        while sum(node["Alive"] for node in ray.nodes()) < count:
+            check()
+            time.sleep(POLL_SECONDS)
+    finally:
+        ray.shutdown()
 
 
 def _stop(cluster: LocalCluster) -> None:
-    """SIGTERM each node's group; after STOP_SECONDS, SIGKILL what is left, by process id."""
-    for group in cluster.groups:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(group, signal.SIGTERM)
+    """SIGKILL every process of the nodes by process id, again while any is left, for at most
+    STOP_SECONDS."""
     deadline = time.monotonic() + STOP_SECONDS
-    while time.monotonic() < deadline and cluster.processes():
-        time.sleep(0.5)
-    for pid, *_ in cluster.processes():
-        with contextlib.suppress(ProcessLookupError):
-            os.kill(pid, signal.SIGKILL)
+    while (left := cluster.processes()) and time.monotonic() < deadline:
+        for pid, *_ in left:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+        time.sleep(POLL_SECONDS)
