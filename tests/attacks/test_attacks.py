@@ -44,6 +44,8 @@ from tests.attack_agent import RUNTIME_MODULES, load_agent
 from tests.attacks.beside_counter import counter_finished, run_beside_counter
 from tests.measured import Measured
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 
 def _attacker(knowledge: str, rule: str, after: str = "after") -> str:
     """An agent knowing spin/1 and ``knowledge`` that tries ``rule``, then prints ``after``."""

@@ -22,6 +22,8 @@ from hypothesis import strategies as st
 
 from goalagent.beliefs import read_belief_file
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "agents" / "examples"
 PER_INPUT_SECONDS = 30  # generous for a loaded machine; an input normally takes milliseconds

@@ -21,6 +21,8 @@ from goalagent.cli import create_app
 from goalagent.extensions import Extension, RunContext, RunHook
 from robot.affordance import AFFORD
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 ROOT = Path(__file__).resolve().parents[2]
 
 # Says it started, then learns one visited/1 fact per cycle, for ever.

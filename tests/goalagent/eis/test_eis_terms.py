@@ -35,6 +35,8 @@ from goalagent.eis import (
 from goalagent.kb.engine import get_engine
 from goalagent.kb.terms import Atom, Struct, Var, format_term
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 
 def through_prolog(text: str) -> Parameter:
     """The EIS parameter for the term SWI-Prolog reads from ``text``."""

@@ -12,8 +12,12 @@ import signal
 import textwrap
 from pathlib import Path
 
+import pytest
+
 from tests.conftest import python
 from tests.measured import goalagent_measured, goalagent_measured_each
+
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
 KNOWLEDGE = """
 init module {

@@ -24,6 +24,8 @@ from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 from tests.conftest import cli
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 RUNAWAYS = """
 init module { knowledge {
     p :- p.

@@ -47,6 +47,8 @@ from robot.reproduce.framework.sweeps import sweep
 from robot.reproduce.framework.tasks import ReproductionFailed
 from tests.conftest import ROOT
 
+pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 
 class ToyConfig(ScaledConfig):
     offset: float = 0.0
