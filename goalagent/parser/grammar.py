@@ -1,5 +1,10 @@
 """The concrete syntax (``grammar.lark``, one LALR parser for `.goal`, `.mas2g` and Prolog
-files) and the translation of lark's errors into located, readable messages."""
+files) and the translation of lark's errors into located, readable messages.
+
+The built parser is kept beside the bytecode and loaded by the next process (0.02 s instead
+of the 0.2 s its tables take to build). Lark's own ``cache=`` option is not used: it pickles
+to the shared temporary folder, where another user could leave a file for this one to
+unpickle, and writes it in place, where a second process can read it half written."""
 
 from __future__ import annotations
 
@@ -20,8 +25,6 @@ from goalagent.parser.source import Source
 from ondisk import write_atomically
 
 GRAMMAR = Path(__file__).with_name("grammar.lark")
-
-
 OPTIONS = {"parser": "lalr", "lexer": "contextual",
            "start": ["agent", "mas", "prolog_file", "module_file", "action_file", "test_file"],
            "propagate_positions": True, "maybe_placeholders": False}
@@ -50,11 +53,11 @@ def load_or_build(grammar: str, cached: Path, keep: bool) -> Lark:
 
 def cached_parser_path(grammar: str) -> Path:
     """Where the parser built from ``grammar`` is kept: beside this module's bytecode, as
-    Python keeps that, named by a digest of the grammar, lark's version and OPTIONS (a
-    changed grammar or lark gets a new file). It is trusted as the bytecode is: only the
-    one who installed goalagent can write there."""
-    key = hashlib.sha256(repr((grammar, lark.__version__, sorted(OPTIONS.items())))
-                         .encode("utf-8")).hexdigest()[:20]
+    Python keeps that, named by a digest of the grammar, lark's and Python's versions and
+    OPTIONS (a changed grammar, lark or Python gets a new file). It is trusted as the
+    bytecode is: only the one who installed goalagent can write there."""
+    key = hashlib.sha256(repr((grammar, lark.__version__, sys.version_info[:2],
+                               sorted(OPTIONS.items()))).encode("utf-8")).hexdigest()[:20]
     return GRAMMAR.with_name("__pycache__") / f"grammar.{key}.lark"
 
 
