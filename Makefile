@@ -3,10 +3,6 @@
 # pyproject.toml, then the suite, which builds the documentation site with --strict: in two
 # worker processes (pytest-xdist), each test file whole in one, handed out in the order
 # tests/conftest.py gives (the heavy files first), its slowest tests listed).
-# The suite writes Python's bytecode even where the environment says not to
-# (PYTHONDONTWRITEBYTECODE, which some images set): it starts a few hundred Python processes
-# (the CLI, agents, reproductions), each of which would compile the same sources again, and
-# each worker would rewrite every test module's assertions again (half its collection time).
 export MUJOCO_GL ?= egl
 PY := .venv/bin/python
 
@@ -23,7 +19,7 @@ demo:
 
 test: setup
 	.venv/bin/lint-imports --no-cache
-	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -q -p no:cacheprovider -n 2 --dist loadfile --no-loadscope-reorder --durations=25
+	$(PY) -m pytest -q -p no:cacheprovider -n 2 --dist loadfile --no-loadscope-reorder --durations=25
 
 lint:
 	.venv/bin/ruff check .

@@ -10,17 +10,15 @@ from pathlib import Path
 from lark import Lark, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
-from goalagent.parser import parser_tables
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.source import Source
 
 
 @cache
 def _grammar() -> Lark:
-    """The parser, made once per process from grammar.lark (its tables saved between
-    processes: see goalagent.parser.parser_tables)."""
+    """The parser, built once per process from grammar.lark."""
     grammar = (Path(__file__).with_name("grammar.lark")).read_text(encoding="utf-8")
-    return parser_tables.parser(
+    return Lark(
         grammar,
         parser="lalr",
         lexer="contextual",
