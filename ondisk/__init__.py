@@ -3,7 +3,8 @@
 Every file goalagent writes (saved beliefs, traces, learners and models, the known-object
 database, reproduction pages and figures, environment pictures, videos) goes through
 :func:`write_atomically`, :class:`AtomicFile` or :func:`atomic_path`; every untrusted file
-it reads whole (program files, can files, JSON stores) through :func:`read_bounded`. This
+it reads whole (program files, can files, JSON stores) through :func:`read_bounded`; where
+the user's cache folder is, :func:`ondisk.cache.cache_folder` says. This
 package imports nothing of goalagent's, sim's, behaviours' or robot's, so each of those
 layers may use it (pyproject's import-linter contract keeps it the lowest layer).
 

@@ -2,20 +2,16 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
-
-def cache_dir() -> Path:
-    """``$XDG_CACHE_HOME/goalagent`` (``~/.cache/goalagent`` by default)."""
-    return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "goalagent"
+from ondisk.cache import cache_folder
 
 
 def default_model_path() -> Path:
     """Learned effect models Ĥ (chapter 6) unless the garbage environment's ``models`` says."""
-    return cache_dir() / "affordance-models.json"
+    return cache_folder() / "affordance-models.json"
 
 
 def default_objects_path() -> Path:
     """The known-object database (chapter 5) unless the environment's ``objects`` says."""
-    return cache_dir() / "known-objects.json"
+    return cache_folder() / "known-objects.json"

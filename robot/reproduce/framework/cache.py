@@ -8,12 +8,12 @@ run again."""
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 from pydantic import ValidationError
 
 from ondisk import write_atomically
+from ondisk.cache import cache_folder
 from robot.reproduce.framework.provenance import Provenance, code_fingerprint
 from robot.reproduce.framework.tasks import SCHEMA_VERSION, Finished, Task
 
@@ -28,8 +28,7 @@ class CorruptEntry(ValueError):
 
 def default_folder() -> Path:
     """``$XDG_CACHE_HOME/goalagent/reproduce`` (``~/.cache/...`` without the variable)."""
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "goalagent" / "reproduce"
+    return cache_folder() / "reproduce"
 
 
 class StaleEntry(ValueError):
