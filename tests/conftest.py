@@ -45,8 +45,8 @@ def pytest_collection() -> Iterator[object]:
     """Collection may write bytecode, whatever PYTHONDONTWRITEBYTECODE says: pytest keeps the
     test modules it rewrote for their asserts only where Python may write bytecode, and with
     the variable set (this machine, many CI images) each worker rewrote all of them again
-    on every run, about 4 of its 7.5 s of collection. Only collection: a run the tests
-    start in this process still writes none beside the files it imports."""
+    on every run, about 4 of its 7.5 s of collection. Only during collection: what the
+    tests import or run afterwards writes no bytecode, as the variable asks."""
     writes = sys.dont_write_bytecode
     sys.dont_write_bytecode = False
     try:
