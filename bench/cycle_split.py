@@ -73,13 +73,10 @@ def plan_name(engine: Engine, module: str, handle: int) -> str:
     raise SystemExit("the cycle's plan predicate was not found")
 
 
-def main(
-    cycles: Annotated[int, typer.Option(min=100, help="Cycles per timed run.")] = 4000,
-    repeats: Annotated[int, typer.Option(min=1, help="Timed runs per layer.")] = 7,
-) -> None:
-    """Time each layer of the reference agent's cycle and the floor's."""
+def measure_layers(cycles: int, repeats: int) -> list[tuple[str, float]]:
+    """µs per cycle of each layer of a warmed-up reference agent's cycle, then of the floor
+    through ``Engine.solve`` and in a Prolog loop."""
     engine = get_engine()
-    check_floor_compilation(engine)
     agent = Agent.from_file(GOAL_FILE, name="reference")
     agent.run(200)  # past the init cycle, into the steady state
     runner = agent._rules  # (inside the agent: see the docstring)
@@ -120,18 +117,29 @@ def main(
         for _ in range(n):
             engine.solve(step, 0, (), 1)
 
-    floor = best_of(repeats, cycles, floor_calls)
-    floor_prolog = best_of(repeats, cycles, prolog_loop(engine, FLOOR_MODULE, "step", 0))
+    return [*layers, ("floor through Engine.solve", best_of(repeats, cycles, floor_calls)),
+            ("floor in Prolog alone", best_of(repeats, cycles, prolog_loop(
+                engine, FLOOR_MODULE, "step", 0)))]
 
+
+def main(
+    cycles: Annotated[int, typer.Option(min=100, help="Cycles per timed run.")] = 4000,
+    repeats: Annotated[int, typer.Option(min=1, help="Timed runs per layer.")] = 7,
+) -> None:
+    """Time each layer of the reference agent's cycle and the floor's."""
+    check_floor_compilation(get_engine())
+    rows = measure_layers(cycles, repeats)
+    agent_rows, (floor_row, floor_prolog_row) = rows[:4], rows[4:]
+    floor, floor_prolog = floor_row[1], floor_prolog_row[1]
     table = Table(title=f"µs per cycle (best of {repeats} runs of {cycles:,} cycles)")
     for column in ("layer", "µs/cycle", "adds", "floor / this"):
         table.add_column(column, justify="left" if column == "layer" else "right")
-    for (name, micros), inner in zip(layers, [*(m for _, m in layers[1:]), 0.0], strict=True):
+    inner_layers = [*(micros for _, micros in agent_rows[1:]), 0.0]
+    for (name, micros), inner in zip(agent_rows, inner_layers, strict=True):
         table.add_row(name, f"{micros:.2f}", f"{micros - inner:.2f}" if inner else "",
                       f"{floor / micros:.3f}")
-    table.add_row("floor through Engine.solve", f"{floor:.2f}", f"{floor - floor_prolog:.2f}",
-                  "1.000")
-    table.add_row("floor in Prolog alone", f"{floor_prolog:.2f}", "", "")
+    table.add_row(floor_row[0], f"{floor:.2f}", f"{floor - floor_prolog:.2f}", "1.000")
+    table.add_row(floor_prolog_row[0], f"{floor_prolog:.2f}", "", "")
     console.print(table)
 
 

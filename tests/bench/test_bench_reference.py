@@ -90,13 +90,11 @@ def test_messaging_measurement_checks_every_ping_arrives() -> None:
     assert (result.agents, result.cycles) == (3, 4)
 
 
-def test_the_cycle_split_times_every_layer_of_the_reference_agent(capsys, monkeypatch) -> None:
+def test_the_cycle_split_times_every_layer_of_the_reference_agent(monkeypatch) -> None:
     monkeypatch.syspath_prepend(str(BENCH))  # (cycle_split imports cycles as a script does)
-    _load("cycle_split").main(cycles=100, repeats=1)
-    rows = {line.split("│")[1].strip(): line.split("│")[2].strip()
-            for line in capsys.readouterr().out.splitlines() if line.count("│") == 5}
-    layers = ["Agent.step", "one interpreter call (journal recorded)",
-              "the C calls alone (no journal record)", "in Prolog alone",
-              "floor through Engine.solve", "floor in Prolog alone"]
-    assert list(rows) == layers
-    assert all(float(micros) > 0 for micros in rows.values())
+    rows = _load("cycle_split").measure_layers(cycles=100, repeats=1)
+    assert [name for name, _ in rows] == [
+        "Agent.step", "one interpreter call (journal recorded)",
+        "the C calls alone (no journal record)", "in Prolog alone",
+        "floor through Engine.solve", "floor in Prolog alone"]
+    assert all(micros > 0 for _, micros in rows)
