@@ -2,8 +2,10 @@
 % N modules each hold the reference agent's beliefs; one round runs the reference agent's
 % logic (bench/reference_floor.pl's rules) once in every module, round-robin. `own`: every
 % module has its own copy of the rule code (as each goalagent agent has its own condition
-% clauses); `shared`: one copy of the code takes the module and calls M:Goal. Prints the CPU
-% µs per module-round after two untimed rounds:
+% clauses); `shared`: one copy of the code takes the module and calls M:Goal; `conditions`:
+% as goalagent is today, the rules' conditions copied into each module and the rest (the loop
+% over instantiations, the updates) shared. Prints the CPU µs per module-round after two
+% untimed rounds:
 %     swipl bench/module_layout.pl own 1000
 %     swipl bench/module_layout.pl shared 1000
 setup_module(M, own) :-
@@ -15,6 +17,9 @@ setup_module(M, shared) :-
     reset(M),
     assertz(M:toggle(on, off)), assertz(M:toggle(off, on)),
     assertz(M:(threshold(C, T) :- T is C mod 10)).
+setup_module(M, conditions) :-
+    setup_module(M, shared),
+    forall(condition_clause(C), assertz(M:C)).
 reset(M) :-
     assertz(M:cycle(0)), assertz(M:sum(0)), assertz(M:flag(off)),
     forall(nth0(I, [3, 7, 1, 9, 4, 0, 8, 2, 6, 5], V), assertz(M:reading(I, V))),
@@ -31,6 +36,21 @@ own_clause((accumulate :- ( cycle(C), K is C mod 7, weight(K, W), sum(S), New is
 own_clause((flip :- ( flag(F), toggle(F, G) -> retract(flag(F)), assertz(flag(G)) ; true ))).
 own_clause((move_checkpoint :- ( goal(checkpoint(N)), cycle(C), C >= N, Later is C + 10 -> retract(goal(checkpoint(N))), assertz(goal(checkpoint(Later))) ; true ))).
 
+condition_clause((c_high(C, T, I, V) :- cycle(C), threshold(C, T), reading(I, V), V > T, \+ high(I))).
+condition_clause((c_low(C, T, I, V) :- cycle(C), threshold(C, T), high(I), reading(I, V), V =< T)).
+condition_clause((c_count(C, Next) :- cycle(C), Next is C + 1)).
+condition_clause((c_accumulate(C, K, W, S, New) :- cycle(C), K is C mod 7, weight(K, W), sum(S), New is (S + W * C) mod 1000003)).
+condition_clause((c_flip(F, G) :- flag(F), toggle(F, G))).
+condition_clause((c_move(N, C, Later) :- goal(checkpoint(N)), cycle(C), C >= N, Later is C + 10)).
+
+cstep(M) :-
+    forall(M:c_high(_, _, I, _), assertz(M:high(I))),
+    forall(M:c_low(_, _, I, _), retract(M:high(I))),
+    ( M:c_count(C, Next) -> retract(M:cycle(C)), assertz(M:cycle(Next)) ; true ),
+    ( M:c_accumulate(_, _, _, S, New) -> retract(M:sum(S)), assertz(M:sum(New)) ; true ),
+    ( M:c_flip(F, G) -> retract(M:flag(F)), assertz(M:flag(G)) ; true ),
+    ( M:c_move(N, _, Later) -> retract(M:goal(checkpoint(N))), assertz(M:goal(checkpoint(Later))) ; true ).
+
 sstep(M) :- s_event_high(M), s_event_low(M), s_count(M), s_accumulate(M), s_flip(M), s_move_checkpoint(M).
 s_event_high(M) :- forall(( M:cycle(C), M:threshold(C, T), M:reading(I, V), V > T, \+ M:high(I) ), assertz(M:high(I))).
 s_event_low(M) :- forall(( M:cycle(C), M:threshold(C, T), M:high(I), M:reading(I, V), V =< T ), retract(M:high(I))).
@@ -41,13 +61,14 @@ s_move_checkpoint(M) :- ( M:goal(checkpoint(N)), M:cycle(C), C >= N, Later is C 
 
 round(own, Ms) :- forall(member(M, Ms), M:step).
 round(shared, Ms) :- forall(member(M, Ms), sstep(M)).
+round(conditions, Ms) :- forall(member(M, Ms), cstep(M)).
 
 measure(Kind, N, Us) :-
     numlist(1, N, Is),
     maplist([I, M]>>format(atom(M), "~w_~w_~w", [Kind, N, I]), Is, Ms),
     forall(member(M, Ms), setup_module(M, Kind)),
     round(Kind, Ms), round(Kind, Ms),
-    Total is max(20000, N * 20), Rounds is Total // N,
+    Total is max(100000, N * 20), Rounds is Total // N,
     statistics(cputime, T0),
     forall(between(1, Rounds, _), round(Kind, Ms)),
     statistics(cputime, T1),
