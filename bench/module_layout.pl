@@ -1,13 +1,11 @@
 % module_layout.pl: a pure-Prolog model of issue 29's per-agent slowdown (bench/README.md).
 % N modules each hold the reference agent's beliefs; one round runs the reference agent's
-% logic (bench/reference_floor.pl's rules) once in every module, round-robin. `own`: every
-% module has its own copy of the rule code (as each goalagent agent has its own condition
-% clauses); `shared`: one copy of the code takes the module and calls M:Goal; `conditions`:
-% as goalagent is today, the rules' conditions copied into each module and the rest (the loop
-% over instantiations, the updates) shared. Prints the CPU µs per module-round after two
-% untimed rounds:
-%     swipl bench/module_layout.pl own 1000
-%     swipl bench/module_layout.pl shared 1000
+% logic (bench/reference_floor.pl's rules) once in every module, round-robin, with the code
+% laid out one of three ways. `own`: every module has its own copy of all of it; `shared`:
+% one copy takes the module and calls M:Goal; `conditions`: as goalagent has it, the rules'
+% conditions copied into each module and the rest (the loop over instantiations, the
+% updates) shared. Prints the CPU µs per module-round after two untimed rounds:
+%     swipl bench/module_layout.pl own|shared|conditions 1000
 setup_module(M, own) :-
     forall(member(P, [cycle/1, sum/1, flag/1, reading/2, weight/2, high/1, goal/1]), dynamic(M:P)),
     reset(M),
