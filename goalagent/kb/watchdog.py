@@ -19,8 +19,8 @@ to a wakeup pipe, and checks the running stretch every ``TICK`` seconds:
   when the running query of an agent has grown it by more than the agent's --max-memory,
   the query is asked to account for it (memory.pl: it stops the agent if what is not
   Prolog's stacks passes the budget); when the process has grown past its alarm mark (the
-  larger of an eighth of its size and 64 MB, or of the smallest budget of an agent made
-  where that is less), the running agent accounts for what it holds at once and
+  larger of an eighth of its size and 64 MB; the smallest budget of an agent made where
+  that is less), the running agent accounts for what it holds at once and
   every agent at its next call (``generation``; goalagent/kb/memory.py); a call that has
   grown it past four budgets and Prolog's stacks without returning to Prolog is in a
   built-in nothing can interrupt: the process ends then, before the machine runs out of
@@ -93,7 +93,7 @@ class Watchdog:
         self._query = 0  # the outermost query watched, the memory when it began, and how
         self._query_base = 0  # much growth asks it for an account next
         self._next_ask = 0
-        self._alarm_step = ALARM_STEP  # at most the smallest budget of an agent made (note_budget)
+        self._smallest_budget: int | None = None  # of an agent made (note_budget)
         # Taken to read the signals' pipe and act on them, and by stop_handled(): a signal
         # Python has already turned into the run's stop is never acted on again later.
         self._lock = threading.Lock()
@@ -209,7 +209,8 @@ class Watchdog:
         comes at least every ``limit`` of growth, or an agent that holds a little more each
         call would be seen only once the process grew by ALARM_STEP, however many calls that
         took (a record a cycle with --max-memory 16 was stopped holding 220 MB)."""
-        self._alarm_step = min(self._alarm_step, limit)
+        if self._smallest_budget is None or limit < self._smallest_budget:
+            self._smallest_budget = limit
 
     def _resident(self) -> int:
         """The process's resident memory in bytes (/proc/self/statm: no lock, no walk)."""
@@ -235,7 +236,10 @@ class Watchdog:
                 self._send(f"call_memory({module}, {limit}, {base}, {_PAGE})", None)
             if growth > 4 * limit + STACK_LIMIT:
                 self._out_of_memory(name, growth)
-        next_mark = rss + max(self._alarm_step, rss // 8)
+        step = max(ALARM_STEP, rss // 8)
+        if self._smallest_budget is not None:
+            step = min(step, self._smallest_budget)
+        next_mark = rss + step
         if rss > self._mark:
             self.generation += 1
             if running:
