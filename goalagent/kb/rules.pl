@@ -106,7 +106,18 @@ compile_pass(Name, Stop, Random, Rules) :-
     ->  pass_until_fired(Rules, Ctx, Given, J0, J, Status, Body)
     ;   pass_all(Rules, Ctx, Given, J0, J, Status, [], Body)
     ),
-    assertz(ga_rules:(Head :- Body)).
+    define_static([Head :- Body], [Name/5]).
+
+%   define_static(+Clauses, +Predicates): Clauses in ga_rules, their arithmetic (the
+%   interpreter's own integers: actions done) compiled inline, and then Predicates made
+%   static (compile_predicates/1): they never change, and a call of a static predicate
+%   costs less than one of a dynamic one.
+define_static(Clauses, Predicates) :-
+    current_prolog_flag(optimise, Optimise),
+    setup_call_cleanup(set_prolog_flag(optimise, true),
+                       forall(member(Clause, Clauses), assertz(ga_rules:Clause)),
+                       set_prolog_flag(optimise, Optimise)),
+    forall(member(Predicate, Predicates), compile_predicates([ga_rules:Predicate])).
 
 pass_until_fired([], _, _, J0, J, Status, (J = J0, Status = none)).
 pass_until_fired([Rule|Rules], Ctx, Given, J0, J, Status,
@@ -241,7 +252,9 @@ compile_rule(B, Name, Id, Kind, c(CondName, CondNames), Text) :-
                 Clause),
     attempt_clause(Body, B, Id, Values, Attempt),
     fire_clauses(Kind, Fire, Attempt, FireClauses),
-    forall(member(C, [Clause|FireClauses]), assertz(ga_rules:C)).
+    last(FireClauses, (FireHead :- _)),
+    functor(FireHead, Fire, FireArity),
+    define_static([Clause|FireClauses], [Name/5, Fire/FireArity]).
 
 %   named_var(+Bindings, +Name, -Var): the variable called Name in the rule text (a fresh
 %   one when the text does not name it, e.g. a condition variable the body never uses).
