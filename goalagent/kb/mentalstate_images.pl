@@ -104,7 +104,7 @@ replay(Effect, B, G) :-
     (   Role == b -> M = B ; M = G ),
     replay_(Kind, M, What).
 
-replay_(assert, M, Clause) :- assertz(M:Clause).
+replay_(assert, M, Clause) :- ga_sizes:assertz_optimised(M:Clause).  % as loaded_assertz/2
 replay_(dynamic, M, PI) :- dynamic(M:PI).
 replay_(redefine, M, Head) :-                   % as make_own/2: not once it is M's own
     (   predicate_property(M:Head, implementation_module(system))

@@ -131,7 +131,8 @@ load_term((Head --> Body), Kind, B, G, Ctx, RunsCode) :- !,
     dcg_translate_rule((Head --> Body), Clause),
     load_term(Clause, Kind, B, G, Ctx, RunsCode).
 load_term(Clause0, Kind, B, G, Ctx, _) :-
-    ga_confine:prepare_clause(Clause0, Ctx, Clause),
+    ga_confine:prepare_clause(Clause0, Ctx, Clause1),
+    ga_sizes:inline_clause(Clause1, Clause),
     clause_head(Clause, Head),
     make_own(B, Head),
     loaded_assertz(B, Clause),
@@ -146,8 +147,9 @@ load_term(Clause0, Kind, B, G, Ctx, _) :-
     ;   ensure_dynamic(G, Head)
     ).
 
+%   (the program's own clauses, made by ga_sizes:inline_clause/2: their arithmetic inline)
 loaded_assertz(M, Clause) :-
-    assertz(M:Clause),
+    ga_sizes:assertz_optimised(M:Clause),
     note_loaded(assert(M, Clause)).
 
 clause_head((Head :- _), Head) :- !.
@@ -325,9 +327,17 @@ compile(B, G, Name, Text, Confined, Names) :-
     ;   Cond = Cond0                    % the runtime's own query (API, reports)
     ),
     translate(Cond, Name, Body, 0, _, Auxes, []),
-    forall(member(Aux, Auxes), assertz(G:Aux)),
     Head =.. [Name|Vars],
-    assertz(B:(Head :- Body)).
+    (   Confined == true                % the agent's own: its arithmetic inline
+    ->  forall(member(Aux, Auxes), inline_assertz(G:Aux)),
+        inline_assertz(B:(Head :- Body))
+    ;   forall(member(Aux, Auxes), assertz(G:Aux)),
+        assertz(B:(Head :- Body))
+    ).
+
+inline_assertz(M:Clause0) :-
+    ga_sizes:inline_clause(Clause0, Clause),
+    ga_sizes:assertz_optimised(M:Clause).
 
 %!  clone_conditions(+FromB, +FromG, +ToB, +ToG, +Names, -Cloned) is det.
 %   Copies the clauses compile/6 made of the conditions Names for the agent of FromB/FromG
@@ -353,7 +363,7 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
                  ;   Clause = Clause0
                  ),
                  memberchk(M0-M, Map),
-                 assertz(M:Clause) )),
+                 ga_sizes:assertz_optimised(M:Clause) )),   % (as compile/6 did)
         Cloned = true
     ;   Cloned = false
     ).

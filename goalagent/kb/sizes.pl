@@ -332,3 +332,141 @@ replace_big(T0, Max, T) :-
 
 replace_big_in(Max, T0, T) :-
     replace_big(T0, Max, T).
+
+		 /*******************************
+		 *      INLINE ARITHMETIC       *
+		 *******************************/
+
+%   An agent's conditions and knowledge are asserted with SWI-Prolog's optimise flag on
+%   (assertz_optimised/1), so that the arithmetic of their clauses runs in the virtual
+%   machine instead of calling is/2, >/2, ... (a call of such a built-in costs about 800
+%   instructions, its inline form a tenth of that; the reference agent's cycle makes 30).
+%   Inline, an arithmetic goal would raise its instantiation and type errors in the name
+%   of the clause instead of the built-in's, and an unknown function would be an error when
+%   the clause is asserted: so each arithmetic goal is first made one of two forms
+%   (inline_clause/2):
+%
+%   - ( number(V1), ..., number(Vn) -> G ; ga_sizes:evaluated(G) ) when G's expressions
+%     hold only variables V1..Vn (at least one), numbers and the functions of
+%     inline_function/1: with numbers, G can raise only evaluation errors (zero_divisor,
+%     ...), which name the function inline as they do in the built-in; otherwise the
+%     built-in runs as before;
+%   - ga_sizes:evaluated(G), the built-in itself, for any other G.
+%
+%   A clause of these forms compiles to the same code whether or not it is read back
+%   (clause/2) and asserted again, as agents launched from one program copy them.
+
+%!  inline_clause(+Clause0, -Clause) is det.
+%   Clause0 with each arithmetic goal of its body in one of the forms above.
+inline_clause((Head :- Body0), (Head :- Body)) :- !,
+    inline_arithmetic(Body0, Body).
+inline_clause(Clause, Clause).
+
+%!  inline_arithmetic(+Body0, -Body) is det.
+%   Body0 with its arithmetic goals in the forms above, through the control constructs
+%   SWI-Prolog compiles into the clause (a meta-call's goal is compiled when it runs, with
+%   the flag off).
+inline_arithmetic(G, G) :-
+    var(G), !.
+inline_arithmetic(( Test -> G ; ga_sizes:Slow ), ( Test -> Inline ; ga_sizes:Slow )) :-
+    guarded(Test, G, Slow), !,                  % made so already (by sized/3 or here)
+    arithmetic(G, Exprs),
+    (   inline_safe(Exprs) -> Inline = G ; Inline = ga_sizes:evaluated(G) ).
+inline_arithmetic((A, B), (IA, IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A ; B), (IA ; IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A | B), (IA | IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A -> B), (IA -> IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A *-> B), (IA *-> IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic(\+ A, \+ IA) :- !,
+    inline_arithmetic(A, IA).
+inline_arithmetic(M:G, M:IG) :- !,
+    inline_arithmetic(G, IG).
+inline_arithmetic(G, Inline) :-
+    arithmetic(G, Exprs), !,
+    term_variables(Exprs, Vars),
+    (   Vars \== [],
+        inline_safe(Exprs)
+    ->  numbers_test(Vars, Test),
+        Inline = ( Test -> G ; ga_sizes:evaluated(G) )
+    ;   Inline = ga_sizes:evaluated(G)
+    ).
+inline_arithmetic(G, G).
+
+%   guarded(+Test, +G, +Slow): ( Test -> G ; ga_sizes:Slow ) is an arithmetic goal G
+%   guarded by the number test of its expressions' variables, as sized/3 or
+%   inline_arithmetic/2 make it.
+guarded(Test, G, Slow) :-
+    nonvar(G),
+    arithmetic(G, Exprs),
+    nonvar(Slow),
+    ( Slow = arithmetic(G1) ; Slow = evaluated(G1) ),
+    G1 == G,
+    term_variables(Exprs, Vars),
+    Vars \== [],
+    numbers_test(Vars, Test0),
+    Test0 == Test.
+
+%   inline_safe(+Exprs): the expressions hold only variables, numbers and the functions of
+%   inline_function/1.
+inline_safe([]).
+inline_safe([E|Es]) :-
+    inline_safe_expr(E),
+    inline_safe(Es).
+
+inline_safe_expr(E) :-
+    (   var(E)
+    ->  true
+    ;   number(E)
+    ->  true
+    ;   compound(E),
+        compound_name_arity(E, Name, Arity),
+        inline_function(Name/Arity),
+        E =.. [_|Args],
+        inline_safe(Args)
+    ).
+
+%   inline_function(?Function): evaluated inline as by the built-in (no power or shift:
+%   those are checked step by step, see sized/3).
+inline_function((+)/2).
+inline_function((-)/2).
+inline_function((*)/2).
+inline_function((/)/2).
+inline_function((//)/2).
+inline_function((mod)/2).
+inline_function((rem)/2).
+inline_function((div)/2).
+inline_function((min)/2).
+inline_function((max)/2).
+inline_function((-)/1).
+inline_function((+)/1).
+inline_function((abs)/1).
+inline_function((sign)/1).
+
+%!  evaluated(+G) is semidet.
+%   The arithmetic built-in G, called (this file is compiled without optimise).
+evaluated(X is E) :- X is E.
+evaluated(A < B) :- A < B.
+evaluated(A > B) :- A > B.
+evaluated(A =< B) :- A =< B.
+evaluated(A >= B) :- A >= B.
+evaluated(A =:= B) :- A =:= B.
+evaluated(A =\= B) :- A =\= B.
+
+%!  assertz_optimised(:Clause) is det.
+%   assertz/1 with the optimise flag on (Clause made by inline_clause/2, or read back from
+%   one that was).
+assertz_optimised(Clause) :-
+    current_prolog_flag(optimise, Optimise),
+    setup_call_cleanup(set_prolog_flag(optimise, true),
+                       assertz(Clause),
+                       set_prolog_flag(optimise, Optimise)).
