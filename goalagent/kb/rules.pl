@@ -484,12 +484,31 @@ update_goal(Mode, Formula, K, Firing, B, G, Listen, CB, Goal) :-
     !,
     (   Dels == [], Adds = [Fact], dynamic_in(CB, Fact)
     ->  functor(Fact, Name, Arity),
-        Goal = safe(ga_kb:insert_one(B, G, Listen, Fact, Name/Arity, K, Firing))
+        ground_code(Fact, ga_kb:insert_ground(B, G, Listen, Fact, Name/Arity),
+                    ga_kb:insert_one(B, G, Listen, Fact, Name/Arity, K, Firing), Code),
+        Goal = safe(Code)
     ;   Adds == [], Dels = [Fact], dynamic_in(CB, Fact)
-    ->  Goal = safe(ga_kb:delete_one(B, G, Listen, Fact))
+    ->  ground_code(Fact, ga_kb:delete_ground(B, G, Listen, Fact),
+                    ga_kb:delete_one(B, G, Listen, Fact), Code),
+        Goal = safe(Code)
     ;   Goal = ga_kb:update_facts(B, G, Listen, Dels, Adds)
     ).
 update_goal(Mode, Formula, _, _, B, G, _, _, ga_kb:update(B, G, Mode, Formula, _, _, _)).
+
+%   ground_code(+Fact, +IfGround, +Otherwise, -Code): Code runs IfGround when Fact is
+%   ground, else Otherwise (which tests it itself): written as inline atomic/1 tests of
+%   Fact's variables (most hold a number or an atom), no call of ground/1.
+ground_code(Fact, IfGround, Otherwise, Code) :-
+    term_variables(Fact, Vars),
+    (   Vars == []
+    ->  Code = IfGround
+    ;   atomic_test(Vars, Test),
+        Code = ( Test -> IfGround ; Otherwise )
+    ).
+
+atomic_test([Var], atomic(Var)) :- !.
+atomic_test([Var|Vars], ( atomic(Var), Test )) :-
+    atomic_test(Vars, Test).
 
 dynamic_in(Module, Fact) :-
     functor(Fact, Name, Arity),

@@ -1,12 +1,18 @@
-"""An agent's conditions and knowledge run their arithmetic inline (ga_sizes:inline_clause/2,
-issue 29 item 3): the same answers and the same warnings, word for word, as when each
-comparison and is/2 was a call of the built-in, for the first agent of a program and for
-the agents that copy its clauses; an unknown function is still a warning when the rule runs,
-not an error when the agent loads."""
+"""What the compiled clauses write inline (issue 29 item 3).
+
+An agent's conditions and knowledge run their arithmetic inline (ga_sizes:inline_clause/2):
+the same answers and the same warnings, word for word, as when each comparison and is/2 was
+a call of the built-in, for the first agent of a program and for the agents that copy its
+clauses; an unknown function is still a warning when the rule runs, not an error when the
+agent loads. A rule's insert or delete of one fact tests its variables inline and calls
+the update for a ground fact (rules.pl's ground_code/4): facts whose variables hold
+compounds, or nothing, are inserted, deleted and refused as before, traced or not.
+"""
 
 from __future__ import annotations
 
 import io
+import re
 
 from goalagent.agent import Agent
 from goalagent.ast import AgentProgram
@@ -145,3 +151,38 @@ def test_conditions_and_knowledge_are_compiled_inline_in_every_agent_of_a_progra
             agent.close()
     assert get_engine().call("current_prolog_flag", Atom("optimise"), Atom("false"),
                              module="user") is not None
+
+
+UPDATES = """
+init module { beliefs { r(_). cell(pos(1, 2)). cell(pos(3, 4)). n(1). } }
+main module [exit=always] { program [order=linearall] {
+    forall bel(cell(P)) do insert(at(P)).
+    if bel(cell(pos(1, 2))) then delete(cell(pos(1, 2))) + insert(moved(pos(1, 2), [a, "b"])).
+    if bel(r(X)) then insert(q(X)).
+    if bel(n(N)) then delete(n(N)) + insert(n(f(N))).
+    if bel(n(f(N))) then delete(n(f(N))).
+} }
+"""
+
+
+def _updates(traced: bool) -> tuple[list[str], list[str]]:
+    """Two cycles of UPDATES: the beliefs after, and the warnings."""
+    warnings: list[str] = []
+    agent = Agent(parse_agent(UPDATES, "u.goal"), name="u", output=io.StringIO(),
+                  warn=warnings.append,
+                  tracer=(lambda agent, kind, text: None) if traced else None)
+    try:
+        agent.run(2)
+        beliefs = sorted(re.sub(r"_G\d+", "_", str(belief)) for belief in agent.beliefs())
+    finally:
+        agent.close()
+    return beliefs, warnings
+
+
+def test_updates_of_facts_whose_variables_hold_compounds_or_nothing():
+    beliefs, warnings = _updates(traced=False)
+    assert beliefs == ["at(pos(1,2))", "at(pos(3,4))", "cell(pos(3,4))",
+                       "moved(pos(1,2),[a,\"b\"])", "r(_)"]
+    assert warnings == ["warning: agent u: u.goal:6:23: insert failed: insert: q(_) is not "
+                        "ground (unbound variables)"]  # (told once)
+    assert _updates(traced=True) == (beliefs, warnings)
