@@ -48,7 +48,7 @@ run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     (   Listen == true -> b_setval('$ga_listen', true) ; true ),
     B:'$ga_limits'(MaxInferences, MaxBeliefs),
     b_setval('$ga_max_inferences', MaxInferences),
-    nb_setval('$ga_aborted_rule', none),
+    nb_linkval('$ga_aborted_rule', none),     % (an atom: nothing to copy)
     nb_getval(B, Pending),
     Ctx = ctx(B, G, Env, Listen, Journal, Pending),
     call_with_inference_limit(run_passes(Passes, Ctx, Journal, Status, Last), MaxInferences,
