@@ -70,11 +70,14 @@ def test_a_sweep_survives_a_worker_killed_mid_task(cluster, local, tmp_path):
     and SciPy imported again: 3 s CPU)."""
     killed: list[int] = []
     failures: list[BaseException] = []
+    finished = threading.Event()
 
     def kill_a_worker() -> None:
         try:
             deadline = time.monotonic() + 240
             while not (workers := cluster.task_workers()):
+                if finished.is_set():
+                    return
                 assert time.monotonic() < deadline, "no worker ever ran a task"
                 time.sleep(0.1)
             os.kill(workers[0], signal.SIGKILL)
@@ -84,11 +87,14 @@ def test_a_sweep_survives_a_worker_killed_mid_task(cluster, local, tmp_path):
 
     killer = threading.Thread(target=kill_a_worker, daemon=True)
     killer.start()
-    result = CliRunner().invoke(APP, ["sweep", "xcs-mux", "--quick", "--grid", "N=200,400",
-                                      "--seeds", "3", "--ray", cluster.address, "--out",
-                                      str(tmp_path), "--cache", str(tmp_path / "cache")],
-                                env=cluster.environment)
-    killer.join(timeout=60)
+    try:
+        result = CliRunner().invoke(APP, ["sweep", "xcs-mux", "--quick", "--grid", "N=200,400",
+                                          "--seeds", "3", "--ray", cluster.address, "--out",
+                                          str(tmp_path), "--cache", str(tmp_path / "cache")],
+                                    env=cluster.environment)
+    finally:
+        finished.set()
+        killer.join(timeout=60)
     assert not failures, failures
     assert killed, "the sweep ended before a worker could be killed"
     assert result.exit_code == 0, result.stderr
