@@ -6,7 +6,7 @@ process); seed 1 and active learning run through the Python API. Both ways give 
 
 Two seeds of random learning and one of active learning suffice: every check reads the
 whole run (each trial's actions, the final table of every pair), so a seed whose draws broke
-the protocol anywhere fails it; a third random seed (2, 3.4 s of the file's 19.5 s CPU) made
+the protocol anywhere fails it; a third random seed (2: 2.7-2.9 s CPU, a sixth of the file) made
 the same checks again on other draws."""
 
 from __future__ import annotations

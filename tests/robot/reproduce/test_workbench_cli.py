@@ -143,7 +143,7 @@ def test_an_interrupted_or_killed_run_resumes_from_its_cache(tmp_path):
     """Ctrl-C (SIGINT) and SIGKILL each stop a run after some seeds finished; the next run of
     the same command runs only the seeds that had not. The two runs that are stopped are
     processes of their own, for the signals; the last, which only has to finish, runs in this
-    process (cli()), which spares a third start-up of the command (the test 7.5 -> 4.6 s CPU)."""
+    process (cli()), which spares a third start-up of the command (the test 6.3 -> 4.3 s CPU)."""
     cache = tmp_path / "cache"
     arguments = ["reproduce", "xcs-mux", "--quick", "--seeds", "4", "--jobs", "1", "--out",
                  str(tmp_path / "out"), "--cache", str(cache)]
