@@ -23,10 +23,10 @@ def test_each_committed_sweep_page_is_what_its_json_gives(document):
     """A committed sweep's statistics and page (its verdicts included) are what the current
     code computes from its measured seeds: ``goalagent sweep --replot`` would leave them as
     they are, and the page says per claim which cells make the claim hold. Computed in
-    memory, as the committed reproductions are in test_studies.py: writing the JSON again
-    (indented: Python's slow encoder) was a quarter of these tests' time, and ``replot``
-    writing what it redraws is tested on a toy sweep (test_workbench.py) and through
-    ``goalagent sweep --replot`` (test_workbench_cli.py)."""
+    memory, as the committed reproductions are in test_studies.py, instead of ``replot`` on a
+    copy writing every file again (5.7 -> 4.7 s CPU for the six); ``replot`` writing what it
+    redraws is tested on a toy sweep (test_workbench.py) and through ``goalagent sweep
+    --replot`` (test_workbench_cli.py)."""
     committed = documents.read(document)
     study = find(committed.study)
     rebuilt = sweeps.restated(study, committed)
