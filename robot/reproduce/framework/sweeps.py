@@ -107,18 +107,28 @@ def write_sweep(study: Study, document: SweepDocument, out: Path) -> list[Path]:
     """A plot per headline metric, the page and the JSON, each written atomically."""
     out.mkdir(parents=True, exist_ok=True)
     name = stem(study, list(document.grid))
-    keys = headline(study, document)
     # each cell's metrics and typed seed results, made once for all the plots
     measured = [(study.metrics(study.config.model_validate(cell.config)),
                  [study.result.model_validate(record.result) for record in cell.seeds])
                 for cell in document.cells]
-    files = [write_atomically(out / f"{name}-{key.replace('.', '-')}.png",
-                              _plot(study, document, key, measured)) for key in keys]
-    base = study.config.model_validate(document.config)
-    page = sweep_page(study, document, keys, [path.name for path in files], base)
-    files.append(write_atomically(out / f"{name}.md", page.encode()))
+    files = [write_atomically(out / plot_file(study, document, key),
+                              _plot(study, document, key, measured))
+             for key in headline(study, document)]
+    files.append(write_atomically(out / f"{name}.md", page(study, document).encode()))
     files.append(documents.write(document, out / f"{name}.json"))
     return files
+
+
+def plot_file(study: Study, document: SweepDocument, key: str) -> str:
+    """``NAME-sweep-KEYS-METRIC.png``: the plot of the headline metric ``key``."""
+    return f"{stem(study, list(document.grid))}-{key.replace('.', '-')}.png"
+
+
+def page(study: Study, document: SweepDocument) -> str:
+    """``NAME-sweep-KEYS.md`` of the document, as the study's current code writes it."""
+    keys = headline(study, document)
+    return sweep_page(study, document, keys, [plot_file(study, document, key) for key in keys],
+                      study.config.model_validate(document.config))
 
 
 def _plot(study: Study, document: SweepDocument, key: str,
@@ -152,8 +162,13 @@ def replot(study: Study, out: Path) -> list[SweepOutcome]:
         old = documents.read(path)
         if not isinstance(old, SweepDocument) or old.study != study.name:
             raise DocumentError(f"{path}: not a sweep of {study.name}")
-        rebuilt = [_cell(study, study.config.model_validate(cell.config), cell.values,
-                         cell.seeds) for cell in old.cells]
-        document = old.model_copy(update={"cells": rebuilt})
+        document = restated(study, old)
         outcomes.append(SweepOutcome(document, write_sweep(study, document, out)))
     return outcomes
+
+
+def restated(study: Study, old: SweepDocument) -> SweepDocument:
+    """``old`` with every cell's statistics computed again from its seeds by this code."""
+    rebuilt = [_cell(study, study.config.model_validate(cell.config), cell.values, cell.seeds)
+               for cell in old.cells]
+    return old.model_copy(update={"cells": rebuilt})

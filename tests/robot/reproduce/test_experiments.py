@@ -1,8 +1,13 @@
 """Thesis §6.4.2 on the simulated cans: Experiments 1 and 2 of the garbage disposal agent.
 
 Seed 0 runs the way the README runs it, from the command line (``goalagent run``, in this
-process); seeds 1 and 2 and active learning run through the Python API. Both ways give one
-``Outcome`` that the same checks read, so no run is repeated to check its other half."""
+process); seed 1 and active learning run through the Python API. Both ways give one
+``Outcome`` that the same checks read, so no run is repeated to check its other half.
+
+Two seeds of random learning and one of active learning suffice: every check reads the
+whole run (each trial's actions, the final table of every pair), so a seed whose draws broke
+the protocol anywhere fails it; a third random seed (2: 2.7-2.9 s CPU, a sixth of the file) made
+the same checks again on other draws."""
 
 from __future__ import annotations
 
@@ -28,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[3]
 MAS = ROOT / "agents" / "garbage_disposal.mas2g"
 TAU = 0.6
 R2 = 0.05
-SEEDS = [1, 2]
+SEEDS = [1]
 """Seeds run in this process; seed 0 is the command line's (its default)."""
 
 

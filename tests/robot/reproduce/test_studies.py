@@ -1,5 +1,8 @@
 """Every study at its quick size, run in this process, checked for what it measured (not for
-which keys exist); and the studies' own statistics on hand-made seeds."""
+which keys exist); each committed sweep's first parameter at that size (issue 28), the way
+``goalagent sweep`` runs it; and the studies' own statistics on hand-made seeds. The quick runs
+and the sweeps share one seed cache, as a user's runs do: a sweep's cell at the study's quick
+values takes its seed from the quick run instead of running it again."""
 
 from __future__ import annotations
 
@@ -9,10 +12,12 @@ import numpy as np
 import pytest
 
 from robot.reproduce.framework.backends import LocalBackend
+from robot.reproduce.framework.cache import Cache
 from robot.reproduce.framework.registry import UnknownStudy, find, registered
 from robot.reproduce.framework.runner import reproduce
-from robot.reproduce.framework.settings import apply
+from robot.reproduce.framework.settings import apply, parse_grid
 from robot.reproduce.framework.statistics import summarize
+from robot.reproduce.framework.sweeps import sweep
 from robot.reproduce.studies import ch4_agent, ch4_exploration, ch4_skills
 from robot.reproduce.studies.common.ch4 import CONFIGURATIONS, METHODS, Exploration
 from robot.reproduce.studies.common.tasks import experienced_rules, majority_movability
@@ -24,12 +29,13 @@ NAMES = ("appA-params", "appA-search", "ch3-baselines", "ch3-navigation", "ch3-s
          "ch5-baseline", "ch5-transfer", "xcs-maze4", "xcs-mux", "xcs-woods2")
 
 
-def quick(name: str, out: Path, seeds: int = 2, settings: tuple[str, ...] = ()):
-    """The study at its quick size, ``settings`` (KEY=VALUE) applied: (document, typed
-    results, page, metrics by key)."""
+def quick(name: str, out: Path, seeds: int = 2, settings: tuple[str, ...] = (),
+          cache: Cache | None = None):
+    """The study at its quick size, ``settings`` (KEY=VALUE) applied, its seeds kept in
+    ``cache``: (document, typed results, page, metrics by key)."""
     study = find(name)
     config = apply(study, study.quick_config(), list(settings))
-    outcome = reproduce(study, config, list(range(seeds)), LocalBackend(1), out)
+    outcome = reproduce(study, config, list(range(seeds)), LocalBackend(1), out, cache=cache)
     page = (out / f"{name}.md").read_text()
     assert f"# {name}" in page and "## Claims and tests" in page
     assert all(f"]({path.name})" in page for path in outcome.files if path.suffix == ".png")
@@ -87,8 +93,26 @@ def _is_movability(rows) -> bool:
                and set(action) <= {"0", "1"} and effect in (0, 1) for obj, action, effect in rows)
 
 
-def test_ch3_navigation_learns_which_box_moves(tmp_path):
-    _, seeds, page, metrics = quick("ch3-navigation", tmp_path)
+@pytest.fixture(scope="module")
+def seed_cache(tmp_path_factory) -> Cache:
+    """The module's seed cache, shared by the quick runs and the sweeps."""
+    return Cache(tmp_path_factory.mktemp("cache"))
+
+
+@pytest.fixture(scope="module")
+def navigation(tmp_path_factory, seed_cache):
+    """ch3-navigation's quick run, its seeds cached for the sweep over learn_in_exploit."""
+    return quick("ch3-navigation", tmp_path_factory.mktemp("ch3-navigation"), cache=seed_cache)
+
+
+@pytest.fixture(scope="module")
+def search(tmp_path_factory, seed_cache):
+    """appA-search's quick run, its seeds cached for the sweep over consistent_actions."""
+    return quick("appA-search", tmp_path_factory.mktemp("appA-search"), cache=seed_cache)
+
+
+def test_ch3_navigation_learns_which_box_moves(navigation):
+    _, seeds, page, metrics = navigation
     for seed in seeds:
         assert seed.trials == 4  # 20 x 0.2
         for mode in (seed.truth, seed.camera):
@@ -110,8 +134,8 @@ def test_ch3_stacking_learns_pose_dependent_movability(tmp_path):
     assert "Chosen object (first choice of the last exploit trial), truth: {" in page
 
 
-def test_appA_search_looks_for_the_target_before_and_after_it_moves(tmp_path):
-    _, seeds, page, metrics = quick("appA-search", tmp_path)
+def test_appA_search_looks_for_the_target_before_and_after_it_moves(search):
+    _, seeds, page, metrics = search
     for place in ("up_left", "right"):
         assert all(3 <= metrics[f"{mode}.{place}.last_exploit_steps"].mean <= 20
                    for mode in ("truth", "camera"))
@@ -263,6 +287,35 @@ def test_ch5_baseline_lists_every_pair_model(tmp_path):
     assert metrics["truth.o1.n_without"].reference == 36
     assert "| o1 | lid | **extend_arm** |" in page
 
+
+SMALL = {
+    "ch3-navigation": ({"learn_in_exploit": "false,true"}, "navigation"),
+    "ch4-exploration": ({"state_scale": "100"}, None),
+    "ch5-transfer": ({"sensor_noise": "0.01"}, None),
+    "appA-search": ({"consistent_actions": "true,false"}, "search"),
+}
+"""Each committed sweep's first parameter at the study's quick size, and the quick run whose
+seed 0 is a cell of it (learn_in_exploit=false and consistent_actions=true are the defaults);
+ch4's and ch5's sweeps run one value off the default only."""
+
+
+@pytest.mark.parametrize("name", sorted(SMALL))
+def test_each_sweep_runs_small_and_says_which_cells_hold_each_claim(name, tmp_path, request,
+                                                                     seed_cache):
+    study = find(name)
+    grid_text, quick_run = SMALL[name]
+    if quick_run is not None:  # its seeds are in the cache: the sweep runs only the others
+        request.getfixturevalue(quick_run)
+    base = study.quick_config()
+    grid = parse_grid(study, base, [f"{k}={v}" for k, v in grid_text.items()])
+    outcome = sweep(study, base, grid, [0], LocalBackend(1), tmp_path, cache=seed_cache)
+    assert outcome.tally.cached == (0 if quick_run is None else 1)
+    assert [cell.values for cell in outcome.document.cells] == [
+        {key: value} for key, values in grid.items() for value in values]
+    page = (tmp_path / f"{name}-sweep-{next(iter(grid))}.md").read_text()
+    assert "## Deviations and open choices" in page and "| swept |" in page
+    claims = outcome.document.cells[0].summary.comparisons
+    assert page.count("By cell: ") == len(claims) > 0
 
 
 RESULTS = Path(__file__).resolve().parents[3] / "docs" / "results"

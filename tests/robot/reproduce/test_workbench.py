@@ -10,26 +10,14 @@ import platform
 import re
 from importlib import metadata
 from pathlib import Path
-from typing import Annotated, Literal
 
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
 from matplotlib.image import imread
-from pydantic import Field
 from rich.console import Console
 
-from robot.reproduce.framework import (
-    Claim,
-    Figure,
-    Metric,
-    Panel,
-    Reference,
-    ScaledConfig,
-    SeedResult,
-    Series,
-    Study,
-)
+from robot.reproduce.framework import Claim
 from robot.reproduce.framework.backends import LocalBackend
 from robot.reproduce.framework.cache import Cache
 from robot.reproduce.framework.documents import DocumentError, read
@@ -46,68 +34,9 @@ from robot.reproduce.framework.sweeps import replot as replot_sweeps
 from robot.reproduce.framework.sweeps import sweep
 from robot.reproduce.framework.tasks import ReproductionFailed
 from tests.conftest import ROOT
+from tests.robot.reproduce.toy_study import TOY, ToyConfig, ToyResult, toy_metrics
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
-
-
-class ToyConfig(ScaledConfig):
-    offset: float = 0.0
-    """Added to every value."""
-    choice: Literal["plain", "doubled"] = "plain"
-    """Whether the value is doubled."""
-    fail_seed: int | None = None
-    """A seed that raises (None: none)."""
-    interrupt_seed: int | None = None
-    """A seed that raises KeyboardInterrupt, as Ctrl-C would."""
-    cans: tuple[str, ...] = ("o1",)
-    """A tuple-typed parameter."""
-    steps: Annotated[int, Field(ge=1)] = 3
-    """A parameter with a limit."""
-    log: str = ""
-    """A file each run appends its seed to (empty: none)."""
-
-
-class ToyResult(SeedResult):
-    value: float
-    curve: list[float]
-    reached: int | None
-
-
-def toy_run(config: ToyConfig, seed: int, progress) -> ToyResult:
-    if config.log:
-        with open(config.log, "a", encoding="utf-8") as handle:
-            handle.write(f"{seed}\n")
-    if seed == config.fail_seed:
-        raise ArithmeticError("no luck")
-    if seed == config.interrupt_seed:
-        raise KeyboardInterrupt
-    for step in range(config.steps):
-        progress(step / config.steps)
-    value = (seed * seed * config.scale + config.offset) * (2 if config.choice == "doubled"
-                                                            else 1)
-    return ToyResult(value=value, curve=[seed, seed + 1.0], reached=seed if seed % 2 else None)
-
-
-def toy_metrics(config: ToyConfig) -> list[Metric[ToyResult]]:
-    return [Metric("value", "the value", lambda s: s.value, 2.0, "by hand"),
-            Metric("reached", "where odd seeds got", lambda s: s.reached),
-            Metric("shifted", "the value plus one", lambda s: s.value + 1.0)]
-
-
-def toy_claims(config: ToyConfig) -> list[Claim]:
-    return [Claim("values grow beyond zero", "value", 0.0, "greater"),
-            Claim("adding one adds", "shifted", "value", "greater")]
-
-
-def toy_figures(config: ToyConfig, seeds) -> list[Figure]:
-    return [Figure("curve", "A curve", [Panel("x", "y", [
-        Series("seed curve", [0.0, 1.0], [seed.curve for seed in seeds])],
-        [Reference(1.0, "one"), Reference(0.5, "half", vertical=True)])])]
-
-
-TOY = Study(name="toy-run", description="a toy", config=ToyConfig, result=ToyResult,
-            run=toy_run, metrics=toy_metrics, claims=toy_claims, figures=toy_figures,
-            quick={"scale": 0.5}, headline=("value",))
 
 
 def run_toy(out: Path, seeds=range(3), cache: Path | None = None, jobs: int = 1, **values):

@@ -141,10 +141,13 @@ def _until_cached(process: subprocess.Popen, cache: Path, count: int) -> None:
 
 def test_an_interrupted_or_killed_run_resumes_from_its_cache(tmp_path):
     """Ctrl-C (SIGINT) and SIGKILL each stop a run after some seeds finished; the next run of
-    the same command runs only the seeds that had not."""
+    the same command runs only the seeds that had not. The two runs that are stopped are
+    processes of their own, for the signals; the last, which only has to finish, runs in this
+    process (cli()), which spares a third start-up of the command (the test 6.3 -> 4.3 s CPU)."""
     cache = tmp_path / "cache"
-    command = [sys.executable, "-m", "goalagent", "reproduce", "xcs-mux", "--quick", "--seeds",
-               "4", "--jobs", "1", "--out", str(tmp_path / "out"), "--cache", str(cache)]
+    arguments = ["reproduce", "xcs-mux", "--quick", "--seeds", "4", "--jobs", "1", "--out",
+                 str(tmp_path / "out"), "--cache", str(cache)]
+    command = [sys.executable, "-m", "goalagent", *arguments]
     environment = {**os.environ, "MUJOCO_GL": "egl"}
     first = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, text=True,
                              env=environment)
@@ -160,9 +163,8 @@ def test_an_interrupted_or_killed_run_resumes_from_its_cache(tmp_path):
     second.wait(timeout=60)
     done = _entries(cache)
     assert done >= 2
-    third = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, env=environment,
-                           timeout=600)
-    assert third.returncode == 0, third.stderr
+    third = cli(*arguments)
+    assert third.exit_code == 0, third.stderr
     assert f"seeds run: {4 - done}, from the cache: {done}" in third.stderr
     document = json.loads((tmp_path / "out" / "xcs-mux.json").read_text())
     assert [record["seed"] for record in document["seeds"]] == [0, 1, 2, 3]
