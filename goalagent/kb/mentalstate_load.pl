@@ -149,7 +149,7 @@ load_term(Clause0, Kind, B, G, Ctx, _) :-
 
 %   (the program's own clauses, made by ga_sizes:inline_clause/2: their arithmetic inline)
 loaded_assertz(M, Clause) :-
-    ga_sizes:assertz_optimised(M:Clause),
+    ga_sizes:with_optimise(ga_kb:assertz(M:Clause)),
     note_loaded(assert(M, Clause)).
 
 clause_head((Head :- _), Head) :- !.
@@ -326,18 +326,16 @@ compile(B, G, Name, Text, Confined, Names) :-
     ->  ga_confine:prepare_sandboxed_condition(Cond0, B, Cond)
     ;   Cond = Cond0                    % the runtime's own query (API, reports)
     ),
-    translate(Cond, Name, Body, 0, _, Auxes, []),
+    translate(Cond, Name, Body, 0, _, Auxes0, []),
     Head =.. [Name|Vars],
     (   Confined == true                % the agent's own: its arithmetic inline
-    ->  forall(member(Aux, Auxes), inline_assertz(G:Aux)),
-        inline_assertz(B:(Head :- Body))
-    ;   forall(member(Aux, Auxes), assertz(G:Aux)),
+    ->  maplist(ga_sizes:inline_clause, Auxes0, Auxes),
+        ga_sizes:inline_clause((Head :- Body), Clause),
+        ga_sizes:with_optimise(ga_kb:( forall(member(Aux, Auxes), assertz(G:Aux)),
+                                       assertz(B:Clause) ))
+    ;   forall(member(Aux, Auxes0), assertz(G:Aux)),
         assertz(B:(Head :- Body))
     ).
-
-inline_assertz(M:Clause0) :-
-    ga_sizes:inline_clause(Clause0, Clause),
-    ga_sizes:assertz_optimised(M:Clause).
 
 %!  clone_conditions(+FromB, +FromG, +ToB, +ToG, +Names, -Cloned) is det.
 %   Copies the clauses compile/6 made of the conditions Names for the agent of FromB/FromG
@@ -357,13 +355,14 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
     ),
     (   Found = found(Clauses, Named)
     ->  Map = [FromB-ToB, FromG-ToG],
-        forall(member(M0-Clause0, Clauses),
-               ( (   Named == true
-                 ->  renamed(Clause0, Map, Clause)
-                 ;   Clause = Clause0
-                 ),
-                 memberchk(M0-M, Map),
-                 ga_sizes:assertz_optimised(M:Clause) )),   % (as compile/6 did)
+        ga_sizes:with_optimise(                 % (as compile/6 asserted them)
+            ga_kb:forall(member(M0-Clause0, Clauses),
+                   ( (   Named == true
+                     ->  renamed(Clause0, Map, Clause)
+                     ;   Clause = Clause0
+                     ),
+                     memberchk(M0-M, Map),
+                     assertz(M:Clause) ))),
         Cloned = true
     ;   Cloned = false
     ).

@@ -113,10 +113,8 @@ compile_pass(Name, Stop, Random, Rules) :-
 %   static (compile_predicates/1): they never change, and a call of a static predicate
 %   costs less than one of a dynamic one.
 define_static(Clauses, Predicates) :-
-    current_prolog_flag(optimise, Optimise),
-    setup_call_cleanup(set_prolog_flag(optimise, true),
-                       forall(member(Clause, Clauses), assertz(ga_rules:Clause)),
-                       set_prolog_flag(optimise, Optimise)),
+    ga_sizes:with_optimise(ga_kb:forall(member(Clause, Clauses),
+                                          assertz(ga_rules:Clause))),
     forall(member(Predicate, Predicates), compile_predicates([ga_rules:Predicate])).
 
 pass_until_fired([], _, _, J0, J, Status, (J = J0, Status = none)).

@@ -338,7 +338,7 @@ replace_big_in(Max, T0, T) :-
 		 *******************************/
 
 %   An agent's conditions and knowledge are asserted with SWI-Prolog's optimise flag on
-%   (assertz_optimised/1), so that the arithmetic of their clauses runs in the virtual
+%   (with_optimise/1), so that the arithmetic of their clauses runs in the virtual
 %   machine instead of calling is/2, >/2, ... (a call of such a built-in costs about 800
 %   instructions, its inline form a tenth of that; the reference agent's cycle makes 30).
 %   Inline, an arithmetic goal would raise its instantiation and type errors in the name
@@ -462,11 +462,14 @@ evaluated(A >= B) :- A >= B.
 evaluated(A =:= B) :- A =:= B.
 evaluated(A =\= B) :- A =\= B.
 
-%!  assertz_optimised(:Clause) is det.
-%   assertz/1 with the optimise flag on (Clause made by inline_clause/2, or read back from
-%   one that was).
-assertz_optimised(Clause) :-
+%!  with_optimise(:Goal) is det.
+%   Goal (asserting clauses made by inline_clause/2, or read back from ones that were, and
+%   nothing that runs an agent's code) with the optimise flag on, set once for all of them.
+%   (Called as ga_sizes:with_optimise/1, Goal is in ga_sizes unless it names its module.)
+:- meta_predicate with_optimise(0).
+
+with_optimise(Goal) :-
     current_prolog_flag(optimise, Optimise),
     setup_call_cleanup(set_prolog_flag(optimise, true),
-                       assertz(Clause),
+                       once(Goal),
                        set_prolog_flag(optimise, Optimise)).
