@@ -341,16 +341,18 @@ replace_big_in(Max, T0, T) :-
 %   (with_optimise/1), so that the arithmetic of their clauses runs in the virtual
 %   machine instead of calling is/2, >/2, ... (a call of such a built-in costs about 800
 %   instructions, its inline form a tenth of that; the reference agent's cycle makes 30).
-%   Inline, an arithmetic goal would raise its instantiation and type errors in the name
-%   of the clause instead of the built-in's, and an unknown function would be an error when
-%   the clause is asserted: so each arithmetic goal is first made one of two forms
-%   (inline_clause/2):
+%   Inline, an arithmetic goal would raise its errors in the name of the clause instead of
+%   the built-in's (`is/2: ...' would lose its prefix), and an unknown function would be
+%   an error when the clause is asserted: so each arithmetic goal is first made one of two
+%   forms (inline_clause/2):
 %
-%   - ( number(V1), ..., number(Vn) -> G ; ga_sizes:evaluated(G) ) when G's expressions
-%     hold only variables V1..Vn (at least one), numbers and the functions of
-%     inline_function/1: with numbers, G can raise only evaluation errors (zero_divisor,
-%     ...), which name the function inline as they do in the built-in; otherwise the
-%     built-in runs as before;
+%   - ( Test -> G ; ga_sizes:evaluated(G) ) when G runs inline, after Test, raising nothing
+%     the built-in would word otherwise (inline_test/3): a comparison or is/2 of bare
+%     variables and numbers after number(V) of each variable (numbers compare and unify
+%     without error); an expression of integers, variables and the functions of
+%     inline_function/1 after integer(V) of each (integer arithmetic cannot overflow; a
+%     zero divisor names its function inline as the built-in does). Floats are left to
+%     the built-in: their overflow would lose the `is/2' of its message inline;
 %   - ga_sizes:evaluated(G), the built-in itself, for any other G.
 %
 %   A clause of these forms compiles to the same code whether or not it is read back
@@ -368,10 +370,14 @@ inline_clause(Clause, Clause).
 %   the flag off).
 inline_arithmetic(G, G) :-
     var(G), !.
-inline_arithmetic(( Test -> G ; ga_sizes:Slow ), ( Test -> Inline ; ga_sizes:Slow )) :-
+inline_arithmetic(( Test -> G ; ga_sizes:Slow ), Inline) :-
     guarded(Test, G, Slow), !,                  % made so already (by sized/3 or here)
     arithmetic(G, Exprs),
-    (   inline_safe(Exprs) -> Inline = G ; Inline = ga_sizes:evaluated(G) ).
+    term_variables(Exprs, Vars),
+    (   inline_test(Exprs, Vars, InlineTest)    % (other values: the slow path, as before)
+    ->  Inline = ( InlineTest -> G ; ga_sizes:Slow )
+    ;   Inline = ( Test -> ga_sizes:evaluated(G) ; ga_sizes:Slow )
+    ).
 inline_arithmetic((A, B), (IA, IB)) :- !,
     inline_arithmetic(A, IA),
     inline_arithmetic(B, IB).
@@ -394,17 +400,15 @@ inline_arithmetic(M:G, M:IG) :- !,
 inline_arithmetic(G, Inline) :-
     arithmetic(G, Exprs), !,
     term_variables(Exprs, Vars),
-    (   Vars \== [],
-        inline_safe(Exprs)
-    ->  numbers_test(Vars, Test),
-        Inline = ( Test -> G ; ga_sizes:evaluated(G) )
+    (   inline_test(Exprs, Vars, Test)
+    ->  Inline = ( Test -> G ; ga_sizes:evaluated(G) )
     ;   Inline = ga_sizes:evaluated(G)
     ).
 inline_arithmetic(G, G).
 
 %   guarded(+Test, +G, +Slow): ( Test -> G ; ga_sizes:Slow ) is an arithmetic goal G
-%   guarded by the number test of its expressions' variables, as sized/3 or
-%   inline_arithmetic/2 make it.
+%   guarded by a test of its expressions' variables, as sized/3 (number/1 of each) or
+%   inline_arithmetic/2 (inline_test/3) make it.
 guarded(Test, G, Slow) :-
     nonvar(G),
     arithmetic(G, Exprs),
@@ -413,34 +417,51 @@ guarded(Test, G, Slow) :-
     G1 == G,
     term_variables(Exprs, Vars),
     Vars \== [],
-    numbers_test(Vars, Test0),
-    Test0 == Test.
+    (   numbers_test(Vars, Test0),
+        Test0 == Test
+    ->  true
+    ;   inline_test(Exprs, Vars, Test0),
+        Test0 == Test
+    ).
 
-%   inline_safe(+Exprs): the expressions hold only variables, numbers and the functions of
-%   inline_function/1.
-inline_safe([]).
-inline_safe([E|Es]) :-
-    inline_safe_expr(E),
-    inline_safe(Es).
+%   inline_test(+Exprs, +Vars, -Test): the arithmetic goal whose expressions are Exprs,
+%   with variables Vars (at least one), runs inline after Test raising nothing the
+%   built-in would word otherwise (see the forms above); fails when it cannot.
+inline_test(Exprs, Vars, Test) :-
+    Vars \== [],
+    (   maplist(bare, Exprs)
+    ->  numbers_test(Vars, Test)
+    ;   maplist(integral, Exprs)
+    ->  integers_test(Vars, Test)
+    ).
 
-inline_safe_expr(E) :-
+bare(E) :-
+    (   var(E) -> true ; number(E) ).
+
+%   integral(+E): E holds only variables, integers and the functions of inline_function/1.
+integral(E) :-
     (   var(E)
     ->  true
-    ;   number(E)
+    ;   integer(E)
     ->  true
     ;   compound(E),
         compound_name_arity(E, Name, Arity),
         inline_function(Name/Arity),
         E =.. [_|Args],
-        inline_safe(Args)
+        maplist(integral, Args)
     ).
 
-%   inline_function(?Function): evaluated inline as by the built-in (no power or shift:
-%   those are checked step by step, see sized/3).
+%   integers_test(+Vars, -Test): a goal true when every variable of Vars is an integer.
+integers_test([V], integer(V)) :- !.
+integers_test([V|Vs], (integer(V), Test)) :-
+    integers_test(Vs, Test).
+
+%   inline_function(?Function): evaluated inline on integers as by the built-in (no
+%   division to a float, power or shift: those the built-in evaluates, the last two
+%   checked step by step, see sized/3).
 inline_function((+)/2).
 inline_function((-)/2).
 inline_function((*)/2).
-inline_function((/)/2).
 inline_function((//)/2).
 inline_function((mod)/2).
 inline_function((rem)/2).
