@@ -86,14 +86,13 @@ delete_one(B, G, Listen, Fact) :-
     ).
 
 %!  delete_ground(+B, +G, +Listen, +Fact) is det.
-%   delete_one/4 of a ground Fact (see insert_ground/5).
+%   delete_one/4 of a ground Fact (see insert_ground/5). The other copies of the fact go
+%   too, by retract/1, which takes facts only: retractall/1 would also take the belief
+%   rules whose head unifies with it (and did, untraced only).
 delete_ground(B, G, Listen, Fact) :-
     (   retract(B:Fact)
-    ->  (   Listen == true
-        ->  retract_count(B, Fact, 1, Copies),
-            tell_deleted(Copies, Fact)
-        ;   retractall(B:Fact)                  % the other copies, if any
-        ),
+    ->  retract_count(B, Fact, 1, Copies),
+        (   Listen == true -> tell_deleted(Copies, Fact) ; true ),
         (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
     ;   true
     ).

@@ -195,3 +195,23 @@ def test_updates_of_facts_whose_variables_hold_compounds_or_nothing():
     assert warnings == ["warning: agent u: u.goal:6:23: insert failed: insert: q(_) is not "
                         "ground (unbound variables)"]  # (told once)
     assert _updates(traced=True) == (beliefs, warnings)
+
+
+RULE_BESIDE_FACT = """
+init module { beliefs { f(1). f(X) :- g(X). g(2). } }
+main module [exit=always] { program [order=linearall] {
+    if bel(f(1)) then delete(f(1)).
+} }
+"""
+
+
+def test_deleting_a_fact_leaves_the_belief_rules_whose_head_unifies_with_it():
+    # untraced, the delete took the rule f(X) :- g(X) too (retractall/1); traced it did not
+    for traced in (False, True):
+        agent = Agent(parse_agent(RULE_BESIDE_FACT, "r.goal"), name="r", output=io.StringIO(),
+                      tracer=(lambda agent, kind, text: None) if traced else None)
+        try:
+            agent.run(1)
+            assert [answer["X"] for answer in agent.query("bel", "f(X)")] == [2], traced
+        finally:
+            agent.close()
