@@ -10,6 +10,9 @@
 :- module(ga_guard, []).
 
 :- set_prolog_flag(generate_debug_info, false).
+%   Its arithmetic (depths, offsets, clause counts: integers it makes itself) inline: a
+%   cycle runs belief_bound/2 (this file only).
+:- set_prolog_flag(optimise, true).
 
 %!  max_depth(-Depth) is det.
 %   The deepest nesting of a term read from an agent's text or a file of facts.

@@ -18,6 +18,9 @@
 :- module(ga_kb, []).
 
 :- set_prolog_flag(generate_debug_info, false).
+%   The interpreter's own arithmetic (journal counts, action indexes, ids: integers it
+%   makes itself) compiled inline instead of calls of is/2 and >/2 (this file only).
+:- set_prolog_flag(optimise, true).
 
 %   '$ga_g': the goal a goal/1 query reads (see forwarder/2); '$ga_listen': true while the
 %   running agent has listeners, so the interpreter reports each step (see tell/1 in

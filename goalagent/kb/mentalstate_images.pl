@@ -82,7 +82,7 @@ replay_image(Id, B, G) :-
     ->  Effects = Effects0
     ;   renamed(Effects0, [FromB-B, FromG-G], Effects)
     ),
-    forall(member(Effect, Effects), replay(Effect, B, G)).
+    ga_sizes:with_optimise(ga_kb:forall(member(Effect, Effects), replay(Effect, B, G))).
 
 %   note_loaded(+Effect): Effect (what load/6 did to a module) recorded for load_imaged/7
 %   while it records.
@@ -104,7 +104,7 @@ replay(Effect, B, G) :-
     (   Role == b -> M = B ; M = G ),
     replay_(Kind, M, What).
 
-replay_(assert, M, Clause) :- assertz(M:Clause).
+replay_(assert, M, Clause) :- assertz(M:Clause).     % (optimised, as loaded_assertz/2)
 replay_(dynamic, M, PI) :- dynamic(M:PI).
 replay_(redefine, M, Head) :-                   % as make_own/2: not once it is M's own
     (   predicate_property(M:Head, implementation_module(system))

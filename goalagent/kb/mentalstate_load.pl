@@ -131,7 +131,8 @@ load_term((Head --> Body), Kind, B, G, Ctx, RunsCode) :- !,
     dcg_translate_rule((Head --> Body), Clause),
     load_term(Clause, Kind, B, G, Ctx, RunsCode).
 load_term(Clause0, Kind, B, G, Ctx, _) :-
-    ga_confine:prepare_clause(Clause0, Ctx, Clause),
+    ga_confine:prepare_clause(Clause0, Ctx, Clause1),
+    ga_sizes:inline_clause(Clause1, Clause),
     clause_head(Clause, Head),
     make_own(B, Head),
     loaded_assertz(B, Clause),
@@ -146,8 +147,9 @@ load_term(Clause0, Kind, B, G, Ctx, _) :-
     ;   ensure_dynamic(G, Head)
     ).
 
+%   (the program's own clauses, made by ga_sizes:inline_clause/2: their arithmetic inline)
 loaded_assertz(M, Clause) :-
-    assertz(M:Clause),
+    ga_sizes:with_optimise(ga_kb:assertz(M:Clause)),
     note_loaded(assert(M, Clause)).
 
 clause_head((Head :- _), Head) :- !.
@@ -324,10 +326,16 @@ compile(B, G, Name, Text, Confined, Names) :-
     ->  ga_confine:prepare_sandboxed_condition(Cond0, B, Cond)
     ;   Cond = Cond0                    % the runtime's own query (API, reports)
     ),
-    translate(Cond, Name, Body, 0, _, Auxes, []),
-    forall(member(Aux, Auxes), assertz(G:Aux)),
+    translate(Cond, Name, Body, 0, _, Auxes0, []),
     Head =.. [Name|Vars],
-    assertz(B:(Head :- Body)).
+    (   Confined == true                % the agent's own: its arithmetic inline
+    ->  maplist(ga_sizes:inline_clause, Auxes0, Auxes),
+        ga_sizes:inline_clause((Head :- Body), Clause),
+        ga_sizes:with_optimise(ga_kb:( forall(member(Aux, Auxes), assertz(G:Aux)),
+                                       assertz(B:Clause) ))
+    ;   forall(member(Aux, Auxes0), assertz(G:Aux)),
+        assertz(B:(Head :- Body))
+    ).
 
 %!  clone_conditions(+FromB, +FromG, +ToB, +ToG, +Names, -Cloned) is det.
 %   Copies the clauses compile/6 made of the conditions Names for the agent of FromB/FromG
@@ -347,13 +355,14 @@ clone_conditions(FromB, FromG, ToB, ToG, Names, Cloned) :-
     ),
     (   Found = found(Clauses, Named)
     ->  Map = [FromB-ToB, FromG-ToG],
-        forall(member(M0-Clause0, Clauses),
-               ( (   Named == true
-                 ->  renamed(Clause0, Map, Clause)
-                 ;   Clause = Clause0
-                 ),
-                 memberchk(M0-M, Map),
-                 assertz(M:Clause) )),
+        ga_sizes:with_optimise(                 % (as compile/6 asserted them)
+            ga_kb:forall(member(M0-Clause0, Clauses),
+                   ( (   Named == true
+                     ->  renamed(Clause0, Map, Clause)
+                     ;   Clause = Clause0
+                     ),
+                     memberchk(M0-M, Map),
+                     assertz(M:Clause) ))),
         Cloned = true
     ;   Cloned = false
     ).

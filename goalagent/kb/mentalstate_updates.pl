@@ -54,6 +54,12 @@ insert_one(B, G, Listen, Fact, Key, K, Firing) :-
         problem(action(Firing, K, ga_error(Message))),
         fail
     ),
+    insert_ground(B, G, Listen, Fact, Key).
+
+%!  insert_ground(+B, +G, +Listen, +Fact, +Key) is det.
+%   insert_one/7 of a Fact known to be ground (the rule's code tested its variables
+%   inline, see rules.pl's update_goal/9).
+insert_ground(B, G, Listen, Fact, Key) :-
     (   clause(B:Fact, true)
     ->  true
     ;   assertz(B:Fact),
@@ -70,21 +76,25 @@ insert_one(B, G, Listen, Fact, Key, K, Firing) :-
 %   delete/1 of one fact of a dynamic predicate the agent declared: as update/7.
 delete_one(B, G, Listen, Fact) :-
     (   ground(Fact)
-    ->  (   retract(B:Fact)
-        ->  (   Listen == true
-            ->  retract_count(B, Fact, 1, Copies),
-                tell_deleted(Copies, Fact)
-            ;   retractall(B:Fact)                  % the other copies, if any
-            ),
-            (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
-        ;   true
-        )
+    ->  delete_ground(B, G, Listen, Fact)
     ;   findall(Fact, retract(B:Fact), Deleted),
         (   Deleted == []
         ->  true
         ;   (   Listen == true -> tell_deleted(Deleted, Fact) ; true ),
             (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
         )
+    ).
+
+%!  delete_ground(+B, +G, +Listen, +Fact) is det.
+%   delete_one/4 of a ground Fact (see insert_ground/5). The other copies of the fact go
+%   too, by retract/1, which takes facts only: retractall/1 would also take the belief
+%   rules whose head unifies with it (and did, untraced only).
+delete_ground(B, G, Listen, Fact) :-
+    (   retract(B:Fact)
+    ->  retract_count(B, Fact, 1, Copies),
+        (   Listen == true -> tell_deleted(Copies, Fact) ; true ),
+        (   nb_getval(G, any) -> blind_commitment(B, G, _) ; true )
+    ;   true
     ).
 
 must_be_ground([]).

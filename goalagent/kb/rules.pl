@@ -48,7 +48,7 @@ run(r(B, G, Env, Listen, CountLast, Passes), Outcome, Journal) :-
     (   Listen == true -> b_setval('$ga_listen', true) ; true ),
     B:'$ga_limits'(MaxInferences, MaxBeliefs),
     b_setval('$ga_max_inferences', MaxInferences),
-    nb_setval('$ga_aborted_rule', none),
+    nb_linkval('$ga_aborted_rule', none),     % (an atom: nothing to copy)
     nb_getval(B, Pending),
     Ctx = ctx(B, G, Env, Listen, Journal, Pending),
     call_with_inference_limit(run_passes(Passes, Ctx, Journal, Status, Last), MaxInferences,
@@ -106,7 +106,16 @@ compile_pass(Name, Stop, Random, Rules) :-
     ->  pass_until_fired(Rules, Ctx, Given, J0, J, Status, Body)
     ;   pass_all(Rules, Ctx, Given, J0, J, Status, [], Body)
     ),
-    assertz(ga_rules:(Head :- Body)).
+    define_static([Head :- Body], [Name/5]).
+
+%   define_static(+Clauses, +Predicates): Clauses in ga_rules, their arithmetic (the
+%   interpreter's own integers: actions done) compiled inline, and then Predicates made
+%   static (compile_predicates/1): they never change, and a call of a static predicate
+%   costs less than one of a dynamic one.
+define_static(Clauses, Predicates) :-
+    ga_sizes:with_optimise(ga_kb:forall(member(Clause, Clauses),
+                                          assertz(ga_rules:Clause))),
+    forall(member(Predicate, Predicates), compile_predicates([ga_rules:Predicate])).
 
 pass_until_fired([], _, _, J0, J, Status, (J = J0, Status = none)).
 pass_until_fired([Rule|Rules], Ctx, Given, J0, J, Status,
@@ -241,7 +250,9 @@ compile_rule(B, Name, Id, Kind, c(CondName, CondNames), Text) :-
                 Clause),
     attempt_clause(Body, B, Id, Values, Attempt),
     fire_clauses(Kind, Fire, Attempt, FireClauses),
-    forall(member(C, [Clause|FireClauses]), assertz(ga_rules:C)).
+    last(FireClauses, (FireHead :- _)),
+    functor(FireHead, Fire, FireArity),
+    define_static([Clause|FireClauses], [Name/5, Fire/FireArity]).
 
 %   named_var(+Bindings, +Name, -Var): the variable called Name in the rule text (a fresh
 %   one when the text does not name it, e.g. a condition variable the body never uses).
@@ -471,12 +482,31 @@ update_goal(Mode, Formula, K, Firing, B, G, Listen, CB, Goal) :-
     !,
     (   Dels == [], Adds = [Fact], dynamic_in(CB, Fact)
     ->  functor(Fact, Name, Arity),
-        Goal = safe(ga_kb:insert_one(B, G, Listen, Fact, Name/Arity, K, Firing))
+        ground_code(Fact, ga_kb:insert_ground(B, G, Listen, Fact, Name/Arity),
+                    ga_kb:insert_one(B, G, Listen, Fact, Name/Arity, K, Firing), Code),
+        Goal = safe(Code)
     ;   Adds == [], Dels = [Fact], dynamic_in(CB, Fact)
-    ->  Goal = safe(ga_kb:delete_one(B, G, Listen, Fact))
+    ->  ground_code(Fact, ga_kb:delete_ground(B, G, Listen, Fact),
+                    ga_kb:delete_one(B, G, Listen, Fact), Code),
+        Goal = safe(Code)
     ;   Goal = ga_kb:update_facts(B, G, Listen, Dels, Adds)
     ).
 update_goal(Mode, Formula, _, _, B, G, _, _, ga_kb:update(B, G, Mode, Formula, _, _, _)).
+
+%   ground_code(+Fact, +IfGround, +Otherwise, -Code): Code runs IfGround when Fact is
+%   ground, else Otherwise (which tests it itself): written as inline atomic/1 tests of
+%   Fact's variables (most hold a number or an atom), no call of ground/1.
+ground_code(Fact, IfGround, Otherwise, Code) :-
+    term_variables(Fact, Vars),
+    (   Vars == []
+    ->  Code = IfGround
+    ;   atomic_test(Vars, Test),
+        Code = ( Test -> IfGround ; Otherwise )
+    ).
+
+atomic_test([Var], atomic(Var)) :- !.
+atomic_test([Var|Vars], ( atomic(Var), Test )) :-
+    atomic_test(Vars, Test).
 
 dynamic_in(Module, Fact) :-
     functor(Fact, Name, Arity),

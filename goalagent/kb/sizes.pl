@@ -332,3 +332,165 @@ replace_big(T0, Max, T) :-
 
 replace_big_in(Max, T0, T) :-
     replace_big(T0, Max, T).
+
+		 /*******************************
+		 *      INLINE ARITHMETIC       *
+		 *******************************/
+
+%   An agent's conditions and knowledge are asserted with SWI-Prolog's optimise flag on
+%   (with_optimise/1), so that the arithmetic of their clauses runs in the virtual
+%   machine instead of calling is/2, >/2, ... (a call of such a built-in costs about 800
+%   instructions, its inline form a tenth of that; the reference agent's cycle makes 30).
+%   Inline, an arithmetic goal would raise its errors in the name of the clause instead of
+%   the built-in's (`is/2: ...' would lose its prefix), and an unknown function would be
+%   an error when the clause is asserted: so each arithmetic goal is first made one of two
+%   forms (inline_clause/2):
+%
+%   - ( Test -> G ; ga_sizes:evaluated(G) ) when G runs inline, after Test, raising nothing
+%     the built-in would word otherwise (inline_test/3): a comparison or is/2 of bare
+%     variables and numbers after number(V) of each variable (numbers compare and unify
+%     without error); an expression of integers, variables and the functions of
+%     inline_function/1 after integer(V) of each (integer arithmetic cannot overflow; a
+%     zero divisor names its function inline as the built-in does). Floats are left to
+%     the built-in: their overflow would lose the `is/2' of its message inline;
+%   - ga_sizes:evaluated(G), the built-in itself, for any other G.
+%
+%   A clause of these forms compiles to the same code whether or not it is read back
+%   (clause/2) and asserted again, as agents launched from one program copy them.
+
+%!  inline_clause(+Clause0, -Clause) is det.
+%   Clause0 with each arithmetic goal of its body in one of the forms above.
+inline_clause((Head :- Body0), (Head :- Body)) :- !,
+    inline_arithmetic(Body0, Body).
+inline_clause(Clause, Clause).
+
+%!  inline_arithmetic(+Body0, -Body) is det.
+%   Body0 with its arithmetic goals in the forms above, through the control constructs
+%   SWI-Prolog compiles into the clause (a meta-call's goal is compiled when it runs, with
+%   the flag off).
+inline_arithmetic(G, G) :-
+    var(G), !.
+inline_arithmetic(( Test -> G ; ga_sizes:Slow ), Inline) :-
+    guarded(Test, G, Slow), !,                  % made so already (by sized/3 or here)
+    arithmetic(G, Exprs),
+    term_variables(Exprs, Vars),
+    (   inline_test(Exprs, Vars, InlineTest)    % (other values: the slow path, as before)
+    ->  Inline = ( InlineTest -> G ; ga_sizes:Slow )
+    ;   Inline = ( Test -> ga_sizes:evaluated(G) ; ga_sizes:Slow )
+    ).
+inline_arithmetic((A, B), (IA, IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A ; B), (IA ; IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A | B), (IA | IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A -> B), (IA -> IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic((A *-> B), (IA *-> IB)) :- !,
+    inline_arithmetic(A, IA),
+    inline_arithmetic(B, IB).
+inline_arithmetic(\+ A, \+ IA) :- !,
+    inline_arithmetic(A, IA).
+inline_arithmetic(M:G, M:IG) :- !,
+    inline_arithmetic(G, IG).
+inline_arithmetic(G, Inline) :-
+    arithmetic(G, Exprs), !,
+    term_variables(Exprs, Vars),
+    (   inline_test(Exprs, Vars, Test)
+    ->  Inline = ( Test -> G ; ga_sizes:evaluated(G) )
+    ;   Inline = ga_sizes:evaluated(G)
+    ).
+inline_arithmetic(G, G).
+
+%   guarded(+Test, +G, +Slow): ( Test -> G ; ga_sizes:Slow ) is an arithmetic goal G
+%   guarded by a test of its expressions' variables, as sized/3 (number/1 of each) or
+%   inline_arithmetic/2 (inline_test/3) make it.
+guarded(Test, G, Slow) :-
+    nonvar(G),
+    arithmetic(G, Exprs),
+    nonvar(Slow),
+    ( Slow = arithmetic(G1) ; Slow = evaluated(G1) ),
+    G1 == G,
+    term_variables(Exprs, Vars),
+    Vars \== [],
+    (   numbers_test(Vars, Test0),
+        Test0 == Test
+    ->  true
+    ;   inline_test(Exprs, Vars, Test0),
+        Test0 == Test
+    ).
+
+%   inline_test(+Exprs, +Vars, -Test): the arithmetic goal whose expressions are Exprs,
+%   with variables Vars (at least one), runs inline after Test raising nothing the
+%   built-in would word otherwise (see the forms above); fails when it cannot.
+inline_test(Exprs, Vars, Test) :-
+    Vars \== [],
+    (   maplist(bare, Exprs)
+    ->  numbers_test(Vars, Test)
+    ;   maplist(integral, Exprs)
+    ->  integers_test(Vars, Test)
+    ).
+
+bare(E) :-
+    (   var(E) -> true ; number(E) ).
+
+%   integral(+E): E holds only variables, integers and the functions of inline_function/1.
+integral(E) :-
+    (   var(E)
+    ->  true
+    ;   integer(E)
+    ->  true
+    ;   compound(E),
+        compound_name_arity(E, Name, Arity),
+        inline_function(Name/Arity),
+        E =.. [_|Args],
+        maplist(integral, Args)
+    ).
+
+%   integers_test(+Vars, -Test): a goal true when every variable of Vars is an integer.
+integers_test([V], integer(V)) :- !.
+integers_test([V|Vs], (integer(V), Test)) :-
+    integers_test(Vs, Test).
+
+%   inline_function(?Function): evaluated inline on integers as by the built-in (no
+%   division to a float, power or shift: those the built-in evaluates, the last two
+%   checked step by step, see sized/3).
+inline_function((+)/2).
+inline_function((-)/2).
+inline_function((*)/2).
+inline_function((//)/2).
+inline_function((mod)/2).
+inline_function((rem)/2).
+inline_function((div)/2).
+inline_function((min)/2).
+inline_function((max)/2).
+inline_function((-)/1).
+inline_function((+)/1).
+inline_function((abs)/1).
+inline_function((sign)/1).
+
+%!  evaluated(+G) is semidet.
+%   The arithmetic built-in G, called (this file is compiled without optimise).
+evaluated(X is E) :- X is E.
+evaluated(A < B) :- A < B.
+evaluated(A > B) :- A > B.
+evaluated(A =< B) :- A =< B.
+evaluated(A >= B) :- A >= B.
+evaluated(A =:= B) :- A =:= B.
+evaluated(A =\= B) :- A =\= B.
+
+%!  with_optimise(:Goal) is det.
+%   Goal (asserting clauses made by inline_clause/2, or read back from ones that were, and
+%   nothing that runs an agent's code) with the optimise flag on, set once for all of them.
+%   (Called as ga_sizes:with_optimise/1, Goal is in ga_sizes unless it names its module.)
+:- meta_predicate with_optimise(0).
+
+with_optimise(Goal) :-
+    current_prolog_flag(optimise, Optimise),
+    setup_call_cleanup(set_prolog_flag(optimise, true),
+                       once(Goal),
+                       set_prolog_flag(optimise, Optimise)).
