@@ -137,8 +137,9 @@ term_text_args(I, Arity, T, N0, N) :-
 %   collected); then what the process has grown by that is neither Prolog's stacks
 %   (bounded by SWI's stack_limit, and given back when the query ends) nor held in its
 %   clauses is what the call took -- text written to an atom or string, atoms it still
-%   reaches -- and over Max the agent is stopped.
+%   reaches -- and over Max the agent is stopped. Nothing for a closed agent (live_agent/1).
 call_growth(B, Max, Base, Page) :-
+    live_agent(B), !,
     held_bytes(B, Max, Held),
     setup_call_cleanup(open('/proc/self/statm', read, In),
                        read_line_to_string(In, Line),
@@ -151,13 +152,24 @@ call_growth(B, Max, Base, Page) :-
     ->  throw(ga_limit(memory(call(Outside), Max)))
     ;   true
     ).
+call_growth(_, _, _, _).
 
 %!  held_check(+B, +Max) is det.
 %   Sent by the watchdog into a running call of the agent of belief module B when the
 %   process's memory has grown past its alarm: throws ga_limit(memory(held(Bytes), Max))
-%   when the agent holds more than Max bytes.
+%   when the agent holds more than Max bytes. Nothing for a closed agent (live_agent/1).
 held_check(B, Max) :-
-    held_bytes(B, Max, _).
+    (   live_agent(B)
+    ->  held_bytes(B, Max, _)
+    ;   true
+    ).
+
+%   live_agent(+B): B is the belief module of an agent not closed. The watchdog's note of
+%   the running agent outlives its calls: a query of no agent's (reading a text, checking
+%   a file) may run when its signal comes, after that agent was closed (its '$ga_gm'/1
+%   then unknown: the query failed with that error, once in a suite run).
+live_agent(B) :-
+    current_predicate(B:'$ga_gm'/1).
 
 held_bytes(B, Max, Bytes) :-
     garbage_collect_atoms,

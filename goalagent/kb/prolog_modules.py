@@ -199,6 +199,8 @@ class PrologModules:
         """Frees both Prolog modules; the object is unusable afterwards."""
         if self._closed:
             return
+        if self._watchdog.running is self._memory:  # (no later query is this agent's)
+            self._watchdog.running = None
         self._call("destroy", self._b, self._g)
         self._engine.forget_atom(self._b)
         self._engine.forget_atom(self._g)

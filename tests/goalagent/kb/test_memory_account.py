@@ -12,6 +12,7 @@ import io
 import pytest
 
 from goalagent.agent import Agent
+from goalagent.kb.watchdog import watchdog
 from goalagent.parser import parse_agent
 
 LENGTH = 300_000
@@ -53,3 +54,18 @@ def test_a_record_is_charged_its_compact_size_not_its_cells(held: dict[str, int]
     charged = held["a record"] - held["nothing"]
     # at least a byte an integer; under a third of its cells' 3 * 8 bytes an element
     assert LENGTH < charged < 8 * LENGTH
+
+
+def test_a_memory_signal_for_a_closed_agent_does_nothing():
+    # the watchdog's note of the running agent outlived it: its signal came into a query of
+    # no agent's (reading a percept's text) and that query failed with "Unknown procedure:
+    # '$ga_gm'/1" (once in a suite run)
+    agent = Agent(parse_agent("main module [exit=always] { program { if true then "
+                              "print(x). } }", "c.goal"), output=io.StringIO())
+    engine, module = agent.ms.engine, agent.ms.belief_module
+    agent.step()
+    agent.close()
+    assert watchdog().running is None
+    for goal in ("held_check", "call_growth"):
+        args = (module, 1) if goal == "held_check" else (module, 1, 0, 4096)
+        assert engine.call(goal, *args, module="ga_memory") is not None, goal
