@@ -500,13 +500,9 @@ ground_code(Fact, IfGround, Otherwise, Code) :-
     term_variables(Fact, Vars),
     (   Vars == []
     ->  Code = IfGround
-    ;   atomic_test(Vars, Test),
+    ;   ga_sizes:type_test(atomic, Vars, Test),
         Code = ( Test -> IfGround ; Otherwise )
     ).
-
-atomic_test([Var], atomic(Var)) :- !.
-atomic_test([Var|Vars], ( atomic(Var), Test )) :-
-    atomic_test(Vars, Test).
 
 dynamic_in(Module, Fact) :-
     functor(Fact, Name, Arity),

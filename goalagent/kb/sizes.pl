@@ -58,7 +58,7 @@ sized(G, _, Sized) :-
     ;   G = (_ is E),
         term_variables(E, Vars),
         Vars \== []                         % a variable may hold an expression: checked
-    ->  numbers_test(Vars, Test),           % inline when it holds a number
+    ->  type_test(number, Vars, Test),      % inline when it holds a number
         Sized = ( Test -> G ; ga_sizes:arithmetic(G) )
     ).
 sized(tab(N), _, Sized) :- !,
@@ -80,10 +80,14 @@ sized(G, c(M, _, _), Sized) :-
     ;   Sized = ga_sizes:format_integers(Args, M:G)
     ).
 
-%   numbers_test(+Vars, -Test): a goal true when every variable of Vars is a number.
-numbers_test([V], number(V)) :- !.
-numbers_test([V|Vs], (number(V), Test)) :-
-    numbers_test(Vs, Test).
+%!  type_test(+Type, +Vars, -Test) is det.
+%   Test: Type(V) of every variable V of Vars, in a conjunction written into a clause
+%   (number and integer here for arithmetic, atomic in rules.pl's updates).
+type_test(Type, [V], Test) :- !,
+    Test =.. [Type, V].
+type_test(Type, [V|Vs], (Test0, Test)) :-
+    Test0 =.. [Type, V],
+    type_test(Type, Vs, Test).
 
 %   parsed_text(+G, -Text): G reads Text as a number or term (when Text is bound).
 parsed_text(number_codes(_, Text), Text).
@@ -371,9 +375,7 @@ inline_clause(Clause, Clause).
 inline_arithmetic(G, G) :-
     var(G), !.
 inline_arithmetic(( Test -> G ; ga_sizes:Slow ), Inline) :-
-    guarded(Test, G, Slow), !,                  % made so already (by sized/3 or here)
-    arithmetic(G, Exprs),
-    term_variables(Exprs, Vars),
+    guarded(Test, G, Slow, Exprs, Vars), !,     % made so already (by sized/3 or here)
     (   inline_test(Exprs, Vars, InlineTest)    % (other values: the slow path, as before)
     ->  Inline = ( InlineTest -> G ; ga_sizes:Slow )
     ;   Inline = ( Test -> ga_sizes:evaluated(G) ; ga_sizes:Slow )
@@ -406,10 +408,11 @@ inline_arithmetic(G, Inline) :-
     ).
 inline_arithmetic(G, G).
 
-%   guarded(+Test, +G, +Slow): ( Test -> G ; ga_sizes:Slow ) is an arithmetic goal G
-%   guarded by a test of its expressions' variables, as sized/3 (number/1 of each) or
-%   inline_arithmetic/2 (inline_test/3) make it.
-guarded(Test, G, Slow) :-
+%   guarded(+Test, +G, +Slow, -Exprs, -Vars): ( Test -> G ; ga_sizes:Slow ) is an
+%   arithmetic goal G, whose expressions are Exprs with variables Vars, guarded by a test
+%   of those variables, as sized/3 (number/1 of each) or inline_arithmetic/2
+%   (inline_test/3) make it.
+guarded(Test, G, Slow, Exprs, Vars) :-
     nonvar(G),
     arithmetic(G, Exprs),
     nonvar(Slow),
@@ -417,7 +420,7 @@ guarded(Test, G, Slow) :-
     G1 == G,
     term_variables(Exprs, Vars),
     Vars \== [],
-    (   numbers_test(Vars, Test0),
+    (   type_test(number, Vars, Test0),
         Test0 == Test
     ->  true
     ;   inline_test(Exprs, Vars, Test0),
@@ -430,9 +433,9 @@ guarded(Test, G, Slow) :-
 inline_test(Exprs, Vars, Test) :-
     Vars \== [],
     (   maplist(bare, Exprs)
-    ->  numbers_test(Vars, Test)
+    ->  type_test(number, Vars, Test)
     ;   maplist(integral, Exprs)
-    ->  integers_test(Vars, Test)
+    ->  type_test(integer, Vars, Test)
     ).
 
 bare(E) :-
@@ -450,11 +453,6 @@ integral(E) :-
         E =.. [_|Args],
         maplist(integral, Args)
     ).
-
-%   integers_test(+Vars, -Test): a goal true when every variable of Vars is an integer.
-integers_test([V], integer(V)) :- !.
-integers_test([V|Vs], (integer(V), Test)) :-
-    integers_test(Vs, Test).
 
 %   inline_function(?Function): evaluated inline on integers as by the built-in (no
 %   division to a float, power or shift: those the built-in evaluates, the last two
