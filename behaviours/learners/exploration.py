@@ -156,10 +156,12 @@ class ActiveExplorer(BaseEstimator):
             else:
                 unit = rng.uniform(-1.0, 1.0, size=bounds.dims)
             action = bounds.from_unit(unit)
-            inputs = np.concatenate([state, action])[None, :]
             if k == 1:
                 model.initialize(state.size, state.size)
-            network_inputs = model._inputs(inputs)
+            if np.isfinite(action).all():  # within the bounds: from_unit made it so
+                network_inputs = np.hstack([state[None, :], bounds.unit_rows(action[None, :])])
+            else:  # an actor gone to NaN: the forward model's own check says so
+                network_inputs = model._inputs(np.concatenate([state, action])[None, :])
             predicted = model.network_.predict(network_inputs)[0]  # 4.2
             next_state = _state(world.step(action.copy()), "the world's next state")
             if next_state.shape != state.shape:

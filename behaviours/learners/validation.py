@@ -86,7 +86,11 @@ class ActionBounds:
 
     def to_unit(self, actions: object, name: str = "actions") -> np.ndarray:
         """Physical actions → [−1, 1] per dimension (checked against the bounds)."""
-        rows = self.check(actions, name)
+        return self.unit_rows(self.check(actions, name))
+
+    def unit_rows(self, rows: np.ndarray) -> np.ndarray:
+        """``to_unit`` of rows already known to be float rows within the bounds (unchecked:
+        for a learner's own loop, whose actions ``from_unit`` made)."""
         return np.clip(2.0 * (rows - self.low) / (self.high - self.low) - 1.0, -1.0, 1.0)
 
     def from_unit(self, unit: np.ndarray) -> np.ndarray:
