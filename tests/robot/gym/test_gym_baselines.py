@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import tempfile
 
-import numpy as np
 import pytest
 
 from robot.gym.qlearning import QLearning
@@ -32,15 +31,19 @@ def test_q_learning_updates_by_sutton_and_bartos_eq_6_8():
 
 
 def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path, monkeypatch):
+    """One seed: every check reads each trial of each learner on each task (the protocol,
+    eqs. 3.14 and 3.15) and which payoff the metric takes; a second seed made the same checks
+    on other draws (2.1 s CPU, half the test). The mean over seeds is summarize's, tested on
+    hand-made seeds (test_studies.py)."""
     scratch = tmp_path / "tmp"
     scratch.mkdir()
     monkeypatch.setenv("TMPDIR", str(scratch))  # seeds run in child processes too
     monkeypatch.setattr(tempfile, "tempdir", None)
     study = find("ch3-baselines")
     config = study.quick_config()
-    outcome = reproduce(study, config, [0, 1], LocalBackend(1), tmp_path)
+    outcome = reproduce(study, config, [0], LocalBackend(1), tmp_path)
     seeds = outcome.document.results(study)
-    assert {s.trials for s in seeds} == {4}
+    assert [s.trials for s in seeds] == [4]
     for seed, task, method in ((s, t, m) for s in seeds for t in TASKS for m in METHODS):
         run = getattr(getattr(seed, task), method)
         assert run.explore == [1, 0, 1, 0] and all(1 <= n <= 10 for n in run.steps)
@@ -49,8 +52,7 @@ def test_ch3_baselines_runs_every_learner_through_gymnasium(tmp_path, monkeypatc
             assert success == (payoff > 0) or task == "stacking"
     metrics = {row.key: row for row in outcome.document.summary.metrics}
     key = "navigation.dqn.exploit_payoff_after"
-    values = [float(np.mean([s.navigation.dqn.payoff[3]])) for s in seeds]
-    assert metrics[key].mean == pytest.approx(np.mean(values))
+    assert metrics[key].mean == seeds[0].navigation.dqn.payoff[3]  # trial 4: exploit, after
     page = (tmp_path / "ch3-baselines.md").read_text()
     assert "## Claims and tests" in page and "tabular Q-learning" in page
     # DQN's learn() left no SB3-<time> log folders (torch keeps its one compile cache there)

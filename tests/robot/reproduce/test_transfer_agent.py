@@ -117,13 +117,17 @@ def run(can: str, folder: Path, *, trials: int = 1, learning: str = "transfer") 
 
 @pytest.fixture(scope="module")
 def after_o1_o2(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, AgentRun, AgentRun]:
-    """o1 learned from nothing, then o2 by transfer: their runs and the folder they left."""
+    """o1 learned from nothing, then o2 by transfer: their runs and the folder they left
+    (and, in its ``o1`` subfolder, what it held after o1 alone)."""
     folder = tmp_path_factory.mktemp("o1-o2")
-    return folder, run("o1", folder), run("o2", folder)
+    first = run("o1", folder)
+    known_copy(folder, folder / "o1")
+    return folder, first, run("o2", folder)
 
 
 def known_copy(folder: Path, tmp_path: Path) -> Path:
     """A copy of the known objects (and models) in ``folder``, for one more can."""
+    tmp_path.mkdir(exist_ok=True)
     for name in ("objects.json", "models.json"):
         if (folder / name).exists():
             shutil.copy(folder / name, tmp_path / name)
@@ -319,16 +323,16 @@ def test_pair_by_pair_stops_a_pair_where_random_learning_would(tmp_path: Path):
     assert by_transfer.exploratory <= randomly.exploratory
 
 
-def test_transfer_checks_the_asked_pair_first_on_the_part_it_works_on(tmp_path: Path):
-    """After o1, the agent's first question about a lid sliding right is the sweep right,
-    the pair its random learning explores first and finishes with (4 actions). Transfer tries
-    o1's push there, then that sweep before the other actions (issue 32: in Algorithm 6's
-    fixed order it came fourth, 5 actions)."""
+def test_transfer_checks_the_asked_pair_first_on_the_part_it_works_on(after_o1_o2,
+                                                                    tmp_path: Path):
+    """After o1 (the module's run of it), the agent's first question about a lid sliding
+    right is the sweep right, the pair its random learning explores first and finishes with
+    (4 actions). Transfer tries o1's push there, then that sweep before the other actions
+    (issue 32: in Algorithm 6's fixed order it came fourth, 5 actions)."""
     can = write_can(tmp_path, "slide_right", SLIDE_RIGHT)
-    (tmp_path / "known").mkdir()
+    known = known_copy(after_o1_o2[0] / "o1", tmp_path / "known")
     (tmp_path / "random").mkdir()
-    assert agent_run("o1", tmp_path / "known", seed=5, trials=1, max_cycles=150).finished
-    by_transfer = agent_run(can, tmp_path / "known", seed=5, trials=1, max_cycles=150)
+    by_transfer = agent_run(can, known, seed=5, trials=1, max_cycles=150)
     randomly = agent_run(can, tmp_path / "random", seed=5, trials=1, learning="random",
                          max_cycles=150)
     assert by_transfer.finished and randomly.finished
