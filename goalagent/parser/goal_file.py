@@ -23,7 +23,7 @@ from goalagent.parser.variables import variable_occurrences
 def parse_agent(text: str, file: str = "<string>") -> ast.AgentProgram:
     """Parse the text of a `.goal` agent program (a text parsed before in this process, with
     its imports as they were: a copy of that parse, see goalagent.parser.reparse)."""
-    return parsed_once(("agent", file, text), partial(_parse_agent, text, file))
+    return parsed_once(text, ("agent", file), partial(_parse_agent, text, file))
 
 
 def _parse_agent(text: str, file: str) -> ast.AgentProgram:

@@ -15,6 +15,7 @@ before a hit and hand out copies, neither of which lru_cache does.
 
 from __future__ import annotations
 
+import hashlib
 import pickle
 import threading
 from collections import OrderedDict
@@ -24,15 +25,14 @@ from typing import Any, TypeVar
 
 T = TypeVar("T")
 
-KEPT_PARSES = 64
-"""Parses kept (the least recently used goes first)."""
-KEPT_BYTES = 4 * 2**20
-"""A parse that pickles to more than this is not kept (a big file is parsed rarely)."""
+KEPT_BYTES = 32 * 2**20
+"""The kept parses' pickles take at most this (the least recently used go first)."""
 
 Observation = tuple[Callable[[], Any], Any]
 
 _observations: ContextVar[list[Observation] | None] = ContextVar("observations", default=None)
 _kept: OrderedDict[Hashable, tuple[bytes, tuple[Observation, ...]]] = OrderedDict()
+_kept_bytes = 0
 _lock = threading.Lock()
 
 
@@ -41,13 +41,15 @@ def observe(look: Callable[[], T]) -> T:
     seen = look()
     observations = _observations.get()
     if observations is not None:
-        observations.append((look, seen))
+        observations.append((look, _fingerprint(seen)))
     return seen
 
 
-def parsed_once(key: Hashable, parse: Callable[[], T]) -> T:
-    """What ``parse()`` gives for ``key`` (everything its result depends on but the
-    observations): a copy of the kept result when every observation still holds."""
+def parsed_once(text: str, key: Hashable, parse: Callable[[], T]) -> T:
+    """What ``parse()`` gives for ``text`` read as ``key`` says (its file, its start rule,
+    options: all it depends on but the text and the observations): a copy of the kept result
+    when every observation still holds. The text is kept as its digest."""
+    key = (key, _fingerprint(text))
     with _lock:
         kept = _kept.get(key)
         if kept is not None:
@@ -62,14 +64,20 @@ def parsed_once(key: Hashable, parse: Callable[[], T]) -> T:
     finally:
         _observations.reset(token)
     _pass_on(observations)
-    data = pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)
-    if len(data) <= KEPT_BYTES:
-        with _lock:
-            _kept[key] = (data, tuple(observations))
-            _kept.move_to_end(key)
-            while len(_kept) > KEPT_PARSES:
-                _kept.popitem(last=False)
+    _keep(key, pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL), tuple(observations))
     return result
+
+
+def _keep(key: Hashable, data: bytes, observations: tuple[Observation, ...]) -> None:
+    """Keep a parse, dropping the least recently used ones beyond KEPT_BYTES."""
+    global _kept_bytes
+    with _lock:
+        if key in _kept:
+            _kept_bytes -= len(_kept.pop(key)[0])
+        _kept[key] = (data, observations)
+        _kept_bytes += len(data)
+        while _kept_bytes > KEPT_BYTES:
+            _kept_bytes -= len(_kept.popitem(last=False)[1][0])
 
 
 def _pass_on(observations: Sequence[Observation]) -> None:
@@ -82,6 +90,13 @@ def _pass_on(observations: Sequence[Observation]) -> None:
 def _still(look: Callable[[], Any], seen: Any) -> bool:
     """Whether ``look()`` gives what it gave before (a look that now fails does not)."""
     try:
-        return look() == seen
+        return _fingerprint(look()) == seen
     except Exception:  # noqa: BLE001 - e.g. an imported file gone: parse again, which says so
         return False
+
+
+def _fingerprint(seen: Any) -> Any:
+    """What is kept of an observed value: a text (an imported file's) as its digest."""
+    if isinstance(seen, str):
+        return hashlib.blake2b(seen.encode("utf-8", "surrogatepass")).digest()
+    return seen

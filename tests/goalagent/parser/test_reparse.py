@@ -95,11 +95,28 @@ def test_a_parse_inside_another_passes_on_what_it_looked_at():
         return observe(lambda: world["colour"])
 
     def outer() -> str:
-        return "outer " + parsed_once(("inner",), inner)
+        return "outer " + parsed_once("", "inner", inner)
 
-    assert parsed_once(("inner",), inner) == "red"
-    assert parsed_once(("outer",), outer) == "outer red"  # the inner one a copy here
+    assert parsed_once("", "inner", inner) == "red"
+    assert parsed_once("", "outer", outer) == "outer red"  # the inner one a copy here
     assert inner_runs == ["red"]
     world["colour"] = "blue"
-    assert parsed_once(("outer",), outer) == "outer blue"
+    assert parsed_once("", "outer", outer) == "outer blue"
     assert inner_runs == ["red", "blue"]
+
+
+def test_the_least_recently_used_parses_go_first_beyond_the_budget(monkeypatch):
+    from goalagent.parser import reparse
+
+    monkeypatch.setattr(reparse, "KEPT_BYTES", 3 * len(reparse.pickle.dumps("x" * 1000)))
+    runs: list[str] = []
+
+    def parse(name: str):
+        return lambda: runs.append(name) or name * 1000
+
+    for name in ("a", "b", "c", "a", "d"):  # d's keeping drops b, the least recently used
+        reparse.parsed_once(name, "budget", parse(name))
+    assert runs == ["a", "b", "c", "d"]
+    for name in ("a", "c", "d", "b"):
+        reparse.parsed_once(name, "budget", parse(name))
+    assert runs == ["a", "b", "c", "d", "b"]
