@@ -220,15 +220,27 @@ def test_ch4_budgets_follow_the_thesis_and_shrink_with_the_scale():
     assert config.model_copy(update={"scale": 0.05}).budget(SETUPS["lid-1d"]) == 22  # N + 2
 
 
-def test_ch4_exploration_runs_small(tmp_path):
-    document, (seed,), _, _ = quick("ch4-exploration", tmp_path, seeds=1)
+@pytest.fixture(scope="module")
+def scaled_exploration(tmp_path_factory, seed_cache):
+    """ch4-exploration's quick run in its committed sweep's first value off the default,
+    state_scale=100 (s_o in percent of the image), its seed cached for that sweep: one run
+    for both tests. The unscaled state (state_scale=1) runs in ch4-skills' quick run, through
+    the same ``explore``; ScaledState's arithmetic is test_fidelity.py's."""
+    out = tmp_path_factory.mktemp("ch4-exploration")
+    return out, quick("ch4-exploration", out, seeds=1, settings=("state_scale=100",),
+                      cache=seed_cache)
+
+
+def test_ch4_exploration_runs_small(scaled_exploration):
+    out, (document, (seed,), _, _) = scaled_exploration
+    assert document.config["state_scale"] == 100
     for name in CONFIGURATIONS:
         for method in METHODS:
             run = seed.of(name, method)
             assert run.steps == 22 == len(run.averaged)  # N_s at 5 %: 22
             assert (run.surface is not None) == name.endswith("1d")
     assert seed.of("lid-1d", "active").actions[:20] == seed.of("lid-1d", "random").actions[:20]
-    assert len(list(tmp_path.glob("ch4-exploration-*.png"))) == 6
+    assert len(list(out.glob("ch4-exploration-*.png"))) == 6
 
 
 def test_ch4_skills_run_small_and_report_table_4_1_rows(tmp_path):
@@ -290,13 +302,13 @@ def test_ch5_baseline_lists_every_pair_model(tmp_path):
 
 SMALL = {
     "ch3-navigation": ({"learn_in_exploit": "false,true"}, "navigation"),
-    "ch4-exploration": ({"state_scale": "100"}, None),
+    "ch4-exploration": ({"state_scale": "100"}, "scaled_exploration"),
     "ch5-transfer": ({"sensor_noise": "0.01"}, None),
     "appA-search": ({"consistent_actions": "true,false"}, "search"),
 }
 """Each committed sweep's first parameter at the study's quick size, and the quick run whose
 seed 0 is a cell of it (learn_in_exploit=false and consistent_actions=true are the defaults);
-ch4's and ch5's sweeps run one value off the default only."""
+ch4's and ch5's sweeps run one value off the default only (ch4's is its quick run's)."""
 
 
 @pytest.mark.parametrize("name", sorted(SMALL))
