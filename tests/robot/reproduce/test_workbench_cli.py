@@ -43,7 +43,7 @@ def test_reproduce_records_a_set_value_in_the_config(tmp_path, cache):
 def test_sweep_writes_one_cell_per_value_each_with_cis(tmp_path, cache):
     """Two seeds a cell: N = 400's come from the cache, N = 200's run in the command's pool of
     two worker processes (--jobs 2), one seed each; a third seed a cell made each worker run
-    two seeds instead of one (0.6 s CPU) and checked nothing more."""
+    two seeds instead of one (0.5 s CPU) and checked nothing more."""
     result = cli("sweep", "xcs-mux", "--quick", "--grid", "N=200,400", "--seeds", "2",
                  "--jobs", "2", "--out", str(tmp_path), "--cache", str(cache))
     assert result.exit_code == 0, result.stderr
