@@ -100,17 +100,24 @@ def test_a_signal_stops_the_run_saves_and_exits_with_its_code(walker: Path, tmp_
 
 
 def test_kill_9_at_any_moment_leaves_the_last_complete_save(walker: Path, tmp_path: Path):
+    """What a kill -9 would leave at a moment is what the file holds then (a save replaces it
+    whole, or not at all): one run, its file read at moments from its first save to 1.1 s
+    later (each a save a kill there would have left), then killed with -9."""
     saved = tmp_path / "saved.pl"
-    for delay in (0.0, 0.35, 1.1):
-        saved.unlink(missing_ok=True)
-        child = _start("run", str(walker), "--save-beliefs", str(saved), "--save-predicate",
-                       "visited/1", "--save-every", "1", cwd=tmp_path)
-        _wait_for(lambda: saved.exists())
-        time.sleep(delay)
-        child.kill()
-        child.communicate(timeout=60)
+    child = _start("run", str(walker), "--save-beliefs", str(saved), "--save-predicate",
+                   "visited/1", "--save-every", "1", cwd=tmp_path)
+    _wait_for(lambda: saved.exists())
+    first, counts = time.monotonic(), []
+    for moment in (0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.9, 1.1):
+        time.sleep(max(0.0, first + moment - time.monotonic()))
         visited = _visited(saved)  # it loads: whole
         assert visited == list(range(1, len(visited) + 1))  # and complete
+        counts.append(len(visited))
+    child.kill()
+    child.communicate(timeout=60)
+    visited = _visited(saved)
+    assert visited == list(range(1, len(visited) + 1)) and len(visited) >= counts[-1]
+    assert len(set(counts)) >= 3, counts  # the moments saw different saves
 
 
 def test_writes_killed_midway_never_leave_a_partial_file(tmp_path: Path):
