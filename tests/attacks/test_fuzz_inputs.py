@@ -263,8 +263,8 @@ def test_kill_points(tmp_path: Path, how: int, delay: float):
     which, within the time bound, and the saved file is whole and complete. The moments
     that differ come early: before the first save (the run prints ``started`` before its
     first cycle), during the first ones, then any moment of the loop, which saves every few
-    milliseconds (half a second is a hundred saves or more; a later moment only finds a
-    longer file, and each second the run goes on costs its CPU)."""
+    milliseconds (half a second is dozens of saves; a later moment only finds a longer
+    file, and each second the run goes on costs its CPU)."""
     program = tmp_path / "walker.goal"
     program.write_text(WALKER)
     saved = tmp_path / f"saved-{how}-{delay}.pl"
