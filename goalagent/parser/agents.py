@@ -17,6 +17,7 @@ import difflib
 import glob
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 from goalagent import ast
 from goalagent.kb.engine import get_engine
@@ -24,6 +25,7 @@ from goalagent.parser.ast_builder import build
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.goal_file import finish_program, parse_agent
 from goalagent.parser.module_sections import ActionFile, ModuleFile
+from goalagent.parser.reparse import parsed_once
 from goalagent.parser.source import read_program_file
 
 _EXTENSIONS = {
@@ -93,24 +95,27 @@ def _wildcard_matches(use: ast.UseClause, base: Path) -> list[Path]:
 
 def parse_module_file(path: str | Path, *, plain_beliefs: bool = False) -> ModuleFile:
     """Parse a GOAL 6+ module file (`.mod2g`)."""
-    result, _ = build(read_program_file(path), str(path), "module_file",
-                      plain_beliefs=plain_beliefs)
-    return result  # type: ignore[return-value]
+    return _parsed_file(path, "module_file", plain_beliefs=plain_beliefs)
 
 
 def parse_action_file(path: str | Path) -> ActionFile:
     """Parse a GOAL 6+ action specification file (`.act2g`)."""
-    result, _ = build(read_program_file(path), str(path), "action_file")
-    return result  # type: ignore[return-value]
+    return _parsed_file(path, "action_file")
 
 
 def parse_clause_file(path: str | Path, *, split_facts: bool = True
                       ) -> tuple[ast.PrologText, ...]:
     """The clauses of a Prolog file; with ``split_facts`` False each clause stays whole
     (a goals file's ``on(a,b), on(b,c).`` is one goal)."""
-    result, _ = build(read_program_file(path), str(path), "prolog_file",
-                      split_facts=split_facts)
-    return result  # type: ignore[return-value]
+    return _parsed_file(path, "prolog_file", split_facts=split_facts)
+
+
+def _parsed_file(path: str | Path, start: str, **options: bool) -> Any:
+    """What ``build`` makes of the file from rule ``start``: a copy of this process's earlier
+    parse of the same text (goalagent.parser.reparse)."""
+    text = read_program_file(path)
+    key = (start, str(path), tuple(sorted(options.items())))
+    return parsed_once(text, key, lambda: build(text, str(path), start, **options)[0])
 
 
 def load_agents(mas: ast.MasProgram) -> dict[str, ast.AgentProgram]:

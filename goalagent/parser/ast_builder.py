@@ -10,6 +10,7 @@ Prolog-text checks; `.goal` files ``#import`` Prolog files and GOAL 5 module fil
 from __future__ import annotations
 
 from contextvars import ContextVar
+from functools import partial
 from pathlib import Path
 
 from lark.exceptions import VisitError
@@ -22,6 +23,7 @@ from goalagent.parser.goal_sections import GoalParts
 from goalagent.parser.grammar import parse_tree
 from goalagent.parser.mas_sections import MasParts
 from goalagent.parser.module_sections import ModuleParts
+from goalagent.parser.reparse import observe
 from goalagent.parser.source import Source, read_program_file
 from goalagent.parser.test_sections import TestParts
 
@@ -36,7 +38,7 @@ class AstBuilder(GoalParts, ConditionParts, ModuleParts, MasParts, TestParts):
 
     def _import_prolog_file(self, path: Path) -> tuple[ast.PrologText, ...]:
         """The clauses of a Prolog file named by ``#import``."""
-        clauses, _ = build(read_program_file(path), str(path), "prolog_file")
+        clauses, _ = build(observe(partial(read_program_file, path)), str(path), "prolog_file")
         return clauses  # type: ignore[return-value]
 
     def _import_module_file(self, path: Path, pos: ast.Pos) -> list[ast.Module]:
@@ -50,8 +52,8 @@ class AstBuilder(GoalParts, ConditionParts, ModuleParts, MasParts, TestParts):
                                      f"({cycle} -> {path.name})")
         token = _IMPORTING.set(chain)
         try:
-            (_, items), _ = build(read_program_file(path), str(path),  # type: ignore[misc]
-                                  "agent")
+            (_, items), _ = build(observe(partial(read_program_file, path)),  # type: ignore[misc]
+                                  str(path), "agent")
         finally:
             _IMPORTING.reset(token)
         modules = [item for item in items if isinstance(item, ast.Module)]

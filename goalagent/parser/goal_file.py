@@ -6,6 +6,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import replace
+from functools import partial
 from pathlib import Path
 
 from goalagent import ast
@@ -14,12 +15,19 @@ from goalagent.parser.ast_builder import AstBuilder, build
 from goalagent.parser.builder_base import ParsedSection
 from goalagent.parser.conditions import condition_texts
 from goalagent.parser.errors import GoalSyntaxError
+from goalagent.parser.reparse import parsed_once
 from goalagent.parser.source import read_program_file
 from goalagent.parser.variables import variable_occurrences
 
 
 def parse_agent(text: str, file: str = "<string>") -> ast.AgentProgram:
-    """Parse the text of a `.goal` agent program."""
+    """Parse the text of a `.goal` agent program (a text parsed before in this process, with
+    its imports as they were: a copy of that parse, see goalagent.parser.reparse)."""
+    return parsed_once(text, ("agent", file), partial(_parse_agent, text, file))
+
+
+def _parse_agent(text: str, file: str) -> ast.AgentProgram:
+    """The parse itself: lark's tree of the text, its Prolog read by SWI-Prolog."""
     try:
         (name, items), builder = build(text, file, "agent")  # type: ignore[misc]
     except GoalSyntaxError as err:

@@ -4,6 +4,7 @@ rules and modules (conditions and macros are in ``conditions.py``)."""
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import partial
 from pathlib import Path
 
 from lark import Token, v_args
@@ -14,6 +15,7 @@ from goalagent.parser.builder_base import MOODS, BuilderBase, ParsedSection
 from goalagent.parser.conditions import condition_texts
 from goalagent.parser.errors import GoalSyntaxError
 from goalagent.parser.mas_sections import reference_path
+from goalagent.parser.reparse import observe
 from goalagent.parser.variables import variable_occurrences
 
 _MODULE_OPTIONS = {
@@ -117,9 +119,9 @@ class GoalParts(BuilderBase):
         if suffix not in (".pl", ".mod2g", ".goal"):
             name += ".pl"
         path = Path(self.source.file).parent / name
-        if not path.exists():  # a library an application brings, e.g. robot's affordance.pl
-            path = prolog_library(name) or path
-        if not path.exists():
+        if not observe(path.exists):  # a library an application brings: robot's affordance.pl
+            path = observe(partial(prolog_library, name)) or path
+        if not observe(path.exists):
             raise GoalSyntaxError.at(pos, f"cannot #import {name!r}: no such file next to "
                                      "this program nor among the installed extensions' "
                                      "Prolog libraries")
