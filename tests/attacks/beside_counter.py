@@ -16,15 +16,21 @@ main module [exit=nogoals] { program {
 """
 
 
+def beside_counter(folder: Path, programs: dict[str, str], *options: str) -> list[str]:
+    """The arguments of ``goalagent run OPTIONS`` of one agent per program (NAME.goal) and
+    the counter, whose files it writes into ``folder``."""
+    for name, program in programs.items():
+        (folder / f"{name}.goal").write_text(program)
+    (folder / "counter.goal").write_text(COUNTER)
+    files = " ".join(f'"{name}.goal".' for name in [*programs, "counter"])
+    (folder / "s.mas2g").write_text(f"agentfiles {{ {files} }}\n")
+    return ["run", str(folder / "s.mas2g"), *options]
+
+
 def run_beside_counter(tmp_path: Path, programs: dict[str, str], *options: str,
                        timeout: float = 120) -> Measured:
     """``goalagent run OPTIONS`` of one agent per program (NAME.goal) and the counter."""
-    for name, program in programs.items():
-        (tmp_path / f"{name}.goal").write_text(program)
-    (tmp_path / "counter.goal").write_text(COUNTER)
-    files = " ".join(f'"{name}.goal".' for name in [*programs, "counter"])
-    (tmp_path / "s.mas2g").write_text(f"agentfiles {{ {files} }}\n")
-    return goalagent_measured("run", str(tmp_path / "s.mas2g"), *options, timeout=timeout)
+    return goalagent_measured(*beside_counter(tmp_path, programs, *options), timeout=timeout)
 
 
 def counter_finished(result: Measured) -> None:

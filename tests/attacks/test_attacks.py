@@ -1,7 +1,8 @@
 """Attack programs from the red team of 2026-11-23 evening (issue 14): each hole they found,
 as the smallest program that showed it. Runaway programs run in a child process with a
 timeout (one regression would otherwise hang the suite: SWI-Prolog cannot interrupt a
-cleanup handler while an exception unwinds).
+cleanup handler while an exception unwinds): the module's runs one after the other in one
+child, each measured alone (``runs``).
 
 Issue 24's failures (its "Why", items 1-9) and where each is tested (tests/attacks/ unless
 said):
@@ -41,8 +42,8 @@ from goalagent.mas import MultiAgentSystem
 from goalagent.parser import parse_agent
 from goalagent.parser.errors import GoalSyntaxError
 from tests.attack_agent import RUNTIME_MODULES, load_agent
-from tests.attacks.beside_counter import counter_finished, run_beside_counter
-from tests.measured import Measured
+from tests.attacks.beside_counter import beside_counter, counter_finished
+from tests.measured import Measured, goalagent_measured_each
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -75,16 +76,38 @@ RUNAWAYS = [
 ]
 
 
+THROWN = [
+    "if bel(throw('$aborted')) then print(x).",         # was Ctrl-C for the whole run
+    "if bel(B = '$aborted', throw(B)) then print(x).",
+    "if bel(X = ga_limit(time(1)), throw(X)) then print(x).",
+]
+"""Rules throwing the runtime's own exceptions."""
+
+
 @pytest.fixture(scope="module")
-def runaways(tmp_path_factory: pytest.TempPathFactory) -> Measured:
-    """One run of agent atkI for each case I of RUNAWAYS (printing afterI when its rule has
-    ended) and of agent cyclic, which sends a cyclic list, beside the counter: a regression
-    of any of them fails this run, which has a timeout, never the suite."""
+def runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Measured]:
+    """The module's runs, one after the other in one child with a timeout (a regression of
+    any of them fails these, never the suite), each measured alone, by name: ``runaways``,
+    one run of agent atkI for each case I of RUNAWAYS (printing afterI when its rule has
+    ended) and of agent cyclic, which sends a cyclic list, beside the counter; ``thrownI``,
+    a run of agent atk trying rule I of THROWN beside the counter (a run each: one refused
+    when loading refuses its whole run)."""
     programs = {f"atk{index}": _attacker(knowledge, rule, f"after{index}")
                 for index, (knowledge, rule) in enumerate(RUNAWAYS)}
     programs["cyclic"] = _attacker("", "if bel(X = [a|X]) then counter.send(X).")
-    return run_beside_counter(tmp_path_factory.mktemp("runaways"), programs,
-                              *RUNAWAY_LIMITS, timeout=60)
+    commands = {"runaways": beside_counter(tmp_path_factory.mktemp("runaways"), programs,
+                                           *RUNAWAY_LIMITS)}
+    for index, rule in enumerate(THROWN):
+        commands[f"thrown{index}"] = beside_counter(tmp_path_factory.mktemp("thrown"),
+                                                    {"atk": _attacker("", rule)},
+                                                    *RUNAWAY_LIMITS)
+    results = goalagent_measured_each(*commands.values(), timeout=120)
+    return dict(zip(commands, results, strict=True))
+
+
+@pytest.fixture(scope="module")
+def runaways(runs: dict[str, Measured]) -> Measured:
+    return runs["runaways"]
 
 
 def _ended_with_its_rule(result: Measured, index: int) -> None:
@@ -228,14 +251,9 @@ def test_files_that_import_each_other_are_a_located_error(tmp_path: Path):
         parse_agent(text, str(tmp_path / "a.goal"))
 
 
-@pytest.mark.parametrize("rule", [
-    "if bel(throw('$aborted')) then print(x).",         # was Ctrl-C for the whole run
-    "if bel(B = '$aborted', throw(B)) then print(x).",
-    "if bel(X = ga_limit(time(1)), throw(X)) then print(x).",
-])
-def test_an_agent_cannot_throw_the_runtime_s_exceptions(tmp_path: Path, rule: str):
-    result = run_beside_counter(tmp_path, {"atk": _attacker("", rule)}, *RUNAWAY_LIMITS,
-                                timeout=60)
+@pytest.mark.parametrize("rule", THROWN)
+def test_an_agent_cannot_throw_the_runtime_s_exceptions(runs: dict[str, Measured], rule: str):
+    result = runs[f"thrown{THROWN.index(rule)}"]
     assert result.returncode in (0, 2), result.stderr  # 2: refused when loading
     assert "this exception is the runtime's" in result.stderr
     assert "interrupted" not in result.stderr

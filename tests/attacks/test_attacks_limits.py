@@ -3,9 +3,10 @@ as the smallest program that showed it, run the way a user reaches it -- ``goala
 in a child process with a timeout, beside a counter agent that must finish (a regression
 would otherwise take the test process down with it or hang the suite). Attacks that need the
 same options and touch nothing the process shares (runaway goal checks, work refused before
-it starts) are agents of one run, each checked by its own test: an interpreter's start is
-most of what each run costs. Each memory attack keeps a run of its own: what it grows is the
-process's resident memory."""
+it starts) are agents of one run, each checked by its own test; the runs that are no memory
+attack go one after the other in one child, each measured alone (``runs``): an
+interpreter's start is most of what each run costs. Each memory attack keeps a process of
+its own: what it grows is the process's resident memory."""
 
 from __future__ import annotations
 
@@ -23,16 +24,33 @@ from goalagent.agent import AgentError
 from goalagent.kb.limits import Limits
 from goalagent.mas import MultiAgentSystem
 from tests.attack_agent import load_agent
-from tests.attacks.beside_counter import counter_finished, run_beside_counter
+from tests.attacks.beside_counter import beside_counter, counter_finished, run_beside_counter
 from tests.conftest import cli
-from tests.measured import ROOT, Measured, goalagent_measured
+from tests.measured import ROOT, Measured, goalagent_measured_each
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
+
 
 def _run_beside_counter(tmp_path: Path, program: str, *options: str,
                         timeout: float = 120) -> Measured:
     """``goalagent run`` of the agent ``program`` (atk.goal) and the counter."""
     return run_beside_counter(tmp_path, {"atk": program}, *options, timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Path, Measured]]:
+    """The module's runs that are no memory attack, one after the other in one child, each
+    measured alone (its streams, seconds and peak): by name, its folder and what it did.
+    Each run's arguments come from its builder below, which writes its files into its
+    folder."""
+    builders = {"deep_fact": _deep_fact_run, "goal_checks": _goal_checks_run,
+                "end_of_cycle": _end_of_cycle_run, "one_call": _one_call_run,
+                "print_too_big": _print_too_big_run}
+    folders = {name: tmp_path_factory.mktemp(name) for name in builders}
+    results = goalagent_measured_each(*(build(folders[name]) for name, build in
+                                        builders.items()), timeout=300)
+    return {name: (folders[name], result)
+            for name, result in zip(builders, results, strict=True)}
 
 
 # ----------------------------------------------------------------------------- saves
@@ -46,12 +64,17 @@ main module [exit=always] { program {
 """
 
 
-def test_a_fact_too_deep_to_write_costs_only_its_agent_s_save(tmp_path: Path):
+def _deep_fact_run(folder: Path) -> list[str]:
+    return beside_counter(folder, {"atk": DEEP_FACT}, "--save-beliefs", str(folder / "saved.pl"),
+                          "--save-predicate", "n/1", "--save-predicate", "keep/1",
+                          "--save-predicate", "other/1")
+
+
+def test_a_fact_too_deep_to_write_costs_only_its_agent_s_save(
+        runs: dict[str, tuple[Path, Measured]]):
     # 'too deeply nested term' in the saver stopped every agent's save: nothing was written
-    saved = tmp_path / "saved.pl"
-    result = _run_beside_counter(tmp_path, DEEP_FACT, "--save-beliefs", str(saved),
-                                 "--save-predicate", "n/1", "--save-predicate", "keep/1",
-                                 "--save-predicate", "other/1")
+    folder, result = runs["deep_fact"]
+    saved = folder / "saved.pl"
     counter_finished(result)
     assert ("warning: beliefs of agent atk not saved to " in result.stderr
             and "keep/1: an answer is a cyclic or too deeply nested term" in result.stderr)
@@ -67,12 +90,10 @@ SPIN = "spin(N) :- N1 is N + 1, spin(N1)."
 LIMITS = ("--max-inferences", "200000", "--max-query-seconds", "1")
 
 
-@pytest.fixture(scope="module")
-def goal_checks(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Measured]:
+def _goal_checks_run(folder: Path) -> list[str]:
     """One run of the runaway goal checks below, each an agent beside the counter, with
-    LIMITS: its folder and what it did."""
-    folder = tmp_path_factory.mktemp("goal_checks")
-    return folder, run_beside_counter(folder, {
+    LIMITS."""
+    return beside_counter(folder, {
         "atk_initial": RUNAWAY_INITIAL_GOAL, "atk_nogoals": RUNAWAY_GOAL_IN_NOGOALS,
         "atk_achieved": RUNAWAY_ACHIEVEMENT_CHECK}, *LIMITS)
 
@@ -85,9 +106,9 @@ main module [exit=always] {{ program {{ if true then print(after_initial). }} }}
 
 
 def test_a_runaway_initial_goal_is_a_located_warning_not_a_failed_start(
-        goal_checks: tuple[Path, Measured]):
+        runs: dict[str, tuple[Path, Measured]]):
     # checking whether the goal is believed ran away: the start failed (exit 2) unlocated
-    folder, result = goal_checks
+    folder, result = runs["goal_checks"]
     counter_finished(result)
     assert result.returncode == 0 and "after_initial\n" in result.stdout, result.stderr
     assert (f"warning: agent atk_initial: module init, goal at {folder / 'atk_initial.goal'}"
@@ -104,10 +125,10 @@ module m [exit=nogoals] {{ program {{ if true then adopt(p). }} }}
 
 
 def test_a_runaway_goal_adopted_in_a_nogoals_module_is_a_located_warning(
-        goal_checks: tuple[Path, Measured]):
+        runs: dict[str, tuple[Path, Measured]]):
     # was 'Unhandled exception: inference_limit_exceeded': the module call had used up the
     # calling rule's limit, which escaped the nested query
-    folder, result = goal_checks
+    folder, result = runs["goal_checks"]
     counter_finished(result)
     assert result.returncode == 0, result.stderr
     atk = folder / "atk_nogoals.goal"
@@ -123,9 +144,9 @@ main module [exit=always] {{ program {{ if true then insert(flag) + print(after_
 
 
 def test_a_runaway_goal_achievement_check_keeps_the_goal_with_a_located_warning(
-        goal_checks: tuple[Path, Measured]):
+        runs: dict[str, tuple[Path, Measured]]):
     # the check after insert(flag) ran away outside every rule's catch: the agent stopped
-    folder, result = goal_checks
+    folder, result = runs["goal_checks"]
     counter_finished(result)
     assert result.returncode == 0 and "after_achieved\n" in result.stdout, result.stderr
     assert (f"warning: agent atk_achieved: module main, rule at "
@@ -134,18 +155,23 @@ def test_a_runaway_goal_achievement_check_keeps_the_goal_with_a_located_warning(
     assert "atk_achieved: terminated after 1 cycles, 2 actions, 1 goals left" in result.stderr
 
 
-def test_a_runaway_goal_check_at_the_end_of_a_cycle_names_the_goal_s_place(tmp_path: Path):
-    # a message makes the cycle's end check every goal (no rule runs then)
-    (tmp_path / "sender.goal").write_text(
+def _end_of_cycle_run(folder: Path) -> list[str]:
+    """A message makes the cycle's end check every goal (no rule runs then)."""
+    (folder / "sender.goal").write_text(
         "main module [exit=always] { program { if true then atk.send(hi). } }\n")
-    (tmp_path / "atk.goal").write_text(f"""
+    (folder / "atk.goal").write_text(f"""
 init module {{ knowledge {{ {SPIN} q :- received(_, hi), spin(0). }} goals {{ q. }} }}
 main module {{ program {{ if bel(fail) then print(never). }} }}
 """)
-    (tmp_path / "s.mas2g").write_text('agentfiles { "atk.goal". "sender.goal". }\n')
-    result = goalagent_measured("run", str(tmp_path / "s.mas2g"), *LIMITS, "--max-cycles", "3")
+    (folder / "s.mas2g").write_text('agentfiles { "atk.goal". "sender.goal". }\n')
+    return ["run", str(folder / "s.mas2g"), *LIMITS, "--max-cycles", "3"]
+
+
+def test_a_runaway_goal_check_at_the_end_of_a_cycle_names_the_goal_s_place(
+        runs: dict[str, tuple[Path, Measured]]):
+    folder, result = runs["end_of_cycle"]
     assert result.returncode == 0, result.stderr
-    assert (f"warning: agent atk: module init, goal at {tmp_path / 'atk.goal'}:2:102: checking "
+    assert (f"warning: agent atk: module init, goal at {folder / 'atk.goal'}:2:102: checking "
             "whether goal q is achieved ran more than 200,000 inferences") in result.stderr
     assert "atk: stopped at the cycle limit after 3 cycles, 0 actions, 1 goals left" in (
         result.stderr)
@@ -262,21 +288,17 @@ main module [exit=always] {{ program [order=linearall] {{
 """
 
 
-@pytest.fixture(scope="module")
-def one_call(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Measured]:
-    """One run of agent atkI for each condition I of ONE_CALL beside the counter: its folder
-    and what it did."""
-    folder = tmp_path_factory.mktemp("one_call")
+def _one_call_run(folder: Path) -> list[str]:
+    """One run of agent atkI for each condition I of ONE_CALL beside the counter."""
     programs = {f"atk{index}": _refused_then_small(index, condition)
                 for index, (condition, _) in enumerate(ONE_CALL)}
-    return folder, run_beside_counter(folder, programs, "--max-query-seconds", "2",
-                                           timeout=60)
+    return beside_counter(folder, programs, "--max-query-seconds", "2")
 
 
 @pytest.mark.parametrize("condition, says", ONE_CALL)
 def test_work_one_call_could_not_be_interrupted_in_is_refused_before_it_starts(
-        one_call: tuple[Path, Measured], condition: str, says: str):
-    folder, result = one_call
+        runs: dict[str, tuple[Path, Measured]], condition: str, says: str):
+    folder, result = runs["one_call"]
     index = ONE_CALL.index((condition, says))
     counter_finished(result)
     printed = result.stdout.split()
@@ -294,15 +316,20 @@ def test_tab_and_format_counts_known_when_loading_are_refused_then():
         load_agent("", "if bel(X is 7 ^ (10 ^ 9)) then print(x).").close()
 
 
-def test_a_print_too_big_to_write_is_a_warning_not_a_stop(tmp_path: Path):
-    # the warning itself carries the firing's bindings: a huge integer among them is named
-    result = _run_beside_counter(tmp_path, SIZES_KNOWLEDGE + """
+def _print_too_big_run(folder: Path) -> list[str]:
+    return beside_counter(folder, {"atk": SIZES_KNOWLEDGE + """
 main module [exit=always] { program [order=linearall] {
     if bel(sq(3, 22, Y)) then print(Y).
     if bel(length(L, 600000), maplist(=(a), L)) then print(L).
     if true then print(after).
 } }
-""", "--max-query-seconds", "10", timeout=60)
+"""}, "--max-query-seconds", "10")
+
+
+def test_a_print_too_big_to_write_is_a_warning_not_a_stop(
+        runs: dict[str, tuple[Path, Measured]]):
+    # the warning itself carries the firing's bindings: a huge integer among them is named
+    _, result = runs["print_too_big"]
     counter_finished(result)
     assert result.returncode == 0 and result.stdout == "after\n", result.stderr
     assert "print failed: an integer of 6,647,815 bits written, more than 1,000,000" in (

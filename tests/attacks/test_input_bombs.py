@@ -1,5 +1,7 @@
 """Small hostile inputs to the loaders: each is one located error line and exit code 2 (or is
-accepted cleanly), never a traceback, a hang or a memory blow-up (issue 19, item 1)."""
+accepted cleanly), never a traceback, a hang or a memory blow-up (issue 19, item 1). Every
+command of the module runs in one child, one after the other, each measured alone
+(``children``)."""
 
 from __future__ import annotations
 
@@ -15,7 +17,7 @@ from goalagent.kb.terms import Struct
 from goalagent.parser import GoalSyntaxError, parse_agent, parse_mas
 from goalagent.parser.conditions import MAX_CONDITION_LITERALS, MAX_MACRO_DEPTH
 from goalagent.parser.source import MAX_NESTING, MAX_PROGRAM_BYTES
-from tests.measured import Measured, goalagent_measured, goalagent_measured_each
+from tests.measured import Measured, goalagent_measured_each
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -73,19 +75,35 @@ BOMBS: dict[str, tuple[str, str, str]] = {
 }
 
 
-@pytest.fixture(scope="module")
-def checked(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Path, Measured]]:
-    """``goalagent check`` of each bomb, all in one child (each measured alone): by name,
-    the bomb's path and what the check did."""
-    folder = tmp_path_factory.mktemp("bombs")
-    paths = {}
+def _bomb_commands(folder: Path) -> dict[str, tuple[Path, list[str]]]:
+    """``goalagent check`` of each bomb (files written into ``folder``), by its name."""
+    commands = {}
     for index, (name, (file, text, _)) in enumerate(BOMBS.items()):
-        paths[name] = folder / str(index) / file
-        paths[name].parent.mkdir()
-        paths[name].write_text(text)
-    results = goalagent_measured_each(*(["check", str(path)] for path in paths.values()))
+        path = folder / str(index) / file
+        path.parent.mkdir()
+        path.write_text(text)
+        commands[f"bomb {name}"] = (path, ["check", str(path)])
+    return commands
+
+
+@pytest.fixture(scope="module")
+def children(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Path, Measured]]:
+    """Every ``goalagent`` command of this module, one after the other in one child, each
+    measured alone (its streams, seconds, and peak: the child resets it before each), by
+    name: the command's file and what it did. The one that grows the process for good
+    (printing the deep term) comes last, after every peak the tests bound."""
+    commands = {}  # each group in a folder of its own (two of them write a huge.goal)
+    for make in (_bomb_commands, _unreadable_commands, _accepted_commands, _deep_commands):
+        commands.update(make(tmp_path_factory.mktemp(make.__name__.strip("_"))))
+    results = goalagent_measured_each(*(args for _, args in commands.values()))
     return {name: (path, result)
-            for (name, path), result in zip(paths.items(), results, strict=True)}
+            for (name, (path, _)), result in zip(commands.items(), results, strict=True)}
+
+
+@pytest.fixture(scope="module")
+def checked(children: dict[str, tuple[Path, Measured]]) -> dict[str, tuple[Path, Measured]]:
+    """``goalagent check`` of each bomb, by name: the bomb's path and what the check did."""
+    return {name: children[f"bomb {name}"] for name in BOMBS}
 
 
 @pytest.mark.parametrize("name", list(BOMBS))
@@ -101,15 +119,20 @@ def test_each_bomb_is_one_located_error_line_with_exit_2(
     assert result.peak_mb < PEAK_MB, result.peak_mb
 
 
-def test_a_fifo_or_a_huge_sparse_file_is_refused_before_reading(tmp_path: Path):
-    fifo = tmp_path / "agent.goal"
+def _unreadable_commands(folder: Path) -> dict[str, tuple[Path, list[str]]]:
+    """``goalagent check`` of a FIFO and of a huge sparse file."""
+    fifo = folder / "agent.goal"
     os.mkfifo(fifo)  # nobody writes: reading it would wait for ever
-    huge = tmp_path / "huge.goal"
+    huge = folder / "huge.goal"
     with huge.open("wb") as stream:
         stream.truncate(MAX_PROGRAM_BYTES * 50)
-    results = goalagent_measured_each(["check", str(fifo)], ["check", str(huge)])
-    for path, says, result in ((fifo, "a FIFO, not a regular file", results[0]),
-                               (huge, "larger than", results[1])):
+    return {"fifo": (fifo, ["check", str(fifo)]), "huge": (huge, ["check", str(huge)])}
+
+
+def test_a_fifo_or_a_huge_sparse_file_is_refused_before_reading(
+        children: dict[str, tuple[Path, Measured]]):
+    for (path, result), says in ((children["fifo"], "a FIFO, not a regular file"),
+                                 (children["huge"], "larger than")):
         assert result.returncode == 2
         assert result.stderr.strip() == f"{path}:1:1: cannot read file: " + (
             says if says != "larger than" else
@@ -129,15 +152,20 @@ ACCEPTED = {  # name: an agent file's bytes, which must run to its end
 }
 
 
-@pytest.fixture(scope="module")
-def ran(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Measured]:
-    """``goalagent run`` of each ACCEPTED program, all in one child (each measured alone)."""
-    folder = tmp_path_factory.mktemp("accepted")
+def _accepted_commands(folder: Path) -> dict[str, tuple[Path, list[str]]]:
+    """``goalagent run`` of each ACCEPTED program."""
+    commands = {}
     for name, text in ACCEPTED.items():
-        (folder / f"{name}.goal").write_bytes(text)
-    results = goalagent_measured_each(*(["run", str(folder / f"{name}.goal")]
-                                        for name in ACCEPTED))
-    return dict(zip(ACCEPTED, results, strict=True))
+        path = folder / f"{name}.goal"
+        path.write_bytes(text)
+        commands[f"accepted {name}"] = (path, ["run", str(path)])
+    return commands
+
+
+@pytest.fixture(scope="module")
+def ran(children: dict[str, tuple[Path, Measured]]) -> dict[str, Measured]:
+    """What ``goalagent run`` of each ACCEPTED program did, by name."""
+    return {name: children[f"accepted {name}"][1] for name in ACCEPTED}
 
 
 def test_text_that_is_not_utf8_is_read_as_latin1_as_goal_read_it(ran: dict[str, Measured]):
@@ -198,26 +226,35 @@ def test_a_backslash_in_a_mas_agent_file_is_a_windows_separator_not_an_escape():
     assert [agentfile.path for agentfile in mas.agentfiles] == ["a/=b.goal"]
 
 
-def test_a_belief_file_nested_too_deep_is_refused_before_swi_reads_it(tmp_path: Path):
-    deep = tmp_path / "deep.pl"
+def _deep_commands(folder: Path) -> dict[str, tuple[Path, list[str]]]:
+    """A run loading a belief file nested too deep, then one printing a term too deep for
+    SWI-Prolog's writer."""
+    deep = folder / "deep.pl"
     deep.write_text("f(" + "[" * 100_000 + "]" * 100_000 + ").\n")
-    program = tmp_path / "a.goal"
+    program = folder / "a.goal"
     program.write_text(_condition("true"))
-    result = goalagent_measured("run", str(program), "--load-beliefs", str(deep),
-                                "--max-cycles", "1")
+    printing = folder / "deep.goal"
+    printing.write_text("init module { knowledge { nest(0, a) :- !.\n"
+                        "    nest(N, f(T)) :- N1 is N - 1, nest(N1, T). } }\n"
+                        "main module [exit=always] { program [order=linearall] {\n"
+                        "    if bel(X = 1) then print(X).\n"
+                        "    if bel(nest(1000000, T)) then print(T).\n"
+                        "    if true then print(after). } }\n")
+    return {"deep beliefs": (deep, ["run", str(program), "--load-beliefs", str(deep),
+                                    "--max-cycles", "1"]),
+            "deep print": (printing, ["run", str(printing)])}
+
+
+def test_a_belief_file_nested_too_deep_is_refused_before_swi_reads_it(
+        children: dict[str, tuple[Path, Measured]]):
+    deep, result = children["deep beliefs"]
     assert result.returncode == 2, result.stderr  # it was a segmentation fault (-11)
     assert result.stderr == f"error: {deep}:1:202: brackets nested more than 200 deep\n"
 
 
-def test_printing_a_term_too_deep_for_swis_writer_is_the_agents_problem(tmp_path: Path):
-    path = tmp_path / "deep.goal"
-    path.write_text("init module { knowledge { nest(0, a) :- !.\n"
-                    "    nest(N, f(T)) :- N1 is N - 1, nest(N1, T). } }\n"
-                    "main module [exit=always] { program [order=linearall] {\n"
-                    "    if bel(X = 1) then print(X).\n"
-                    "    if bel(nest(1000000, T)) then print(T).\n"
-                    "    if true then print(after). } }\n")
-    result = goalagent_measured("run", str(path))
+def test_printing_a_term_too_deep_for_swis_writer_is_the_agents_problem(
+        children: dict[str, tuple[Path, Measured]]):
+    _, result = children["deep print"]
     assert result.returncode in (0, 1), result.stderr  # it was a segmentation fault (-11)
     assert result.stdout.splitlines()[0] == "1"
     assert "Traceback" not in result.stderr

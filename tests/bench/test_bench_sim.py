@@ -3,7 +3,6 @@ a silly count is refused before anything runs."""
 
 from __future__ import annotations
 
-import runpy
 import subprocess
 import sys
 from pathlib import Path
@@ -31,12 +30,5 @@ def test_sim_bench_prints_physics_skills_and_frame_tables():
     (["--repeats", "0"], "--repeats must be at least 1"),
     (["--trials", "1"], "--trials must be at least 2"),
 ])
-def test_sim_bench_refuses_a_silly_repeat_count(args, message, monkeypatch, capsys):
-    # run as __main__ in this process (the script as a script is the test above): a child
-    # Python each would import MuJoCo, OpenCV and scikit-learn only to read two arguments
-    monkeypatch.setattr(sys, "argv", ["bench/sim.py", *args])
-    monkeypatch.setattr(sys, "path", list(sys.path))  # the script puts the root first
-    with pytest.raises(SystemExit) as exit_:
-        runpy.run_path(str(ROOT / "bench" / "sim.py"), run_name="__main__")
-    assert exit_.value.code == 2
-    assert message in capsys.readouterr().err
+def test_sim_bench_refuses_a_silly_repeat_count(args, message, refused):
+    assert message in refused("sim.py", *args)

@@ -1,6 +1,8 @@
 """``goalagent check`` runs no agent code, and ``goalagent test`` runs agents and conditions
 under the confinement and limits of ``run`` (issue 24 item 3): a test condition that runs
-away, sleeps or is refused fails its own item, with its position, and the file goes on."""
+away, sleeps or is refused fails its own item, with its position, and the file goes on.
+``check`` runs in this process (in the test's folder, where what a regression ran would
+write), ``test`` in a child: a regression there could run ``halt``."""
 
 from __future__ import annotations
 
@@ -35,27 +37,30 @@ main module { program {
 
 
 @pytest.mark.parametrize("sandbox", [False, True])
-def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool):
+def test_check_runs_no_agent_code(tmp_path: Path, sandbox: bool,
+                                  monkeypatch: pytest.MonkeyPatch):
     (tmp_path / "evil.goal").write_text(CHECKED)
-    result = goalagent("check", "evil.goal", *["--sandbox"] * sandbox, cwd=tmp_path)
+    monkeypatch.chdir(tmp_path)
+    result = cli("check", "evil.goal", *["--sandbox"] * sandbox)
     assert not list(tmp_path.glob("PWNED*")), result.stderr
-    assert "Traceback" not in result.stderr
     if sandbox:  # refused, located; and still not run
-        assert result.returncode == 2
+        assert result.exit_code == 2
         assert result.stderr.startswith("evil.goal:5:9: knowledge clause `:- shell(")
         assert "not allowed in the sandbox" in result.stderr
     else:  # declarations and library loads took effect: only the real undefined call
-        assert result.returncode == 0, result.stderr
+        assert result.exit_code == 0, result.stderr
         assert result.stderr.splitlines() == [
             "evil.goal:15:12: warning: undefined_here/1 is called but defined nowhere (not "
             "built in, not in knowledge or beliefs, never inserted)", "evil.goal: ok"]
 
 
-def test_check_still_reports_what_run_refuses_in_a_directive(tmp_path: Path):
+def test_check_still_reports_what_run_refuses_in_a_directive(tmp_path: Path,
+                                                             monkeypatch: pytest.MonkeyPatch):
     (tmp_path / "a.goal").write_text("init module { knowledge { :- ga_kb:assertz(x). } }\n"
                                      "main module { program { if true then print(x). } }\n")
-    result = goalagent("check", "a.goal", cwd=tmp_path)
-    assert result.returncode == 2
+    monkeypatch.chdir(tmp_path)
+    result = cli("check", "a.goal")
+    assert result.exit_code == 2
     assert "a.goal:1:27: knowledge clause" in result.stderr
     assert "qualified with a module" in result.stderr
 

