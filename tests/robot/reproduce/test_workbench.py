@@ -28,6 +28,7 @@ from robot.reproduce.framework.statistics import (
     rank_biserial,
     reading,
     sign_flip_p,
+    sign_flip_ps,
     summarize,
 )
 from robot.reproduce.framework.sweeps import replot as replot_sweeps
@@ -124,6 +125,21 @@ def test_the_sign_flip_test_is_exact_and_the_effect_size_is_the_rank_biserial_r(
     assert sign_flip_p(np.array([2.0]), "less", "a") == 1.0
     assert rank_biserial(np.array([1.0, -2.0, 3.0])) == pytest.approx((4 - 2) / 6)
     assert rank_biserial(np.array([0.0, 0.0])) == 0.0
+
+
+@pytest.mark.parametrize("differences", [
+    np.array([1.0, 2.0, 3.0]), np.array([0.3, -0.1, 0.2, -0.2, 0.1, 0.0, 0.4]),
+    np.array([1.0, -1.0, 2.0, -2.0]),  # ties with the observed mean among the patterns
+    np.round(np.random.default_rng(3).normal(size=17), 1),  # 2^17 > PERMUTATIONS: drawn
+])
+@pytest.mark.parametrize("direction", ["greater", "less"])
+def test_the_opposite_p_value_counted_on_the_null_is_scipys_own_test(differences, direction):
+    """sign_flip_ps counts the opposite direction's p-value on the null distribution of the
+    claim's own test instead of running a second test: what a second test gives."""
+    opposite = {"greater": "less", "less": "greater"}[direction]
+    assert sign_flip_ps(differences, direction, "claim") == (
+        sign_flip_p(differences, direction, "claim"),
+        sign_flip_p(differences, opposite, "claim"))
 
 
 @pytest.mark.parametrize(("values", "claim", "verdict", "p"), [
