@@ -6,11 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from goalagent import ast
-from goalagent.parser.ast_builder import build
-from goalagent.parser.source import read_program_file
+from goalagent.parser.agents import parse_clause_file
 
 
 def parse_prolog_file(path: str | Path) -> tuple[ast.PrologText, ...]:
-    """The clauses of a Prolog file, each read by SWI-Prolog (for ``#import``)."""
-    clauses, _ = build(read_program_file(path), str(path), "prolog_file")
-    return clauses  # type: ignore[return-value]
+    """The clauses of a Prolog file, each read by SWI-Prolog (for ``#import``): a GOAL 6
+    system's clause files are read the same way (``parse_clause_file``)."""
+    return parse_clause_file(path)
